@@ -1,0 +1,1 @@
+//! Scene formats and image IO.

@@ -1,0 +1,1 @@
+//! Statistical test helpers.

@@ -1,0 +1,3 @@
+//! The film: accumulation buffer, variance, tone mapping.
+
+pub mod tonemap;
