@@ -1,3 +1,6 @@
 //! The film: accumulation buffer, variance, tone mapping.
 
+mod image;
 pub mod tonemap;
+
+pub use image::Image;
