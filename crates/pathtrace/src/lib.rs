@@ -4,3 +4,17 @@
 
 pub mod film;
 pub mod math;
+pub mod sampling;
+pub mod shape;
+pub mod accel;
+pub mod material;
+pub mod light;
+pub mod camera;
+pub mod scene;
+
+pub use camera::{Camera, CameraDesc};
+pub use scene::{MaterialId, Scene, SceneBuilder};
+pub mod integrator;
+pub mod render;
+
+pub use render::{render, Progress, RenderOutcome, RenderSession, RenderSettings};

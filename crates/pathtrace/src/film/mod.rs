@@ -1,6 +1,11 @@
 //! The film: accumulation buffer, variance, tone mapping.
 
+mod accumulator;
+#[allow(clippy::module_inception)]
+mod film;
 mod image;
 pub mod tonemap;
 
+pub use accumulator::PixelStats;
+pub use film::Film;
 pub use image::Image;

@@ -1,6 +1,23 @@
 //! Maths primitives: glam re-exports, colours, frames, transforms, boxes and rays.
 
+mod aabb;
+mod frame;
+mod ray;
 mod rgb;
+mod transform;
 
-pub use glam::{Mat4, Vec2, Vec3};
+pub use aabb::Aabb;
+pub use frame::Frame;
+pub use glam::{Mat3, Mat4, Vec2, Vec3};
+pub use ray::{offset_ray_origin, Ray};
 pub use rgb::Rgb;
+pub use transform::Transform;
+
+/// π as f32.
+pub const PI: f32 = std::f32::consts::PI;
+/// 1/π.
+pub const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
+/// 1/(2π).
+pub const INV_2PI: f32 = 0.5 * std::f32::consts::FRAC_1_PI;
+/// 1/(4π).
+pub const INV_4PI: f32 = 0.25 * std::f32::consts::FRAC_1_PI;

@@ -1,0 +1,5 @@
+//! Acceleration: a bounding volume hierarchy over the scene's bounded primitives.
+
+mod bvh;
+
+pub use bvh::{Bvh, BvhStats, Intersectable};

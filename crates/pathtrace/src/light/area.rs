@@ -1,0 +1,169 @@
+//! Area lights: quads, triangles and spheres that emit a constant radiance from their front
+//! face (or both faces).
+//!
+//! Sampling densities, converted from area to solid angle at the reference point:
+//! - quads and triangles: uniform by area, pdf_ω = r² / (|cos θ_l| · A) (the area-to-solid-angle
+//!   Jacobian; derived in docs/sampling.md);
+//! - spheres seen from outside: uniform over the cone of directions they subtend,
+//!   pdf_ω = 1 / (2π (1 - cos θ_max)), cos θ_max = √(1 - r²/d²) (pbrt-v3 §14.2.3);
+//!   from inside: uniform by area.
+
+use crate::math::{Frame, Ray, Rgb, Vec2, Vec3, PI};
+use crate::sampling::warp;
+use crate::shape::{Quad, Sphere, Triangle};
+
+/// What an object emits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Emission {
+    /// Emitted radiance (W·sr⁻¹·m⁻² per channel).
+    pub radiance: Rgb,
+    /// Emit from both faces instead of only the front (normal) side.
+    pub two_sided: bool,
+}
+
+/// The shapes that can emit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightShape {
+    Quad(Quad),
+    Triangle(Triangle),
+    Sphere(Sphere),
+}
+
+/// One emissive primitive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaLight {
+    pub shape: LightShape,
+    pub emission: Emission,
+}
+
+/// A point chosen on a light, with its solid-angle density at the reference point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct ShapeSample {
+    pub point: Vec3,
+    pub normal: Vec3,
+    pub pdf: f32,
+}
+
+fn area_to_solid_angle(ref_p: Vec3, point: Vec3, normal: Vec3, area: f32) -> f32 {
+    let d = point - ref_p;
+    let dist2 = d.length_squared();
+    let cos_l = normal.dot(d).abs() / dist2.sqrt();
+    if cos_l <= 0.0 || dist2 <= 0.0 {
+        return 0.0;
+    }
+    dist2 / (cos_l * area)
+}
+
+impl AreaLight {
+    pub fn area(&self) -> f32 {
+        match &self.shape {
+            LightShape::Quad(q) => q.area(),
+            LightShape::Triangle(t) => t.area(),
+            LightShape::Sphere(s) => s.area(),
+        }
+    }
+
+    /// Total emitted power in luminance units: L·A·π per emitting face.
+    pub fn power(&self) -> f32 {
+        let faces = if self.emission.two_sided { 2.0 } else { 1.0 };
+        self.emission.radiance.luminance() * self.area() * PI * faces
+    }
+
+    /// Radiance leaving a point with geometric normal `n` in direction `w`.
+    #[inline]
+    pub fn emitted(&self, n: Vec3, w: Vec3) -> Rgb {
+        if self.emission.two_sided || n.dot(w) > 0.0 {
+            self.emission.radiance
+        } else {
+            Rgb::BLACK
+        }
+    }
+
+    pub(super) fn sample(&self, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
+        let (point, normal, area) = match &self.shape {
+            LightShape::Quad(q) => (q.point_at(u.x, u.y), q.normal(), q.area()),
+            LightShape::Triangle(t) => {
+                let b = warp::square_to_uniform_triangle(u);
+                (t.p0 + b.x * t.e1 + b.y * t.e2, t.e1.cross(t.e2).normalize(), t.area())
+            }
+            LightShape::Sphere(s) => return sample_sphere(s, ref_p, u),
+        };
+        let pdf = area_to_solid_angle(ref_p, point, normal, area);
+        (pdf > 0.0 && pdf.is_finite()).then_some(ShapeSample { point, normal, pdf })
+    }
+
+    /// Density (solid angle at `ref_p`) with which [`AreaLight::sample`] picks the surface
+    /// point `p` (normal `n`) — the point a ray from `ref_p` actually hit.
+    pub(super) fn pdf_hit(&self, ref_p: Vec3, p: Vec3, n: Vec3) -> f32 {
+        match &self.shape {
+            LightShape::Sphere(s) => sphere_pdf(s, ref_p, p, n),
+            _ => area_to_solid_angle(ref_p, p, n, self.area()),
+        }
+    }
+
+    /// Density with which sampling this light produces direction `dir` from `ref_p`, summed over
+    /// every point of the light along that direction (occluded or not) — what a one-sample
+    /// mixture estimator needs.
+    pub(super) fn pdf_direction(&self, ref_p: Vec3, dir: Vec3) -> f32 {
+        let ray = Ray::new(ref_p, dir);
+        match &self.shape {
+            LightShape::Quad(q) => q
+                .intersect(&ray, 0.0, f32::INFINITY)
+                .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), q.normal(), q.area())),
+            LightShape::Triangle(t) => t
+                .intersect(&ray, 0.0, f32::INFINITY)
+                .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), t.e1.cross(t.e2).normalize(), t.area())),
+            LightShape::Sphere(s) => {
+                let d2 = (s.center - ref_p).length_squared();
+                if d2 > s.radius * s.radius {
+                    let cos_max = cone_cos_max(s, d2);
+                    let cos_dir = (s.center - ref_p).normalize().dot(dir);
+                    warp::uniform_cone_pdf(Vec3::new(0.0, 0.0, cos_dir), cos_max)
+                } else {
+                    // Inside: area sampling, and exactly one point along any direction.
+                    s.intersect(&ray, 0.0, f32::INFINITY).map_or(0.0, |h| {
+                        let p = ray.at(h.t);
+                        area_to_solid_angle(ref_p, p, (p - s.center) / s.radius, s.area())
+                    })
+                }
+            }
+        }
+    }
+}
+
+fn cone_cos_max(s: &Sphere, dist2: f32) -> f32 {
+    let sin2 = (s.radius * s.radius / dist2).min(1.0);
+    (1.0 - sin2).max(0.0).sqrt()
+}
+
+fn sample_sphere(s: &Sphere, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
+    let to_center = s.center - ref_p;
+    let d2 = to_center.length_squared();
+    if d2 <= s.radius * s.radius {
+        let n = warp::square_to_uniform_sphere(u);
+        let point = s.center + n * s.radius;
+        let pdf = area_to_solid_angle(ref_p, point, n, s.area());
+        return (pdf > 0.0 && pdf.is_finite()).then_some(ShapeSample { point, normal: n, pdf });
+    }
+    let cos_max = cone_cos_max(s, d2);
+    let frame = Frame::from_normal(to_center / d2.sqrt());
+    let dir = frame.to_world(warp::square_to_uniform_cone(u, cos_max));
+    let ray = Ray::new(ref_p, dir);
+    let point = match s.intersect(&ray, 0.0, f32::INFINITY) {
+        Some(h) => ray.at(h.t),
+        // Grazing the silhouette in f32: take the nearest point on the sphere to the ray.
+        None => s.center + (ray.at(to_center.dot(dir)) - s.center).normalize_or(-dir) * s.radius,
+    };
+    let normal = (point - s.center) / s.radius;
+    let pdf = warp::uniform_cone_pdf(Vec3::Z, cos_max);
+    (pdf > 0.0 && pdf.is_finite()).then_some(ShapeSample { point, normal, pdf })
+}
+
+fn sphere_pdf(s: &Sphere, ref_p: Vec3, p: Vec3, n: Vec3) -> f32 {
+    let d2 = (s.center - ref_p).length_squared();
+    if d2 > s.radius * s.radius {
+        warp::uniform_cone_pdf(Vec3::Z, cone_cos_max(s, d2))
+    } else {
+        area_to_solid_angle(ref_p, p, n, s.area())
+    }
+}

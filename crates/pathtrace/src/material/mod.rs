@@ -1,0 +1,119 @@
+//! Materials (BSDFs): one file per model, gathered in the closed [`Material`] enum.
+//!
+//! Conventions: directions are in the local shading frame (normal = +z), both pointing away
+//! from the surface; `wo` towards the viewer, `wi` towards the light. `eval` returns
+//! `f(wo, wi)·|cos θi|`, so models whose BRDF is singular at grazing angles stay finite.
+//! Reflective models are two-sided: the integrator flips the frame so that `wo.z > 0`. The
+//! dielectric sees both sides (z > 0 is outside, where the geometric normal points).
+
+mod dielectric;
+mod diffuse;
+mod glossy;
+mod lambertian;
+mod mirror;
+
+pub use dielectric::{fresnel_dielectric, Dielectric};
+pub use diffuse::Diffuse;
+pub use glossy::Glossy;
+pub use lambertian::Lambertian;
+pub use mirror::Mirror;
+
+use crate::math::{Rgb, Vec2, Vec3};
+
+/// A sampled scattering direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// Incident direction (local frame).
+    pub wi: Vec3,
+    /// `f·|cos θi| / pdf`: what the path throughput is multiplied by.
+    pub weight: Rgb,
+    /// Solid-angle density of `wi` (for delta lobes: the discrete probability of the lobe).
+    pub pdf: f32,
+    /// True for a Dirac lobe (mirror, glass): light sampling cannot reach it.
+    pub delta: bool,
+    /// Relative index of refraction crossed (1 for reflection), for Russian roulette.
+    pub eta: f32,
+}
+
+/// Every surface model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Material {
+    /// Black: absorbs everything (the surface of a pure emitter).
+    Black,
+    Diffuse(Diffuse),
+    Lambertian(Lambertian),
+    Mirror(Mirror),
+    Glossy(Glossy),
+    Dielectric(Dielectric),
+}
+
+impl Material {
+    /// Samples `wi` given `wo`, a number for lobe selection and a 2D point.
+    #[inline]
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        match self {
+            Material::Black => None,
+            Material::Diffuse(m) => m.sample(wo, u),
+            Material::Lambertian(m) => m.sample(wo, u),
+            Material::Mirror(m) => m.sample(wo),
+            Material::Glossy(m) => m.sample(wo, u),
+            Material::Dielectric(m) => m.sample(wo, u_lobe),
+        }
+    }
+
+    /// `f(wo, wi)·|cos θi|`; zero for delta lobes.
+    #[inline]
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        match self {
+            Material::Diffuse(m) => m.eval(wo, wi),
+            Material::Lambertian(m) => m.eval(wo, wi),
+            Material::Glossy(m) => m.eval(wo, wi),
+            Material::Black | Material::Mirror(_) | Material::Dielectric(_) => Rgb::BLACK,
+        }
+    }
+
+    /// Solid-angle density with which [`Material::sample`] produces `wi`; zero for delta lobes.
+    #[inline]
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match self {
+            Material::Diffuse(m) => m.pdf(wo, wi),
+            Material::Lambertian(m) => m.pdf(wo, wi),
+            Material::Glossy(m) => m.pdf(wo, wi),
+            Material::Black | Material::Mirror(_) | Material::Dielectric(_) => 0.0,
+        }
+    }
+
+    /// True if the model only scatters into discrete directions, so light sampling is skipped.
+    pub fn is_delta(&self) -> bool {
+        matches!(self, Material::Mirror(_) | Material::Dielectric(_))
+    }
+
+    /// True if the model treats both sides of a surface alike.
+    pub fn is_two_sided(&self) -> bool {
+        !matches!(self, Material::Dielectric(_))
+    }
+
+    /// True if the model scatters no light at all.
+    pub fn is_black(&self) -> bool {
+        matches!(self, Material::Black)
+    }
+
+    /// The model's name in scene files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Material::Black => "black",
+            Material::Diffuse(_) => "diffuse",
+            Material::Lambertian(_) => "lambertian",
+            Material::Mirror(_) => "mirror",
+            Material::Glossy(_) => "glossy",
+            Material::Dielectric(_) => "dielectric",
+        }
+    }
+}
+
+/// Mirror reflection about the local normal: R = -wo + 2(wo·n)n, i.e. the book form
+/// R = L - 2(L·N)N with L = -wo.
+#[inline]
+pub(crate) fn reflect_local(wo: Vec3) -> Vec3 {
+    Vec3::new(-wo.x, -wo.y, wo.z)
+}

@@ -1,0 +1,90 @@
+//! What to render and how long for.
+
+use crate::integrator::PathSettings;
+use crate::sampling::SamplerKind;
+use std::time::Duration;
+
+/// Settings of one render.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel to reach; 0 means "until the time limit or cancel".
+    pub spp: u32,
+    /// Stop after this much wall-clock time (completed tiles are kept).
+    pub time_limit: Option<Duration>,
+    pub path: PathSettings,
+    pub sampler: SamplerKind,
+    pub seed: u64,
+    /// Worker threads; 0 means one per core.
+    pub threads: usize,
+    /// Tiles are `tile_size × tile_size` pixels.
+    pub tile_size: u32,
+    /// Waves double from 1 spp up to this many samples per pixel each.
+    pub max_wave_spp: u32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            width: 512,
+            height: 512,
+            spp: 64,
+            time_limit: None,
+            path: PathSettings::default(),
+            sampler: SamplerKind::default(),
+            seed: 0,
+            threads: 0,
+            tile_size: 16,
+            max_wave_spp: 16,
+        }
+    }
+}
+
+impl RenderSettings {
+    /// How many samples the stratified sampler spreads its strata over: the spp target, or
+    /// one wave's worth for open-ended (time-limited) renders.
+    pub fn strata_count(&self) -> u32 {
+        if self.spp > 0 {
+            self.spp
+        } else {
+            self.max_wave_spp.max(1)
+        }
+    }
+
+    /// The sample counts of successive waves: 1, 2, 4, … capped at `max_wave_spp`, summing to
+    /// `spp` (endless when `spp` is 0).
+    pub fn waves(&self) -> impl Iterator<Item = u32> + '_ {
+        let cap = self.max_wave_spp.max(1);
+        let mut done = 0u32;
+        let mut next = 1u32;
+        std::iter::from_fn(move || {
+            if self.spp > 0 && done >= self.spp {
+                return None;
+            }
+            let mut n = next.min(cap);
+            if self.spp > 0 {
+                n = n.min(self.spp - done);
+            }
+            done = done.saturating_add(n);
+            next = next.saturating_mul(2);
+            Some(n)
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn waves_double_then_cap_and_sum_to_the_target() {
+        let s = RenderSettings { spp: 64, max_wave_spp: 16, ..Default::default() };
+        let w: Vec<u32> = s.waves().collect();
+        assert_eq!(w, vec![1, 2, 4, 8, 16, 16, 16, 1]);
+        let s = RenderSettings { spp: 5, ..Default::default() };
+        assert_eq!(s.waves().collect::<Vec<_>>(), vec![1, 2, 2]);
+        let s = RenderSettings { spp: 0, max_wave_spp: 4, ..Default::default() };
+        assert_eq!(s.waves().take(5).collect::<Vec<_>>(), vec![1, 2, 4, 4, 4]);
+    }
+}

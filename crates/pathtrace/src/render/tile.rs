@@ -1,0 +1,84 @@
+//! Rendering one tile for one wave of samples.
+
+use crate::camera::Camera;
+use crate::film::PixelStats;
+use crate::integrator::{radiance, PathSettings, PathStats};
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+
+/// A rectangle of pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Tile {
+    pub x0: u32,
+    pub y0: u32,
+    pub w: u32,
+    pub h: u32,
+}
+
+/// Splits the image into tiles, row by row.
+pub(super) fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
+    let size = size.max(1);
+    let mut out = Vec::new();
+    for y0 in (0..height).step_by(size as usize) {
+        for x0 in (0..width).step_by(size as usize) {
+            out.push(Tile { x0, y0, w: size.min(width - x0), h: size.min(height - y0) });
+        }
+    }
+    out
+}
+
+/// The samples of one tile for one wave.
+pub(super) struct TileResult {
+    pub tile: Tile,
+    pub pixels: Vec<PixelStats>,
+    pub stats: PathStats,
+    pub dropped: u64,
+}
+
+/// Renders samples `first .. first + count` of every pixel in `tile`. Each pixel sample's
+/// random numbers depend only on (seed, pixel, sample index), never on the thread.
+pub(super) fn render_tile(
+    scene: &Scene,
+    camera: &Camera,
+    path: &PathSettings,
+    sampler: &mut Sampler,
+    tile: Tile,
+    first: u32,
+    count: u32,
+) -> TileResult {
+    let mut pixels = vec![PixelStats::default(); (tile.w * tile.h) as usize];
+    let mut stats = PathStats::default();
+    let mut dropped = 0;
+    for ty in 0..tile.h {
+        for tx in 0..tile.w {
+            let (x, y) = (tile.x0 + tx, tile.y0 + ty);
+            let acc = &mut pixels[(ty * tile.w + tx) as usize];
+            for s in first..first + count {
+                sampler.start(x, y, s);
+                let jitter = sampler.next_2d();
+                let ray = camera.generate_ray(x, y, jitter);
+                let l = radiance(scene, ray, sampler, path, &mut stats);
+                if l.is_finite() {
+                    acc.add(l);
+                } else {
+                    dropped += 1;
+                }
+            }
+        }
+    }
+    TileResult { tile, pixels, stats, dropped }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tiles_cover_the_image_once() {
+        let ts = tiles(37, 20, 16);
+        let area: u32 = ts.iter().map(|t| t.w * t.h).sum();
+        assert_eq!(area, 37 * 20);
+        assert_eq!(ts.len(), 3 * 2);
+        assert!(ts.iter().all(|t| t.x0 + t.w <= 37 && t.y0 + t.h <= 20));
+    }
+}

@@ -1,0 +1,72 @@
+//! A discrete distribution over `n` items proportional to non-negative weights (used to pick a
+//! light by power), sampled by inverting its cumulative distribution.
+
+/// Piecewise-constant discrete distribution.
+#[derive(Clone, Debug, Default)]
+pub struct Distribution1D {
+    cdf: Vec<f32>,
+    pmf: Vec<f32>,
+}
+
+impl Distribution1D {
+    /// `None` if there are no items or the weights do not sum to a positive finite value.
+    pub fn new(weights: &[f32]) -> Option<Self> {
+        let total: f64 = weights.iter().map(|&w| w.max(0.0) as f64).sum();
+        if weights.is_empty() || !(total > 0.0 && total.is_finite()) {
+            return None;
+        }
+        let mut cdf = Vec::with_capacity(weights.len());
+        let mut acc = 0.0f64;
+        for &w in weights {
+            acc += w.max(0.0) as f64;
+            cdf.push((acc / total) as f32);
+        }
+        if let Some(last) = cdf.last_mut() {
+            *last = 1.0;
+        }
+        let pmf = weights.iter().map(|&w| (w.max(0.0) as f64 / total) as f32).collect();
+        Some(Self { cdf, pmf })
+    }
+
+    pub fn len(&self) -> usize {
+        self.pmf.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.pmf.is_empty()
+    }
+
+    /// Probability of item `i`.
+    pub fn pmf(&self, i: usize) -> f32 {
+        self.pmf.get(i).copied().unwrap_or(0.0)
+    }
+
+    /// Picks an item for `u ∈ [0,1)`; returns (index, probability). Items of zero weight are
+    /// never returned.
+    pub fn sample(&self, u: f32) -> (usize, f32) {
+        let i = self.cdf.partition_point(|&c| c <= u).min(self.cdf.len() - 1);
+        (i, self.pmf[i])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sampling_follows_the_weights() {
+        let d = Distribution1D::new(&[1.0, 0.0, 3.0]).unwrap();
+        let n = 100_000;
+        let mut counts = [0usize; 3];
+        for k in 0..n {
+            let (i, p) = d.sample((k as f32 + 0.5) / n as f32);
+            assert!(p > 0.0);
+            counts[i] += 1;
+        }
+        assert_eq!(counts[1], 0);
+        assert!((counts[0] as f32 / n as f32 - 0.25).abs() < 1e-3);
+        assert!((d.pmf(2) - 0.75).abs() < 1e-6);
+        assert!(Distribution1D::new(&[0.0]).is_none());
+        assert!(Distribution1D::new(&[]).is_none());
+    }
+}

@@ -1,0 +1,14 @@
+//! Sampling: random numbers, warps from the unit square with their pdfs, MIS heuristics,
+//! discrete distributions and the per-pixel samplers.
+
+mod distribution;
+pub mod hash;
+mod mis;
+mod pcg;
+mod sampler;
+pub mod warp;
+
+pub use distribution::Distribution1D;
+pub use mis::{balance_heuristic, power_heuristic};
+pub use pcg::Pcg32;
+pub use sampler::{Sampler, SamplerKind};

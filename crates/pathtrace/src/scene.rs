@@ -1,0 +1,338 @@
+//! The renderable scene (primitives in a BVH, materials, lights, camera) and the
+//! [`SceneBuilder`] that every front end — files, built-in scenes, tests — goes through.
+
+use crate::accel::{Bvh, Intersectable};
+use crate::camera::CameraDesc;
+use crate::light::{AreaLight, Emission, LightSet, LightShape};
+use crate::material::Material;
+use crate::math::{Ray, Transform, Vec3};
+use crate::shape::{MeshError, PrimHit, Quad, Shape, SurfacePoint, Triangle, TriangleMesh};
+
+/// Index of a material in the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct MaterialId(pub u32);
+
+/// A shape with its material and, if emissive, its light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Primitive {
+    pub shape: Shape,
+    pub material: u32,
+    /// Index into the light set, or [`Primitive::NO_LIGHT`].
+    pub light: u32,
+}
+
+impl Primitive {
+    pub const NO_LIGHT: u32 = u32::MAX;
+}
+
+impl Intersectable for Primitive {
+    #[inline(always)]
+    fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        self.shape.intersect(ray, t_min, t_max)
+    }
+}
+
+/// A ray's closest hit: which primitive, and where along the ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    pub prim: PrimRef,
+    pub hit: PrimHit,
+}
+
+/// A primitive: in the BVH, or one of the unbounded shapes kept beside it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrimRef {
+    Bounded(u32),
+    Unbounded(u32),
+}
+
+/// Everything the integrator needs to know about a hit point.
+#[derive(Clone, Copy, Debug)]
+pub struct Interaction {
+    pub surface: SurfacePoint,
+    pub material: Material,
+    pub light: u32,
+}
+
+/// Why a scene cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BuildError {
+    #[error("material id {0} does not exist")]
+    UnknownMaterial(u32),
+    #[error("degenerate {0}: zero area, zero radius or non-finite coordinates")]
+    Degenerate(&'static str),
+    #[error("an infinite plane cannot be emissive (it has no finite area to sample)")]
+    EmissivePlane,
+    #[error("an emissive sphere must be scaled uniformly (an ellipsoid's area cannot be sampled)")]
+    EmissiveEllipsoid,
+    #[error("invalid mesh: {0}")]
+    Mesh(#[from] MeshError),
+    #[error("the scene has no objects")]
+    Empty,
+    #[error("the scene has no lights: nothing would be visible (add an emissive material)")]
+    NoLights,
+    #[error("invalid material parameter: {0}")]
+    Material(String),
+}
+
+/// A scene ready to render.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    prims: Vec<Primitive>,
+    unbounded: Vec<Primitive>,
+    bvh: Bvh,
+    materials: Vec<Material>,
+    pub lights: LightSet,
+    pub camera: CameraDesc,
+    vertex_normals: Vec<[Vec3; 3]>,
+}
+
+impl Scene {
+    /// Closest hit with `t ∈ [0, t_max]`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let mut best = self
+            .bvh
+            .intersect(&self.prims, ray, 0.0, t_max)
+            .map(|(hit, i)| Hit { prim: PrimRef::Bounded(i), hit });
+        for (i, p) in self.unbounded.iter().enumerate() {
+            let limit = best.map_or(t_max, |b| b.hit.t);
+            if let Some(hit) = p.shape.intersect(ray, 0.0, limit) {
+                best = Some(Hit { prim: PrimRef::Unbounded(i as u32), hit });
+            }
+        }
+        best
+    }
+
+    /// True if anything lies on the ray within `[0, t_max]`.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        self.unbounded.iter().any(|p| p.shape.intersect(ray, 0.0, t_max).is_some())
+            || self.bvh.occluded(&self.prims, ray, 0.0, t_max)
+    }
+
+    fn primitive(&self, r: PrimRef) -> &Primitive {
+        match r {
+            PrimRef::Bounded(i) => &self.prims[i as usize],
+            PrimRef::Unbounded(i) => &self.unbounded[i as usize],
+        }
+    }
+
+    /// Surface details of a hit found with `ray`.
+    #[inline]
+    pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
+        let prim = self.primitive(hit.prim);
+        Interaction {
+            surface: prim.shape.surface(ray, &hit.hit, &self.vertex_normals),
+            material: self.materials[prim.material as usize],
+            light: prim.light,
+        }
+    }
+
+    /// Number of primitives (bounded and unbounded).
+    pub fn primitive_count(&self) -> usize {
+        self.prims.len() + self.unbounded.len()
+    }
+
+    /// Brute-force closest hit (every primitive tested), for checking the BVH.
+    pub fn intersect_brute_force(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let all = self
+            .prims
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (PrimRef::Bounded(i as u32), p))
+            .chain(self.unbounded.iter().enumerate().map(|(i, p)| (PrimRef::Unbounded(i as u32), p)));
+        for (r, p) in all {
+            let limit = best.map_or(t_max, |b| b.hit.t);
+            if let Some(hit) = p.shape.intersect(ray, 0.0, limit) {
+                best = Some(Hit { prim: r, hit });
+            }
+        }
+        best
+    }
+}
+
+/// Assembles a [`Scene`] from shapes, materials, lights and a camera.
+#[derive(Clone, Debug, Default)]
+pub struct SceneBuilder {
+    materials: Vec<(Material, Option<Emission>)>,
+    shapes: Vec<(Shape, u32)>,
+    vertex_normals: Vec<[Vec3; 3]>,
+    camera: CameraDesc,
+    allow_no_lights: bool,
+}
+
+impl SceneBuilder {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds a non-emissive material.
+    pub fn material(&mut self, m: Material) -> MaterialId {
+        self.materials.push((m, None));
+        MaterialId(self.materials.len() as u32 - 1)
+    }
+
+    /// Adds a pure emitter: black surface with the given emission.
+    pub fn emissive(&mut self, e: Emission) -> MaterialId {
+        self.material_with_emission(Material::Black, e)
+    }
+
+    /// Adds a material that both scatters and emits (as in a furnace test).
+    pub fn material_with_emission(&mut self, m: Material, e: Emission) -> MaterialId {
+        self.materials.push((m, Some(e)));
+        MaterialId(self.materials.len() as u32 - 1)
+    }
+
+    pub fn camera(&mut self, c: CameraDesc) -> &mut Self {
+        self.camera = c;
+        self
+    }
+
+    /// Allows building a scene without lights (it renders black); off by default because
+    /// that is almost always a mistake in a scene file.
+    pub fn allow_no_lights(&mut self, allow: bool) -> &mut Self {
+        self.allow_no_lights = allow;
+        self
+    }
+
+    fn check_material(&self, m: MaterialId) -> Result<(), BuildError> {
+        if (m.0 as usize) < self.materials.len() {
+            Ok(())
+        } else {
+            Err(BuildError::UnknownMaterial(m.0))
+        }
+    }
+
+    /// Adds a shape placed by `transform`.
+    pub fn shape(&mut self, shape: Shape, material: MaterialId, transform: &Transform) -> Result<(), BuildError> {
+        self.check_material(material)?;
+        let placed = shape.transformed(transform).ok_or(BuildError::Degenerate(shape_name(&shape)))?;
+        self.shapes.push((placed, material.0));
+        Ok(())
+    }
+
+    /// Adds the six quads of the box `[min, max]`, placed by `transform`.
+    pub fn add_box(&mut self, min: Vec3, max: Vec3, material: MaterialId, transform: &Transform) -> Result<(), BuildError> {
+        self.check_material(material)?;
+        let faces = Quad::box_faces(min, max, transform).ok_or(BuildError::Degenerate("box"))?;
+        self.shapes.extend(faces.into_iter().map(|q| (Shape::Quad(q), material.0)));
+        Ok(())
+    }
+
+    /// Adds every triangle of a mesh, placed by `transform`. Degenerate triangles are skipped
+    /// (meshes often contain a few); returns how many were skipped.
+    pub fn mesh(&mut self, mesh: &TriangleMesh, material: MaterialId, transform: &Transform) -> Result<usize, BuildError> {
+        self.check_material(material)?;
+        mesh.validate()?;
+        let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| transform.point(p)).collect();
+        let normals: Option<Vec<Vec3>> = mesh.normals.as_ref().map(|ns| ns.iter().map(|&n| transform.normal(n)).collect());
+        let mut skipped = 0;
+        for tri in &mesh.indices {
+            let [a, b, c] = tri.map(|i| positions[i as usize]);
+            let shading = match &normals {
+                Some(ns) => {
+                    self.vertex_normals.push(tri.map(|i| ns[i as usize]));
+                    self.vertex_normals.len() as u32 - 1
+                }
+                None => Triangle::FLAT,
+            };
+            match Triangle::new(a, b, c, shading) {
+                Some(t) => self.shapes.push((Shape::Triangle(t), material.0)),
+                None => skipped += 1,
+            }
+        }
+        Ok(skipped)
+    }
+
+    /// Builds the BVH and the light set.
+    pub fn build(self) -> Result<Scene, BuildError> {
+        if self.shapes.is_empty() {
+            return Err(BuildError::Empty);
+        }
+        for (m, _) in &self.materials {
+            validate_material(m)?;
+        }
+        let mut bounded = Vec::new();
+        let mut unbounded = Vec::new();
+        let mut lights = Vec::new();
+        for (shape, material) in self.shapes {
+            let emission = self.materials[material as usize].1;
+            let light = match emission {
+                Some(e) if !e.radiance.is_black() => {
+                    let light_shape = match &shape {
+                        Shape::Quad(q) => LightShape::Quad(*q),
+                        Shape::Triangle(t) => LightShape::Triangle(*t),
+                        Shape::Sphere(s) => LightShape::Sphere(*s),
+                        Shape::Plane(_) => return Err(BuildError::EmissivePlane),
+                        Shape::Ellipsoid(_) => return Err(BuildError::EmissiveEllipsoid),
+                    };
+                    lights.push(AreaLight { shape: light_shape, emission: e });
+                    lights.len() as u32 - 1
+                }
+                _ => Primitive::NO_LIGHT,
+            };
+            let prim = Primitive { shape, material, light };
+            if prim.shape.bounds().is_some() {
+                bounded.push(prim);
+            } else {
+                unbounded.push(prim);
+            }
+        }
+        let lights = LightSet::new(lights);
+        if lights.is_empty() && !self.allow_no_lights {
+            return Err(BuildError::NoLights);
+        }
+        let bounds: Vec<_> = bounded.iter().map(|p| p.shape.bounds().unwrap_or_default()).collect();
+        let (bvh, order) = Bvh::build(&bounds);
+        let mut slots: Vec<Option<Primitive>> = bounded.into_iter().map(Some).collect();
+        let prims = order.iter().filter_map(|&i| slots[i as usize].take()).collect();
+        Ok(Scene {
+            prims,
+            unbounded,
+            bvh,
+            materials: self.materials.into_iter().map(|(m, _)| m).collect(),
+            lights,
+            camera: self.camera,
+            vertex_normals: self.vertex_normals,
+        })
+    }
+}
+
+fn shape_name(s: &Shape) -> &'static str {
+    match s {
+        Shape::Sphere(_) | Shape::Ellipsoid(_) => "sphere",
+        Shape::Plane(_) => "plane",
+        Shape::Quad(_) => "quad",
+        Shape::Triangle(_) => "triangle",
+    }
+}
+
+fn validate_material(m: &Material) -> Result<(), BuildError> {
+    let colour_ok = |c: crate::math::Rgb| c.is_finite() && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0;
+    let err = |s: String| Err(BuildError::Material(s));
+    match m {
+        Material::Black => Ok(()),
+        Material::Diffuse(d) if !colour_ok(d.albedo) || d.albedo.max_component() > 1.0 => {
+            err(format!("diffuse albedo {:?} must be in [0, 1]", d.albedo.to_array()))
+        }
+        Material::Lambertian(d) if !colour_ok(d.albedo) || d.albedo.max_component() > 1.0 => {
+            err(format!("lambertian albedo {:?} must be in [0, 1]", d.albedo.to_array()))
+        }
+        Material::Mirror(d) if !colour_ok(d.reflectance) || d.reflectance.max_component() > 1.0 => {
+            err(format!("mirror reflectance {:?} must be in [0, 1]", d.reflectance.to_array()))
+        }
+        Material::Glossy(g) if !colour_ok(g.albedo) || g.albedo.max_component() > 1.0 => {
+            err(format!("glossy albedo {:?} must be in [0, 1]", g.albedo.to_array()))
+        }
+        Material::Glossy(g) if !(g.exponent >= 0.0 && g.exponent.is_finite()) => {
+            err(format!("glossy exponent {} must be a non-negative number", g.exponent))
+        }
+        Material::Dielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => err(format!("dielectric ior {} must be positive", d.ior)),
+        Material::Dielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
+            err(format!("dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
+        }
+        _ => Ok(()),
+    }
+}

@@ -1,0 +1,66 @@
+//! Indexed triangle meshes: shared vertex positions (and optional normals) with index triples.
+//! The scene builder expands a mesh into triangle primitives.
+
+use crate::math::Vec3;
+
+/// What can be wrong with a mesh.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    #[error("triangle {triangle} refers to vertex {index}, but the mesh has {count} vertices")]
+    IndexOutOfRange { triangle: usize, index: u32, count: usize },
+    #[error("the mesh has {positions} positions but {normals} normals")]
+    NormalCountMismatch { positions: usize, normals: usize },
+    #[error("vertex {0} has a non-finite coordinate")]
+    NonFinite(usize),
+}
+
+/// An indexed triangle mesh.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriangleMesh {
+    pub positions: Vec<Vec3>,
+    pub indices: Vec<[u32; 3]>,
+    /// Per-vertex shading normals, if the mesh has them.
+    pub normals: Option<Vec<Vec3>>,
+}
+
+impl TriangleMesh {
+    /// Checks indices, normal count and finiteness.
+    pub fn validate(&self) -> Result<(), MeshError> {
+        if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
+            return Err(MeshError::NonFinite(i));
+        }
+        if let Some(n) = &self.normals {
+            if n.len() != self.positions.len() {
+                return Err(MeshError::NormalCountMismatch {
+                    positions: self.positions.len(),
+                    normals: n.len(),
+                });
+            }
+        }
+        let count = self.positions.len();
+        for (triangle, tri) in self.indices.iter().enumerate() {
+            if let Some(&index) = tri.iter().find(|&&i| i as usize >= count) {
+                return Err(MeshError::IndexOutOfRange { triangle, index, count });
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn out_of_range_indices_are_reported() {
+        let m = TriangleMesh {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            indices: vec![[0, 1, 2], [0, 2, 3]],
+            normals: None,
+        };
+        assert_eq!(
+            m.validate(),
+            Err(MeshError::IndexOutOfRange { triangle: 1, index: 3, count: 3 })
+        );
+    }
+}

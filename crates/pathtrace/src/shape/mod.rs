@@ -1,0 +1,112 @@
+//! Geometric shapes: one file per shape, gathered in the closed [`Shape`] enum that the
+//! renderer dispatches on with `match` (no virtual calls, no allocation).
+
+mod mesh;
+mod plane;
+mod quad;
+mod sphere;
+mod triangle;
+
+pub use mesh::{MeshError, TriangleMesh};
+pub use plane::Plane;
+pub use quad::Quad;
+pub use sphere::{Ellipsoid, Sphere};
+pub use triangle::Triangle;
+
+use crate::math::{Aabb, Ray, Transform, Vec2, Vec3};
+
+/// Where a ray met a primitive: the distance and two shape-specific parameters (barycentrics
+/// for triangles, edge coordinates for quads) from which the surface is rebuilt on demand.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimHit {
+    pub t: f32,
+    pub u: f32,
+    pub v: f32,
+}
+
+/// Local surface geometry at a hit point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    pub p: Vec3,
+    /// Unit geometric normal, oriented as the shape defines its front (outward for closed
+    /// shapes, `u × v` for quads, counter-clockwise winding for triangles).
+    pub n_geometric: Vec3,
+    /// Unit shading normal (interpolated vertex normals on meshes), on the same side as
+    /// `n_geometric`.
+    pub n_shading: Vec3,
+    pub uv: Vec2,
+}
+
+/// Every shape the engine intersects.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    Sphere(Sphere),
+    Ellipsoid(Ellipsoid),
+    Plane(Plane),
+    Quad(Quad),
+    Triangle(Triangle),
+}
+
+impl Shape {
+    /// Closest intersection with `t` in `[t_min, t_max]`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        match self {
+            Shape::Sphere(s) => s.intersect(ray, t_min, t_max),
+            Shape::Ellipsoid(s) => s.intersect(ray, t_min, t_max),
+            Shape::Plane(s) => s.intersect(ray, t_min, t_max),
+            Shape::Quad(s) => s.intersect(ray, t_min, t_max),
+            Shape::Triangle(s) => s.intersect(ray, t_min, t_max),
+        }
+    }
+
+    /// Rebuilds the surface at a hit found by [`Shape::intersect`] with the same ray.
+    pub fn surface(&self, ray: &Ray, hit: &PrimHit, vertex_normals: &[[Vec3; 3]]) -> SurfacePoint {
+        match self {
+            Shape::Sphere(s) => s.surface(ray, hit),
+            Shape::Ellipsoid(s) => s.surface(ray, hit),
+            Shape::Plane(s) => s.surface(ray, hit),
+            Shape::Quad(s) => s.surface(ray, hit),
+            Shape::Triangle(s) => s.surface(hit, vertex_normals),
+        }
+    }
+
+    /// Bounding box, or `None` for unbounded shapes (planes), which the BVH keeps aside.
+    pub fn bounds(&self) -> Option<Aabb> {
+        match self {
+            Shape::Sphere(s) => Some(s.bounds()),
+            Shape::Ellipsoid(s) => Some(s.bounds()),
+            Shape::Plane(_) => None,
+            Shape::Quad(s) => Some(s.bounds()),
+            Shape::Triangle(s) => Some(s.bounds()),
+        }
+    }
+
+    /// Surface area, when finite and known in closed form.
+    pub fn area(&self) -> Option<f32> {
+        match self {
+            Shape::Sphere(s) => Some(s.area()),
+            Shape::Ellipsoid(_) | Shape::Plane(_) => None,
+            Shape::Quad(s) => Some(s.area()),
+            Shape::Triangle(s) => Some(s.area()),
+        }
+    }
+
+    /// Applies a transform (baked into the geometry; spheres under non-uniform scale become
+    /// ellipsoids). `None` if the result is degenerate.
+    pub fn transformed(&self, t: &Transform) -> Option<Shape> {
+        if t.is_identity() {
+            return Some(self.clone());
+        }
+        match self {
+            Shape::Sphere(s) => Some(s.transformed(t)),
+            Shape::Ellipsoid(s) => Some(Shape::Ellipsoid(s.transformed(t))),
+            Shape::Plane(s) => Some(Shape::Plane(s.transformed(t))),
+            Shape::Quad(s) => Quad::new(t.point(s.q), t.vector(s.u), t.vector(s.v)).map(Shape::Quad),
+            Shape::Triangle(s) => {
+                let [a, b, c] = s.vertices();
+                Triangle::new(t.point(a), t.point(b), t.point(c), s.shading).map(Shape::Triangle)
+            }
+        }
+    }
+}

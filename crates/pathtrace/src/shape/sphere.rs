@@ -1,0 +1,225 @@
+//! Spheres `|p - c|² = r²`, and ellipsoids (spheres under a non-uniform transform, intersected
+//! in object space).
+
+use super::{PrimHit, Shape, SurfacePoint};
+use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, PI};
+
+/// A sphere with outward normals.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    pub center: Vec3,
+    pub radius: f32,
+}
+
+impl Sphere {
+    /// `None` unless the radius is positive and everything finite.
+    pub fn new(center: Vec3, radius: f32) -> Option<Self> {
+        (radius > 0.0 && radius.is_finite() && center.is_finite()).then_some(Self { center, radius })
+    }
+
+    /// Solves |o + t d - c|² = r² for the nearest root in range (both roots are tried, so rays
+    /// starting inside the sphere hit its far side). Uses the half-b form and the
+    /// cancellation-free quadratic of Press et al. (Numerical Recipes §5.6).
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        let oc = ray.origin - self.center;
+        let a = ray.dir.length_squared();
+        let half_b = oc.dot(ray.dir);
+        // c = |oc|² - r², computed as (|oc| - r)(|oc| + r) for accuracy near the surface.
+        let oc_len = oc.length();
+        let c = (oc_len - self.radius) * (oc_len + self.radius);
+        // Discriminant as r² - |oc - (oc·d̂)d̂|², which avoids cancellation for distant spheres
+        // (Haines et al., "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems 2019).
+        let perp = oc - (half_b / a) * ray.dir;
+        let disc = a * (self.radius * self.radius - perp.length_squared());
+        if disc < 0.0 {
+            return None;
+        }
+        let sq = disc.sqrt();
+        let q = -(half_b + sq.copysign(half_b));
+        let (mut t0, mut t1) = if q != 0.0 { (q / a, c / q) } else { (0.0, 0.0) };
+        if t0 > t1 {
+            std::mem::swap(&mut t0, &mut t1);
+        }
+        let t = if t0 >= t_min && t0 <= t_max {
+            t0
+        } else if t1 >= t_min && t1 <= t_max {
+            t1
+        } else {
+            return None;
+        };
+        Some(PrimHit { t, u: 0.0, v: 0.0 })
+    }
+
+    pub fn surface(&self, ray: &Ray, hit: &PrimHit) -> SurfacePoint {
+        let p_raw = ray.at(hit.t);
+        let n = (p_raw - self.center) / self.radius;
+        let n = n.normalize_or(Vec3::Z);
+        // Re-project onto the surface to cut the error of the intersection point.
+        let p = self.center + n * self.radius;
+        SurfacePoint {
+            p,
+            n_geometric: n,
+            n_shading: n,
+            uv: sphere_uv(n),
+        }
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        Aabb::new(self.center - Vec3::splat(self.radius), self.center + Vec3::splat(self.radius))
+    }
+
+    pub fn area(&self) -> f32 {
+        4.0 * PI * self.radius * self.radius
+    }
+
+    pub(super) fn transformed(&self, t: &Transform) -> Shape {
+        match t.uniform_scale() {
+            Some(s) => Shape::Sphere(Sphere {
+                center: t.point(self.center),
+                radius: self.radius * s,
+            }),
+            None => Shape::Ellipsoid(Ellipsoid {
+                to_world: Box::new(
+                    Transform::scale(Vec3::splat(self.radius))
+                        .unwrap_or_default()
+                        .then(&Transform::translate(self.center))
+                        .then(t),
+                ),
+            }),
+        }
+    }
+}
+
+/// (u, v) = (φ / 2π, θ / π) with θ from +y, the usual lat-long parameterisation.
+fn sphere_uv(n: Vec3) -> Vec2 {
+    let phi = (-n.z).atan2(n.x) + PI;
+    let theta = (-n.y).clamp(-1.0, 1.0).acos();
+    Vec2::new(phi / (2.0 * PI), theta / PI)
+}
+
+/// A unit sphere at the origin placed by an arbitrary affine transform (boxed: it is rare, and
+/// keeping it out of line keeps every other shape small).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ellipsoid {
+    pub to_world: Box<Transform>,
+}
+
+impl Ellipsoid {
+    const UNIT: Sphere = Sphere {
+        center: Vec3::ZERO,
+        radius: 1.0,
+    };
+
+    fn object_ray(&self, ray: &Ray) -> Ray {
+        let inv = &self.to_world.inverse;
+        Ray::new(inv.transform_point3(ray.origin), inv.transform_vector3(ray.dir))
+    }
+
+    /// Intersects in object space; `t` is unchanged by an affine map of the ray.
+    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        Self::UNIT.intersect(&self.object_ray(ray), t_min, t_max)
+    }
+
+    pub fn surface(&self, ray: &Ray, hit: &PrimHit) -> SurfacePoint {
+        let local = Self::UNIT.surface(&self.object_ray(ray), hit);
+        let n = self.to_world.normal(local.n_geometric);
+        SurfacePoint {
+            p: self.to_world.point(local.p),
+            n_geometric: n,
+            n_shading: n,
+            uv: local.uv,
+        }
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        let corners = (0..8).map(|i| {
+            let c = Vec3::new(
+                if i & 1 == 0 { -1.0 } else { 1.0 },
+                if i & 2 == 0 { -1.0 } else { 1.0 },
+                if i & 4 == 0 { -1.0 } else { 1.0 },
+            );
+            self.to_world.point(c)
+        });
+        corners.fold(Aabb::EMPTY, Aabb::grow)
+    }
+
+    pub(super) fn transformed(&self, t: &Transform) -> Ellipsoid {
+        Ellipsoid {
+            to_world: Box::new(self.to_world.then(t)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit() -> Sphere {
+        Sphere::new(Vec3::ZERO, 1.0).unwrap()
+    }
+
+    #[test]
+    fn hits_the_near_side_from_outside() {
+        let ray = Ray::new(Vec3::new(0.0, 0.0, -5.0), Vec3::Z);
+        let hit = unit().intersect(&ray, 0.0, f32::INFINITY).unwrap();
+        assert!((hit.t - 4.0).abs() < 1e-5);
+        let s = unit().surface(&ray, &hit);
+        assert!((s.n_geometric - -Vec3::Z).length() < 1e-5);
+    }
+
+    #[test]
+    fn rays_from_inside_hit_the_far_side() {
+        let ray = Ray::new(Vec3::new(0.2, 0.1, 0.0), Vec3::X);
+        let hit = unit().intersect(&ray, 0.0, f32::INFINITY).unwrap();
+        let p = ray.at(hit.t);
+        assert!((p.length() - 1.0).abs() < 1e-5 && p.x > 0.0);
+    }
+
+    #[test]
+    fn t_range_is_respected() {
+        let ray = Ray::new(Vec3::new(0.0, 0.0, -5.0), Vec3::Z);
+        assert!(unit().intersect(&ray, 0.0, 3.9).is_none());
+        // t_min past the near root selects the far root.
+        let far = unit().intersect(&ray, 4.5, 10.0).unwrap();
+        assert!((far.t - 6.0).abs() < 1e-5);
+        assert!(unit().intersect(&ray, 6.5, 10.0).is_none());
+    }
+
+    #[test]
+    fn grazing_rays_hit_or_miss_consistently() {
+        // Tangent ray at y = 1 touches the sphere; just above misses.
+        let touch = Ray::new(Vec3::new(-5.0, 1.0 - 1e-4, 0.0), Vec3::X);
+        assert!(unit().intersect(&touch, 0.0, f32::INFINITY).is_some());
+        let miss = Ray::new(Vec3::new(-5.0, 1.0 + 1e-4, 0.0), Vec3::X);
+        assert!(unit().intersect(&miss, 0.0, f32::INFINITY).is_none());
+    }
+
+    #[test]
+    fn distant_spheres_are_hit_precisely() {
+        let s = Sphere::new(Vec3::new(0.0, 0.0, 1e5), 1.0).unwrap();
+        let ray = Ray::new(Vec3::ZERO, Vec3::Z);
+        let hit = s.intersect(&ray, 0.0, f32::INFINITY).unwrap();
+        assert!((hit.t - (1e5 - 1.0)).abs() < 0.02);
+    }
+
+    #[test]
+    fn ellipsoid_normals_use_the_inverse_transpose() {
+        let t = Transform::scale(Vec3::new(2.0, 1.0, 1.0)).unwrap();
+        let e = match unit().transformed(&t) {
+            Shape::Ellipsoid(e) => e,
+            other => panic!("expected an ellipsoid, got {other:?}"),
+        };
+        let ray = Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X);
+        let hit = e.intersect(&ray, 0.0, f32::INFINITY).unwrap();
+        assert!((hit.t - 3.0).abs() < 1e-5);
+        // At (sqrt2, 1/sqrt2, 0) on x²/4 + y² = 1 the normal ∝ (x/4, y) = (0.3536, 0.7071).
+        let dir = Vec3::new(0.0, -1.0, 0.0);
+        let from = Vec3::new(2f32.sqrt(), 5.0, 0.0);
+        let r2 = Ray::new(from, dir);
+        let h2 = e.intersect(&r2, 0.0, f32::INFINITY).unwrap();
+        let s = e.surface(&r2, &h2);
+        let expected = Vec3::new(0.353_553, 0.707_107, 0.0).normalize();
+        assert!((s.n_geometric - expected).length() < 1e-4, "{:?}", s.n_geometric);
+    }
+}

@@ -1,0 +1,173 @@
+//! Triangles, intersected with the Möller–Trumbore algorithm ("Fast, Minimum Storage
+//! Ray/Triangle Intersection", JGT 1997). The same test, with the domain `u, v ∈ [0,1]`, serves
+//! parallelograms (see `quad.rs`).
+
+use super::{PrimHit, SurfacePoint};
+use crate::math::{Aabb, Ray, Vec2, Vec3};
+
+/// Barycentric slack: edges are tested against `-EDGE_SLACK` rather than 0 so that a ray through
+/// an edge shared by two triangles hits at least one of them despite rounding (both may
+/// report a hit; the nearer wins). It widens each triangle by 1e-6 of its size.
+pub(super) const EDGE_SLACK: f32 = 1e-6;
+
+/// Möller–Trumbore on the parallelogram / triangle spanned by `e1`, `e2` from `p0`.
+#[inline(always)]
+pub(super) fn moller_trumbore<const PARALLELOGRAM: bool>(
+    ray: &Ray,
+    p0: Vec3,
+    e1: Vec3,
+    e2: Vec3,
+    t_min: f32,
+    t_max: f32,
+) -> Option<PrimHit> {
+    let pvec = ray.dir.cross(e2);
+    let det = e1.dot(pvec);
+    if det == 0.0 || !det.is_finite() {
+        return None; // ray parallel to the plane
+    }
+    let inv_det = 1.0 / det;
+    let tvec = ray.origin - p0;
+    let u = tvec.dot(pvec) * inv_det;
+    if !(-EDGE_SLACK..=1.0 + EDGE_SLACK).contains(&u) {
+        return None;
+    }
+    let qvec = tvec.cross(e1);
+    let v = ray.dir.dot(qvec) * inv_det;
+    let v_ok = if PARALLELOGRAM {
+        (-EDGE_SLACK..=1.0 + EDGE_SLACK).contains(&v)
+    } else {
+        v >= -EDGE_SLACK && u + v <= 1.0 + EDGE_SLACK
+    };
+    if !v_ok {
+        return None;
+    }
+    let t = e2.dot(qvec) * inv_det;
+    (t >= t_min && t <= t_max).then_some(PrimHit { t, u, v })
+}
+
+/// A triangle `p0, p0 + e1, p0 + e2`, front face by counter-clockwise winding (normal e1 × e2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Triangle {
+    pub p0: Vec3,
+    pub e1: Vec3,
+    pub e2: Vec3,
+    /// Index into the scene's per-triangle vertex-normal table, or `u32::MAX` for flat shading.
+    pub shading: u32,
+}
+
+impl Triangle {
+    /// Sentinel for "no vertex normals".
+    pub const FLAT: u32 = u32::MAX;
+
+    /// `None` for degenerate (zero-area) or non-finite triangles.
+    pub fn new(a: Vec3, b: Vec3, c: Vec3, shading: u32) -> Option<Self> {
+        let e1 = b - a;
+        let e2 = c - a;
+        let area2 = e1.cross(e2).length();
+        (area2 > 0.0 && area2.is_finite() && a.is_finite()).then_some(Self { p0: a, e1, e2, shading })
+    }
+
+    pub fn vertices(&self) -> [Vec3; 3] {
+        [self.p0, self.p0 + self.e1, self.p0 + self.e2]
+    }
+
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        moller_trumbore::<false>(ray, self.p0, self.e1, self.e2, t_min, t_max)
+    }
+
+    pub fn surface(&self, hit: &PrimHit, vertex_normals: &[[Vec3; 3]]) -> SurfacePoint {
+        let (b1, b2) = (hit.u.max(0.0), hit.v.max(0.0));
+        let p = self.p0 + b1 * self.e1 + b2 * self.e2;
+        let n = self.e1.cross(self.e2).normalize();
+        let n_shading = match vertex_normals.get(self.shading as usize) {
+            Some([n0, n1, n2]) => {
+                let s = ((1.0 - b1 - b2) * *n0 + b1 * *n1 + b2 * *n2).normalize_or(n);
+                // Keep the shading normal on the geometric normal's side.
+                if s.dot(n) < 0.0 {
+                    -s
+                } else {
+                    s
+                }
+            }
+            None => n,
+        };
+        SurfacePoint {
+            p,
+            n_geometric: n,
+            n_shading,
+            uv: Vec2::new(b1, b2),
+        }
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        Aabb::from_points(&self.vertices())
+    }
+
+    pub fn area(&self) -> f32 {
+        0.5 * self.e1.cross(self.e2).length()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri() -> Triangle {
+        Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y, Triangle::FLAT).unwrap()
+    }
+
+    #[test]
+    fn hits_inside_and_misses_outside() {
+        let down = -Vec3::Z;
+        let hit = tri().intersect(&Ray::new(Vec3::new(0.25, 0.25, 1.0), down), 0.0, 10.0);
+        let hit = hit.unwrap();
+        assert!((hit.t - 1.0).abs() < 1e-6 && (hit.u - 0.25).abs() < 1e-6);
+        assert!(tri().intersect(&Ray::new(Vec3::new(0.6, 0.6, 1.0), down), 0.0, 10.0).is_none());
+        assert!(tri().intersect(&Ray::new(Vec3::new(-0.1, 0.2, 1.0), down), 0.0, 10.0).is_none());
+        // Parallel ray in the plane of the triangle.
+        assert!(tri().intersect(&Ray::new(Vec3::new(-1.0, 0.2, 0.0), Vec3::X), 0.0, 10.0).is_none());
+    }
+
+    #[test]
+    fn shared_edges_are_watertight() {
+        // Two triangles sharing the diagonal of a skewed quad; rays through points on the
+        // diagonal (computed in f32) must hit at least one of them.
+        let (a, b, c, d) = (
+            Vec3::new(0.1, 0.3, 2.0),
+            Vec3::new(10.7, 0.2, 2.5),
+            Vec3::new(11.3, 9.1, 3.0),
+            Vec3::new(0.4, 8.9, 2.2),
+        );
+        let t1 = Triangle::new(a, b, c, Triangle::FLAT).unwrap();
+        let t2 = Triangle::new(a, c, d, Triangle::FLAT).unwrap();
+        let origin = Vec3::new(3.3, 4.1, -20.0);
+        let mut misses = 0;
+        for i in 0..=10_000 {
+            let s = i as f32 / 10_000.0;
+            let target = a + s * (c - a);
+            let ray = Ray::new(origin, (target - origin).normalize());
+            let h1 = t1.intersect(&ray, 0.0, f32::INFINITY);
+            let h2 = t2.intersect(&ray, 0.0, f32::INFINITY);
+            if h1.is_none() && h2.is_none() {
+                misses += 1;
+            }
+        }
+        assert_eq!(misses, 0);
+    }
+
+    #[test]
+    fn degenerate_triangles_are_rejected() {
+        assert!(Triangle::new(Vec3::ZERO, Vec3::X, 2.0 * Vec3::X, Triangle::FLAT).is_none());
+        assert!(Triangle::new(Vec3::NAN, Vec3::X, Vec3::Y, Triangle::FLAT).is_none());
+    }
+
+    #[test]
+    fn interpolated_normals_face_the_geometric_side() {
+        let table = [[-Vec3::Z, -Vec3::Z, Vec3::new(0.0, 0.6, -0.8)]];
+        let t = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::Y, 0).unwrap();
+        let hit = PrimHit { t: 1.0, u: 0.2, v: 0.2 };
+        let s = t.surface(&hit, &table);
+        assert!(s.n_shading.dot(s.n_geometric) > 0.0);
+    }
+}
