@@ -4,3 +4,4 @@ mod image;
 pub mod tonemap;
 
 pub use image::Image;
+pub use tonemap::{ToneMap, ToneMapSettings};
