@@ -9,3 +9,4 @@ pub mod tonemap;
 pub use accumulator::PixelStats;
 pub use film::Film;
 pub use image::Image;
+pub use tonemap::{ToneMap, ToneMapSettings};
