@@ -182,8 +182,12 @@ def image_report(np, img, label):
     print(f"{label}: {w}x{h}, mean RGB {rgb_str(img.reshape(-1, 3).mean(axis=0))}")
     for region in REGIONS:
         x0, y0, x1, y1 = region_pixels(region, w, h)
-        m = img[y0:y1, x0:x1, :].reshape(-1, 3).mean(axis=0)
-        print(f"  {region[0]:<14} x[{x0},{x1}) y[{y0},{y1}) mean RGB {rgb_str(m)}")
+        px = img[y0:y1, x0:x1, :].reshape(-1, 3)
+        # Upper bound on the mean's Monte Carlo standard error: the spread of
+        # pixel values also holds real shading variation across the region.
+        se = px.std(axis=0, ddof=1) / np.sqrt(len(px)) if len(px) > 1 else px[0] * 0
+        print(f"  {region[0]:<14} x[{x0},{x1}) y[{y0},{y1}) mean RGB {rgb_str(px.mean(axis=0))}"
+              f"  (s.e. <= {max(se):.4f})")
 
 
 def orientation_report(np, img):
@@ -449,6 +453,7 @@ def main(argv=None):
     print(f"mitsuba {mi.__version__}, drjit {dr.__version__}, variants {', '.join(variants)}, "
           f"threads {dr.thread_count()}, {args.size}x{args.size}, {args.spp} spp, "
           f"max depth {args.max_depth}, seed {args.seed}"
+          + (f", reference {args.reference_spp} spp" if args.reference_spp else "")
           + (f", DRJIT_LIBLLVM_PATH={os.environ['DRJIT_LIBLLVM_PATH']}"
              if "DRJIT_LIBLLVM_PATH" in os.environ else ""))
 
