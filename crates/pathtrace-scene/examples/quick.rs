@@ -8,6 +8,7 @@ fn main() {
     let mut settings = pathtrace::RenderSettings { width: size, height: size, spp, ..Default::default() };
     settings.path.strategy = strategy;
     settings.path.max_depth = 8;
+    if std::env::var("DUMP").is_ok() { println!("{}", loaded.scene.bvh_dump()); }
     let out = pathtrace::render(Arc::new(loaded.scene), settings).unwrap();
     let p = out.progress;
     let img = out.film.image();

@@ -129,6 +129,16 @@ impl Scene {
         }
     }
 
+    /// The BVH's nodes, one per line.
+    pub fn bvh_dump(&self) -> String {
+        self.bvh.dump()
+    }
+
+    /// Shape of the BVH.
+    pub fn bvh_stats(&self) -> crate::accel::BvhStats {
+        self.bvh.stats()
+    }
+
     /// Number of primitives (bounded and unbounded).
     pub fn primitive_count(&self) -> usize {
         self.prims.len() + self.unbounded.len()

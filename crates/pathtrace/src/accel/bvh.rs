@@ -42,8 +42,9 @@ const TRAVERSAL_COST: f32 = 1.0;
 const MAX_LEAF: usize = 8;
 /// Below this depth the SAH decides; deeper subtrees split at the object median, which bounds
 /// the depth (and the traversal stack) for pathological inputs.
-const SAH_DEPTH_LIMIT: usize = 48;
-const STACK_SIZE: usize = 128;
+const SAH_DEPTH_LIMIT: usize = 32;
+/// Depth ≤ 32 + log2(n) < 64 for any n below 2³².
+const STACK_SIZE: usize = 64;
 
 struct BuildItem {
     bounds: Aabb,
@@ -100,7 +101,8 @@ impl Bvh {
         if self.nodes.is_empty() {
             return None;
         }
-        let inv_dir = ray.dir.recip();
+        let inv_dir = glam::Vec3A::from(ray.dir).recip();
+        let origin = glam::Vec3A::from(ray.origin);
         let neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
         let mut stack = [0u32; STACK_SIZE];
         let mut sp = 0;
@@ -108,7 +110,7 @@ impl Bvh {
         let mut best = None;
         loop {
             let node = &self.nodes[node_index];
-            if node.bounds.hit(ray.origin, inv_dir, t_min, t_max).is_some() {
+            if node.bounds.hit(origin, inv_dir, t_min, t_max).is_some() {
                 if node.count > 0 {
                     let first = node.offset as usize;
                     for (k, prim) in prims[first..first + node.count as usize].iter().enumerate() {
@@ -145,13 +147,14 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
-        let inv_dir = ray.dir.recip();
+        let inv_dir = glam::Vec3A::from(ray.dir).recip();
+        let origin = glam::Vec3A::from(ray.origin);
         let mut stack = [0u32; STACK_SIZE];
         let mut sp = 0;
         let mut node_index = 0usize;
         loop {
             let node = &self.nodes[node_index];
-            if node.bounds.hit(ray.origin, inv_dir, t_min, t_max).is_some() {
+            if node.bounds.hit(origin, inv_dir, t_min, t_max).is_some() {
                 if node.count > 0 {
                     let first = node.offset as usize;
                     if prims[first..first + node.count as usize]
@@ -178,6 +181,23 @@ impl Bvh {
     /// Bounds of everything in the tree.
     pub fn bounds(&self) -> Aabb {
         self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
+    }
+
+    /// One line per node, indented by depth (for debugging and the docs).
+    pub fn dump(&self) -> String {
+        let mut out = String::new();
+        self.dump_node(0, 0, &mut out);
+        out
+    }
+
+    fn dump_node(&self, index: usize, depth: usize, out: &mut String) {
+        let Some(n) = self.nodes.get(index) else { return };
+        let kind = if n.count > 0 { format!("leaf {} prims from {}", n.count, n.offset) } else { format!("split axis {}", n.axis) };
+        out.push_str(&format!("{:indent$}{kind} [{:.0?} – {:.0?}]\n", "", n.bounds.min.to_array(), n.bounds.max.to_array(), indent = 2 * depth));
+        if n.count == 0 {
+            self.dump_node(index + 1, depth + 1, out);
+            self.dump_node(n.offset as usize, depth + 1, out);
+        }
     }
 
     pub fn stats(&self) -> BvhStats {

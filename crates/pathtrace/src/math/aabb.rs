@@ -1,6 +1,6 @@
 //! Axis-aligned bounding boxes and the slab test.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// An axis-aligned box `[min, max]`. The empty box has `min = +∞`, `max = -∞`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,10 +67,14 @@ impl Aabb {
 
     /// Slab test (Kay & Kajiya 1986) with precomputed reciprocal direction; returns the entry
     /// distance when the ray overlaps the box within `[t_min, t_max]`.
+    ///
+    /// Computed on 4-wide SIMD lanes (`Vec3A`). A NaN from `0 · ∞` (a ray in a slab's plane)
+    /// makes the comparison fail, i.e. counts as a miss, which only affects rays exactly along a
+    /// box face.
     #[inline(always)]
-    pub fn hit(&self, origin: Vec3, inv_dir: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
-        let t0 = (self.min - origin) * inv_dir;
-        let t1 = (self.max - origin) * inv_dir;
+    pub fn hit(&self, origin: Vec3A, inv_dir: Vec3A, t_min: f32, t_max: f32) -> Option<f32> {
+        let t0 = (Vec3A::from(self.min) - origin) * inv_dir;
+        let t1 = (Vec3A::from(self.max) - origin) * inv_dir;
         let near = t0.min(t1).max_element().max(t_min);
         let far = t0.max(t1).min_element().min(t_max);
         (near <= far).then_some(near)

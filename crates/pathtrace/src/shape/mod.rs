@@ -49,7 +49,7 @@ pub enum Shape {
 
 impl Shape {
     /// Closest intersection with `t` in `[t_min, t_max]`.
-    #[inline]
+    #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
         match self {
             Shape::Sphere(s) => s.intersect(ray, t_min, t_max),

@@ -1,23 +1,33 @@
 //! Quads (parallelograms) given by a corner `q` and edge vectors `u`, `v`: the points
 //! `q + a·u + b·v` with `a, b ∈ [0,1]`. Front face along `u × v`.
+//!
+//! Intersection is plane first, then edge coordinates ("Ray Tracing: The Next Week" §6): with
+//! n = u × v, t = n·(q − o) / n·d, and for the in-plane offset h = o + t·d − q the coordinates
+//! are a = h·ũ, b = h·ṽ with the dual vectors ũ = (v × n)/|n|², ṽ = (n × u)/|n|² (so ũ·u = 1,
+//! ũ·v = 0). Precomputing n, ũ, ṽ lets most misses leave after the distance test.
 
-use super::triangle::moller_trumbore;
+use super::triangle::EDGE_SLACK;
 use super::{PrimHit, SurfacePoint};
 use crate::math::{Aabb, Ray, Transform, Vec2, Vec3};
 
-/// A parallelogram.
+/// A parallelogram (with its intersection data precomputed).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Quad {
     pub q: Vec3,
     pub u: Vec3,
     pub v: Vec3,
+    n: Vec3,
+    u_dual: Vec3,
+    v_dual: Vec3,
 }
 
 impl Quad {
     /// `None` for degenerate (zero-area) or non-finite quads.
     pub fn new(q: Vec3, u: Vec3, v: Vec3) -> Option<Self> {
-        let area = u.cross(v).length();
-        (area > 0.0 && area.is_finite() && q.is_finite()).then_some(Self { q, u, v })
+        let n = u.cross(v);
+        let n2 = n.length_squared();
+        let ok = n2 > 0.0 && n2.is_finite() && q.is_finite() && u.is_finite() && v.is_finite();
+        ok.then(|| Self { q, u, v, n, u_dual: v.cross(n) / n2, v_dual: n.cross(u) / n2 })
     }
 
     /// Unit normal `u × v / |u × v|`.
@@ -29,9 +39,19 @@ impl Quad {
         self.u.cross(self.v).length()
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
-        moller_trumbore::<true>(ray, self.q, self.u, self.v, t_min, t_max)
+        let denom = self.n.dot(ray.dir);
+        let t = self.n.dot(self.q - ray.origin) / denom;
+        // Also rejects NaN (ray parallel to the plane, 0/0).
+        if !(t >= t_min && t <= t_max) {
+            return None;
+        }
+        let h = ray.origin + t * ray.dir - self.q;
+        let a = h.dot(self.u_dual);
+        let b = h.dot(self.v_dual);
+        let range = -EDGE_SLACK..=1.0 + EDGE_SLACK;
+        (range.contains(&a) && range.contains(&b)).then_some(PrimHit { t, u: a, v: b })
     }
 
     pub fn surface(&self, _ray: &Ray, hit: &PrimHit) -> SurfacePoint {
@@ -71,13 +91,13 @@ impl Quad {
             (min, dx, dy),
             (Vec3::new(min.x, min.y, max.z), dx, dy),
         ];
-        let mut out = [Quad { q: min, u: dx, v: dy }; 6];
+        let mut out = Vec::with_capacity(6);
         for (i, (q, u, v)) in faces.into_iter().enumerate() {
             // Faces at the min side get their edges swapped so the normal points outward.
             let (u, v) = if i % 2 == 0 { (v, u) } else { (u, v) };
-            out[i] = Quad::new(t.point(q), t.vector(u), t.vector(v))?;
+            out.push(Quad::new(t.point(q), t.vector(u), t.vector(v))?);
         }
-        Some(out)
+        out.try_into().ok()
     }
 }
 

@@ -1,6 +1,5 @@
 //! Triangles, intersected with the Möller–Trumbore algorithm ("Fast, Minimum Storage
-//! Ray/Triangle Intersection", JGT 1997). The same test, with the domain `u, v ∈ [0,1]`, serves
-//! parallelograms (see `quad.rs`).
+//! Ray/Triangle Intersection", JGT 1997).
 
 use super::{PrimHit, SurfacePoint};
 use crate::math::{Aabb, Ray, Vec2, Vec3};
@@ -10,16 +9,9 @@ use crate::math::{Aabb, Ray, Vec2, Vec3};
 /// report a hit; the nearer wins). It widens each triangle by 1e-6 of its size.
 pub(super) const EDGE_SLACK: f32 = 1e-6;
 
-/// Möller–Trumbore on the parallelogram / triangle spanned by `e1`, `e2` from `p0`.
+/// Möller–Trumbore on the triangle spanned by `e1`, `e2` from `p0`.
 #[inline(always)]
-pub(super) fn moller_trumbore<const PARALLELOGRAM: bool>(
-    ray: &Ray,
-    p0: Vec3,
-    e1: Vec3,
-    e2: Vec3,
-    t_min: f32,
-    t_max: f32,
-) -> Option<PrimHit> {
+fn moller_trumbore(ray: &Ray, p0: Vec3, e1: Vec3, e2: Vec3, t_min: f32, t_max: f32) -> Option<PrimHit> {
     let pvec = ray.dir.cross(e2);
     let det = e1.dot(pvec);
     if det == 0.0 || !det.is_finite() {
@@ -33,12 +25,7 @@ pub(super) fn moller_trumbore<const PARALLELOGRAM: bool>(
     }
     let qvec = tvec.cross(e1);
     let v = ray.dir.dot(qvec) * inv_det;
-    let v_ok = if PARALLELOGRAM {
-        (-EDGE_SLACK..=1.0 + EDGE_SLACK).contains(&v)
-    } else {
-        v >= -EDGE_SLACK && u + v <= 1.0 + EDGE_SLACK
-    };
-    if !v_ok {
+    if v < -EDGE_SLACK || u + v > 1.0 + EDGE_SLACK {
         return None;
     }
     let t = e2.dot(qvec) * inv_det;
@@ -71,9 +58,9 @@ impl Triangle {
         [self.p0, self.p0 + self.e1, self.p0 + self.e2]
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
-        moller_trumbore::<false>(ray, self.p0, self.e1, self.e2, t_min, t_max)
+        moller_trumbore(ray, self.p0, self.e1, self.e2, t_min, t_max)
     }
 
     pub fn surface(&self, hit: &PrimHit, vertex_normals: &[[Vec3; 3]]) -> SurfacePoint {
