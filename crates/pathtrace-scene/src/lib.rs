@@ -1,1 +1,3 @@
 //! Scene formats and image IO.
+
+pub mod image_io;
