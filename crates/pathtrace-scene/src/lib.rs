@@ -2,6 +2,7 @@
 //! [`pathtrace::Scene`] through the engine's `SceneBuilder`; plus image reading and writing.
 
 pub mod builtin;
+pub mod image_io;
 
 use pathtrace::Scene;
 

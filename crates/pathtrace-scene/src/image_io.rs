@@ -1,0 +1,197 @@
+//! Reading and writing images: PNG (display-referred, 8-bit sRGB), OpenEXR and PFM
+//! (scene-linear 32-bit float).
+//!
+//! Writes go to a temporary file in the destination directory that is renamed into
+//! place, so a failed write never leaves a partial file at the destination.
+
+mod atomic;
+mod error;
+mod exr_codec;
+mod pfm_codec;
+mod png_codec;
+#[cfg(test)]
+mod scratch;
+#[cfg(test)]
+mod tests;
+
+use std::fmt;
+use std::fs;
+use std::io::BufReader;
+use std::path::Path;
+
+use pathtrace::film::tonemap::ToneMapSettings;
+use pathtrace::film::Image;
+
+pub use error::ImageIoError;
+
+/// An image file format, chosen by file extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ImageFormat {
+    /// PNG: tone mapped, sRGB-encoded 8-bit RGB.
+    Png,
+    /// OpenEXR: scene-linear 32-bit float RGB.
+    Exr,
+    /// Portable Float Map: scene-linear 32-bit float RGB.
+    Pfm,
+}
+
+impl ImageFormat {
+    /// The extensions [`ImageFormat::from_path`] recognises (case-insensitively).
+    pub const SUPPORTED_EXTENSIONS: [&'static str; 3] = ["png", "exr", "pfm"];
+
+    /// The format named by `path`'s extension, compared case-insensitively.
+    pub fn from_path(path: &Path) -> Result<ImageFormat, ImageIoError> {
+        let extension = path
+            .extension()
+            .map(|e| e.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        match extension.to_ascii_lowercase().as_str() {
+            "png" => Ok(ImageFormat::Png),
+            "exr" => Ok(ImageFormat::Exr),
+            "pfm" => Ok(ImageFormat::Pfm),
+            _ => Err(ImageIoError::UnsupportedFormat {
+                path: path.to_path_buf(),
+                extension,
+            }),
+        }
+    }
+
+    /// The canonical lowercase extension, without the dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            ImageFormat::Png => "png",
+            ImageFormat::Exr => "exr",
+            ImageFormat::Pfm => "pfm",
+        }
+    }
+
+    /// True for formats that store scene-linear floats (no tone mapping, no exposure).
+    pub fn is_linear(self) -> bool {
+        matches!(self, ImageFormat::Exr | ImageFormat::Pfm)
+    }
+}
+
+impl fmt::Display for ImageFormat {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            ImageFormat::Png => "PNG",
+            ImageFormat::Exr => "OpenEXR",
+            ImageFormat::Pfm => "PFM",
+        })
+    }
+}
+
+/// Writes `image` to `path` in the format named by its extension.
+///
+/// PNG is tone mapped with `settings` (exposure and curve) and sRGB encoded to 8 bits.
+/// EXR and PFM store the scene-linear values unchanged: `settings` is ignored for them.
+/// The file is written to a temporary sibling and renamed into place, so on error the
+/// destination is untouched. Empty or inconsistent images are rejected.
+pub fn write_image(
+    path: &Path,
+    image: &Image,
+    settings: &ToneMapSettings,
+) -> Result<(), ImageIoError> {
+    let format = ImageFormat::from_path(path)?;
+    check_writable(path, image, format)?;
+    atomic::write_atomically(path, |out| match format {
+        ImageFormat::Png => {
+            png_codec::encode(out, image, settings).map_err(|source| ImageIoError::Png {
+                path: path.to_path_buf(),
+                source,
+            })
+        }
+        ImageFormat::Exr => exr_codec::encode(out, image).map_err(|source| ImageIoError::Exr {
+            path: path.to_path_buf(),
+            source,
+        }),
+        ImageFormat::Pfm => {
+            pfm_codec::encode(out, image).map_err(|e| ImageIoError::io(path, "write", e))
+        }
+    })
+}
+
+/// Rejects images that no format can store: empty, inconsistent, or too large.
+fn check_writable(path: &Path, image: &Image, format: ImageFormat) -> Result<(), ImageIoError> {
+    if image.is_empty() {
+        return Err(ImageIoError::EmptyImage {
+            path: path.to_path_buf(),
+            width: image.width,
+            height: image.height,
+        });
+    }
+    if !image.is_consistent() {
+        return Err(ImageIoError::PixelCountMismatch {
+            path: path.to_path_buf(),
+            width: image.width,
+            height: image.height,
+            actual: image.pixels.len(),
+        });
+    }
+    // The PNG specification limits each dimension to 2^31 − 1.
+    let limit = if format == ImageFormat::Png {
+        i32::MAX as u32
+    } else {
+        u32::MAX
+    };
+    if image.width > limit || image.height > limit {
+        return Err(ImageIoError::TooLarge {
+            path: path.to_path_buf(),
+            width: image.width.into(),
+            height: image.height.into(),
+            format: format.extension(),
+        });
+    }
+    Ok(())
+}
+
+/// Reads the image at `path`, in the format named by its extension, as linear RGB.
+///
+/// - EXR: the first layer with R, G and B channels (f16, f32 or u32; alpha dropped).
+/// - PFM: colour (`PF`) or greyscale (`Pf`), either byte order.
+/// - PNG: 8- or 16-bit, grey or RGB (alpha dropped), sRGB decoded to linear.
+pub fn read_image(path: &Path) -> Result<Image, ImageIoError> {
+    match ImageFormat::from_path(path)? {
+        ImageFormat::Pfm => {
+            let bytes = fs::read(path).map_err(|e| ImageIoError::io(path, "read", e))?;
+            pfm_codec::decode(&bytes).map_err(|reason| ImageIoError::InvalidPfm {
+                path: path.to_path_buf(),
+                reason,
+            })
+        }
+        ImageFormat::Png => {
+            let file = fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
+            png_codec::decode(BufReader::new(file)).map_err(|source| ImageIoError::Png {
+                path: path.to_path_buf(),
+                source,
+            })
+        }
+        ImageFormat::Exr => read_exr(path),
+    }
+}
+
+/// Reads an EXR file, explaining a missing-channel failure in our own words.
+fn read_exr(path: &Path) -> Result<Image, ImageIoError> {
+    // Open it ourselves first, so "not found" and permissions read as IO errors.
+    fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
+    let (width, height, pixels) =
+        exr_codec::decode(path).map_err(|source| match exr_codec::missing_rgb_channels(path) {
+            Some(found) => ImageIoError::MissingChannels {
+                path: path.to_path_buf(),
+                found,
+            },
+            None => ImageIoError::Exr {
+                path: path.to_path_buf(),
+                source,
+            },
+        })?;
+    let too_large = || ImageIoError::TooLarge {
+        path: path.to_path_buf(),
+        width: width as u64,
+        height: height as u64,
+        format: "this renderer",
+    };
+    let w = u32::try_from(width).map_err(|_| too_large())?;
+    let h = u32::try_from(height).map_err(|_| too_large())?;
+    Image::from_pixels(w, h, pixels).ok_or_else(too_large)
+}
