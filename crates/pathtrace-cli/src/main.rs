@@ -1,1 +1,52 @@
-fn main() {}
+//! `pathtrace`: render scenes, measure speed.
+
+mod args;
+mod bench;
+mod interrupt;
+mod progress;
+mod render;
+mod scene_arg;
+mod stats_json;
+
+use clap::Parser;
+use std::process::ExitCode;
+
+/// Exit code for bad arguments or bad input.
+const EXIT_USAGE: u8 = 2;
+
+fn main() -> ExitCode {
+    let cli = match args::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return args::report_parse_error(e),
+    };
+    let result = match cli.command {
+        args::Command::Render(a) => render::run(a),
+        args::Command::Bench(a) => bench::run(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {}", e.message);
+            ExitCode::from(e.exit_code)
+        }
+    }
+}
+
+/// An error for the user: one line, and the exit code to leave with.
+#[derive(Debug)]
+pub struct CliError {
+    pub message: String,
+    pub exit_code: u8,
+}
+
+impl CliError {
+    /// Bad input (arguments, scenes): exit code 2.
+    pub fn usage(message: impl Into<String>) -> Self {
+        Self { message: message.into(), exit_code: EXIT_USAGE }
+    }
+
+    /// Something failed while running (writing the image, starting threads): exit code 1.
+    pub fn runtime(message: impl Into<String>) -> Self {
+        Self { message: message.into(), exit_code: 1 }
+    }
+}

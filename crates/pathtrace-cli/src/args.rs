@@ -1,0 +1,181 @@
+//! Command-line arguments.
+
+use clap::{Args, Parser, Subcommand};
+use pathtrace::film::ToneMap;
+use pathtrace::integrator::Strategy;
+use pathtrace::sampling::SamplerKind;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// A physically based Monte Carlo path tracer.
+///
+/// Renders a scene by following light paths from the camera, refining the image pass by pass.
+/// Start with:  pathtrace render cornell-box -o cornell.png
+#[derive(Debug, Parser)]
+#[command(name = "pathtrace", version, propagate_version = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render a scene to an image file (PNG, EXR or PFM), with a progress bar.
+    ///
+    /// Ctrl-C stops early and still writes what was rendered so far.
+    Render(RenderArgs),
+    /// Measure rendering speed (samples/s, rays/s) on the built-in Cornell box.
+    Bench(BenchArgs),
+}
+
+/// Options shared by everything that renders.
+#[derive(Debug, Clone, Args)]
+pub struct QualityArgs {
+    /// Image size as WIDTHxHEIGHT, e.g. 512x512 [default: the scene's, 512x512 for cornell-box]
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+    /// Maximum path length in segments: 1 = lights seen directly, 2 = direct lighting,
+    /// -1 = unlimited (Russian roulette ends paths) [default: the scene's]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_depth)]
+    pub max_depth: Option<i32>,
+    /// Direction sampling: mis (default; unbiased, least noise), bsdf, mixture, or light
+    /// (biased teaching mode: loses indirect light)
+    #[arg(long, default_value = "mis", value_parser = parse_from_str::<Strategy>)]
+    pub strategy: Strategy,
+    /// Pixel sampler: independent (random supersampling) or stratified (jittered strata)
+    #[arg(long, default_value = "independent", value_parser = parse_from_str::<SamplerKind>)]
+    pub sampler: SamplerKind,
+    /// Random seed: the same seed, scene and settings give the same image
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Worker threads [default: one per core]
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// A built-in scene name (cornell-box)
+    #[arg(default_value = "cornell-box")]
+    pub scene: String,
+    /// Samples per pixel [default: the scene's, 256 for cornell-box]
+    #[arg(long, value_name = "N", conflicts_with = "time", value_parser = clap::value_parser!(u32).range(1..))]
+    pub spp: Option<u32>,
+    /// Render for this many seconds instead of a fixed sample count
+    #[arg(long, value_name = "SECONDS", value_parser = parse_seconds)]
+    pub time: Option<f64>,
+    #[command(flatten)]
+    pub quality: QualityArgs,
+    /// Output file; the format follows the extension: .png (tone mapped, sRGB), .exr or .pfm
+    /// (linear radiance) [default: SCENE.png]
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Exposure in stops applied before tone mapping (PNG only)
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Tone map for PNG output: clamp or aces (filmic)
+    #[arg(long, default_value = "clamp", value_parser = parse_from_str::<ToneMap>)]
+    pub tonemap: ToneMap,
+    /// No progress bar or summary (errors are still printed)
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Also write timing and ray statistics as JSON to this file
+    #[arg(long, value_name = "FILE")]
+    pub stats_json: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Samples per pixel per run
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
+    pub spp: u32,
+    /// Number of timed runs (the median is reported)
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
+    pub runs: u32,
+    #[command(flatten)]
+    pub quality: QualityArgs,
+    /// Print the results as JSON instead of a table
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT (e.g. 512x512)"))?;
+    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|&n| (1..=32768).contains(&n));
+    match (parse(w), parse(h)) {
+        (Some(w), Some(h)) => Ok((w, h)),
+        _ => Err(format!("'{s}': width and height must be whole numbers from 1 to 32768")),
+    }
+}
+
+fn parse_depth(s: &str) -> Result<i32, String> {
+    match s.parse::<i32>() {
+        Ok(d) if d >= -1 => Ok(d),
+        _ => Err(format!("'{s}' is not a path length (a whole number ≥ 1, 0, or -1 for unlimited)")),
+    }
+}
+
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(t) if t > 0.0 && t.is_finite() && t < 1e7 => Ok(t),
+        _ => Err(format!("'{s}' is not a positive number of seconds")),
+    }
+}
+
+fn parse_from_str<T: std::str::FromStr>(s: &str) -> Result<T, String>
+where
+    T::Err: std::fmt::Display,
+{
+    s.parse().map_err(|e: T::Err| e.to_string())
+}
+
+/// Help and version go to stdout with exit 0; any other parse error is one line on stderr with
+/// exit code 2.
+pub fn report_parse_error(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                ExitCode::from(crate::EXIT_USAGE)
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
+        _ => {
+            let rendered = e.render().to_string();
+            let first = rendered.lines().find(|l| !l.trim().is_empty()).unwrap_or("invalid arguments");
+            eprintln!("{} (see 'pathtrace --help')", first.trim_end());
+            ExitCode::from(crate::EXIT_USAGE)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse_and_bad_ones_explain() {
+        assert_eq!(parse_size("640x480"), Ok((640, 480)));
+        assert_eq!(parse_size("16X8"), Ok((16, 8)));
+        assert!(parse_size("640").unwrap_err().contains("WIDTHxHEIGHT"));
+        assert!(parse_size("0x10").is_err());
+        assert!(parse_size("axb").is_err());
+    }
+
+    #[test]
+    fn depths_accept_minus_one_only() {
+        assert_eq!(parse_depth("-1"), Ok(-1));
+        assert_eq!(parse_depth("8"), Ok(8));
+        assert!(parse_depth("-2").is_err());
+    }
+
+    #[test]
+    fn cli_definition_is_consistent() {
+        use clap::CommandFactory;
+        Cli::command().debug_assert();
+    }
+}

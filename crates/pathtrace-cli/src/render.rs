@@ -1,0 +1,98 @@
+//! `pathtrace render`.
+
+use crate::args::{QualityArgs, RenderArgs};
+use crate::interrupt::Interrupt;
+use crate::progress::{format_rate, Bar};
+use crate::stats_json::RenderStats;
+use crate::{scene_arg, CliError};
+use pathtrace::film::ToneMapSettings;
+use pathtrace::{RenderSession, RenderSettings};
+use pathtrace_scene::image_io::{write_image, ImageFormat};
+use pathtrace_scene::RenderDefaults;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::time::Duration;
+
+/// Render settings from the scene's defaults overridden by the command line.
+pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &RenderDefaults) -> RenderSettings {
+    let (width, height) = q.size.unwrap_or((d.width, d.height));
+    let mut s = RenderSettings {
+        width,
+        height,
+        spp: if time.is_some() { spp.unwrap_or(0) } else { spp.unwrap_or(d.spp) },
+        time_limit: time.map(Duration::from_secs_f64),
+        sampler: q.sampler,
+        seed: q.seed,
+        threads: q.threads.unwrap_or(0),
+        ..RenderSettings::default()
+    };
+    s.path.strategy = q.strategy;
+    s.path.max_depth = q.max_depth.unwrap_or(d.max_depth);
+    s
+}
+
+fn check_output(path: &Path) -> Result<(), CliError> {
+    ImageFormat::from_path(path).map_err(|e| CliError::usage(e.to_string()))?;
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        return Err(CliError::usage(format!("cannot write {}: folder {} does not exist", path.display(), dir.display())));
+    }
+    Ok(())
+}
+
+pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
+    let loaded = scene_arg::load(&a.scene)?;
+    let settings = settings_from(&a.quality, a.spp, a.time, &loaded.defaults);
+    let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", a.scene)));
+    check_output(&output)?;
+    if !a.exposure.is_finite() {
+        return Err(CliError::usage("--exposure must be a finite number of stops"));
+    }
+
+    let interrupt = Interrupt::install();
+    let session = RenderSession::start(Arc::new(loaded.scene), settings.clone()).map_err(|e| CliError::runtime(e.to_string()))?;
+    let pixels = settings.width as u64 * settings.height as u64;
+    let bar = Bar::new(pixels, settings.spp, settings.time_limit, a.quiet);
+    while !session.is_finished() {
+        std::thread::sleep(Duration::from_millis(100));
+        bar.update(&session.progress());
+        if interrupt.triggered() {
+            session.cancel();
+        }
+    }
+    let outcome = session.wait();
+    bar.finish();
+    let interrupted = interrupt.triggered();
+
+    let image = outcome.film.image();
+    let tone = ToneMapSettings { exposure: a.exposure, tone_map: a.tonemap };
+    write_image(&output, &image, &tone).map_err(|e| CliError::runtime(e.to_string()))?;
+
+    let (spp_min, spp_max) = outcome.film.spp_range();
+    let noise = outcome.film.relative_error_estimate();
+    let p = &outcome.progress;
+    if !a.quiet {
+        let held = if spp_min == spp_max { format!("{spp_min} spp") } else { format!("{spp_min}–{spp_max} spp") };
+        let noise_text = noise.map_or(String::new(), |n| format!(", noise ≈ {:.2}%", 100.0 * n));
+        let dropped = if p.dropped_samples > 0 { format!(", {} NaN/Inf samples dropped", p.dropped_samples) } else { String::new() };
+        let prefix = if interrupted { "interrupted: " } else { "" };
+        eprintln!(
+            "{prefix}wrote {} — {}×{}, {held} ({}, {}), {:.1} s, {}, {}{noise_text}{dropped}",
+            output.display(),
+            settings.width,
+            settings.height,
+            settings.path.strategy,
+            settings.sampler,
+            p.elapsed.as_secs_f64(),
+            format_rate(p.samples_per_second, "samples/s"),
+            format_rate(p.rays_per_second, "rays/s"),
+        );
+    }
+    if let Some(path) = &a.stats_json {
+        let stats = RenderStats::new(&a.scene, &settings, p, spp_min, noise, interrupted);
+        let json = serde_json::to_string_pretty(&stats).map_err(|e| CliError::runtime(e.to_string()))?;
+        std::fs::write(path, json + "\n").map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
+    }
+    Ok(if interrupted { ExitCode::from(130) } else { ExitCode::SUCCESS })
+}
