@@ -6,6 +6,39 @@ use super::accumulator::PixelStats;
 use super::Image;
 use crate::math::Rgb;
 
+/// The mean of a block of pixels and the estimated variance of that mean, per channel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RegionEstimate {
+    pub mean: [f64; 3],
+    pub variance_of_mean: [f64; 3],
+    pub pixels: usize,
+}
+
+impl RegionEstimate {
+    /// Largest per-channel z-score of the difference between two independent estimates.
+    pub fn max_z_score(&self, other: &RegionEstimate) -> f64 {
+        (0..3)
+            .map(|k| {
+                let sd = (self.variance_of_mean[k] + other.variance_of_mean[k]).sqrt();
+                let d = (self.mean[k] - other.mean[k]).abs();
+                if sd > 0.0 {
+                    d / sd
+                } else if d == 0.0 {
+                    0.0
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// Largest per-channel z-score against an exactly known value.
+    pub fn max_z_score_against(&self, expected: [f64; 3]) -> f64 {
+        let exact = RegionEstimate { mean: expected, variance_of_mean: [0.0; 3], pixels: 0 };
+        self.max_z_score(&exact)
+    }
+}
+
 /// An accumulation buffer.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
@@ -80,6 +113,29 @@ impl Film {
             })
             .collect();
         Image { width: self.width, height: self.height, pixels }
+    }
+
+    /// Mean radiance over the pixel rectangle `[x0, x1) × [y0, y1)` with the estimated variance
+    /// of that mean per channel (pixels are independent, so variances add: Σ s²ₚ/nₚ / N²).
+    /// For statistical tests that compare renders.
+    pub fn region_estimate(&self, x0: u32, y0: u32, x1: u32, y1: u32) -> RegionEstimate {
+        let (x1, y1) = (x1.min(self.width), y1.min(self.height));
+        let mut mean = [0.0f64; 3];
+        let mut var = [0.0f64; 3];
+        let mut n = 0usize;
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let p = self.pixel(x, y);
+                let v = p.variance_of_mean();
+                for k in 0..3 {
+                    mean[k] += p.mean[k];
+                    var[k] += v[k];
+                }
+                n += 1;
+            }
+        }
+        let nf = n.max(1) as f64;
+        RegionEstimate { mean: mean.map(|m| m / nf), variance_of_mean: var.map(|v| v / (nf * nf)), pixels: n }
     }
 
     /// Fewest and most samples held by any pixel.

@@ -7,6 +7,6 @@ mod image;
 pub mod tonemap;
 
 pub use accumulator::PixelStats;
-pub use film::Film;
+pub use film::{Film, RegionEstimate};
 pub use image::Image;
 pub use tonemap::{ToneMap, ToneMapSettings};

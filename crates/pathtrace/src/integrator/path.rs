@@ -75,10 +75,8 @@ pub fn radiance(scene: &Scene, camera_ray: Ray, sampler: &mut Sampler, settings:
     let mut segments = 1u32;
     let mut prev = PrevVertex { p: ray.origin, pdf: 0.0, specular: true };
 
-    loop {
-        let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
-            break; // no environment light (yet): escaping paths carry nothing
-        };
+    // A ray that escapes the scene ends the path: there is no environment light (yet).
+    while let Some(hit) = scene.intersect(&ray, f32::INFINITY) {
         let it = scene.interaction(&ray, &hit);
         let p = it.surface.p;
         let wo_world = -ray.dir;

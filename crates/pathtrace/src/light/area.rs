@@ -114,21 +114,43 @@ impl AreaLight {
                 .intersect(&ray, 0.0, f32::INFINITY)
                 .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), t.e1.cross(t.e2).normalize(), t.area())),
             LightShape::Sphere(s) => {
-                let d2 = (s.center - ref_p).length_squared();
-                if d2 > s.radius * s.radius {
-                    let cos_max = cone_cos_max(s, d2);
+                if sees_outside(s, ref_p) {
+                    let d2 = (s.center - ref_p).length_squared();
                     let cos_dir = (s.center - ref_p).normalize().dot(dir);
-                    warp::uniform_cone_pdf(Vec3::new(0.0, 0.0, cos_dir), cos_max)
+                    warp::uniform_cone_pdf(Vec3::new(0.0, 0.0, cos_dir), cone_cos_max(s, d2))
                 } else {
-                    // Inside: area sampling, and exactly one point along any direction.
-                    s.intersect(&ray, 0.0, f32::INFINITY).map_or(0.0, |h| {
-                        let p = ray.at(h.t);
+                    // Inside or on the surface: area sampling, and exactly one point of the
+                    // sphere lies ahead along any direction — where the ray exits.
+                    exit_distance(s, &ray).map_or(0.0, |t| {
+                        let p = ray.at(t);
                         area_to_solid_angle(ref_p, p, (p - s.center) / s.radius, s.area())
                     })
                 }
             }
         }
     }
+}
+
+/// True when `p` is clearly outside the sphere, so the sphere is sampled by the cone it
+/// subtends. Points on the surface (within rounding) count as inside and use area sampling:
+/// from a point on a sphere, area sampling is exactly cosine-weighted (chord d = 2r cos θ
+/// gives r²/(|cos θ_l| A) = cos θ / π), with no singularity.
+fn sees_outside(s: &Sphere, p: Vec3) -> bool {
+    (s.center - p).length_squared() > s.radius * s.radius * (1.0 + 1e-3)
+}
+
+/// Distance to where a ray starting inside (or on) the sphere leaves it: the larger root.
+fn exit_distance(s: &Sphere, ray: &Ray) -> Option<f32> {
+    let oc = ray.origin - s.center;
+    let a = ray.dir.length_squared();
+    let half_b = oc.dot(ray.dir);
+    let c = oc.length_squared() - s.radius * s.radius;
+    let disc = half_b * half_b - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let t = (-half_b + disc.sqrt()) / a;
+    (t > 0.0).then_some(t)
 }
 
 fn cone_cos_max(s: &Sphere, dist2: f32) -> f32 {
@@ -139,7 +161,7 @@ fn cone_cos_max(s: &Sphere, dist2: f32) -> f32 {
 fn sample_sphere(s: &Sphere, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
     let to_center = s.center - ref_p;
     let d2 = to_center.length_squared();
-    if d2 <= s.radius * s.radius {
+    if !sees_outside(s, ref_p) {
         let n = warp::square_to_uniform_sphere(u);
         let point = s.center + n * s.radius;
         let pdf = area_to_solid_angle(ref_p, point, n, s.area());
@@ -160,8 +182,8 @@ fn sample_sphere(s: &Sphere, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
 }
 
 fn sphere_pdf(s: &Sphere, ref_p: Vec3, p: Vec3, n: Vec3) -> f32 {
-    let d2 = (s.center - ref_p).length_squared();
-    if d2 > s.radius * s.radius {
+    if sees_outside(s, ref_p) {
+        let d2 = (s.center - ref_p).length_squared();
         warp::uniform_cone_pdf(Vec3::Z, cone_cos_max(s, d2))
     } else {
         area_to_solid_angle(ref_p, p, n, s.area())
