@@ -29,7 +29,8 @@ pub fn run(a: BenchArgs) -> Result<ExitCode, CliError> {
     let scene = Arc::new(loaded.scene);
     let mut runs = Vec::new();
     for i in 0..a.runs {
-        let outcome = pathtrace::render(Arc::clone(&scene), settings.clone()).map_err(|e| CliError::runtime(e.to_string()))?;
+        let outcome =
+            pathtrace::render(Arc::clone(&scene), settings.clone()).map_err(|e| CliError::runtime(e.to_string()))?;
         let (spp, _) = outcome.film.spp_range();
         let stats = RenderStats::new(SCENE, &settings, &outcome.progress, spp, None, false);
         if !a.json {
@@ -57,7 +58,10 @@ pub fn run(a: BenchArgs) -> Result<ExitCode, CliError> {
     } else {
         let r = &runs[0];
         let per_sample = |n: u64| n as f64 / r.samples.max(1) as f64;
-        println!("scene            {SCENE} {}×{}, {} spp, max depth {}, {}, {}", r.width, r.height, r.spp_target, r.max_depth, r.strategy, r.sampler);
+        println!(
+            "scene            {SCENE} {}×{}, {} spp, max depth {}, {}, {}",
+            r.width, r.height, r.spp_target, r.max_depth, r.strategy, r.sampler
+        );
         println!("threads          {}", r.threads);
         println!("samples/s        {} (median of {})", format_rate(med_sps, "samples/s"), a.runs);
         println!("rays/s           {} (median)", format_rate(med_rps, "rays/s"));

@@ -18,7 +18,10 @@ impl Bar {
             Some(t) => t.as_millis() as u64,
             None => pixels * spp as u64,
         };
-        let bar = ProgressBar::with_draw_target(Some(len), if quiet { ProgressDrawTarget::hidden() } else { ProgressDrawTarget::stderr() });
+        let bar = ProgressBar::with_draw_target(
+            Some(len),
+            if quiet { ProgressDrawTarget::hidden() } else { ProgressDrawTarget::stderr() },
+        );
         let template = if timed {
             "{spinner} [{bar:30}] {msg} · {elapsed_precise}"
         } else {

@@ -36,7 +36,11 @@ fn check_output(path: &Path) -> Result<(), CliError> {
     ImageFormat::from_path(path).map_err(|e| CliError::usage(e.to_string()))?;
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     if !dir.is_dir() {
-        return Err(CliError::usage(format!("cannot write {}: folder {} does not exist", path.display(), dir.display())));
+        return Err(CliError::usage(format!(
+            "cannot write {}: folder {} does not exist",
+            path.display(),
+            dir.display()
+        )));
     }
     Ok(())
 }
@@ -51,7 +55,8 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     }
 
     let interrupt = Interrupt::install();
-    let session = RenderSession::start(Arc::new(loaded.scene), settings.clone()).map_err(|e| CliError::runtime(e.to_string()))?;
+    let session =
+        RenderSession::start(Arc::new(loaded.scene), settings.clone()).map_err(|e| CliError::runtime(e.to_string()))?;
     let pixels = settings.width as u64 * settings.height as u64;
     let bar = Bar::new(pixels, settings.spp, settings.time_limit, a.quiet);
     while !session.is_finished() {
@@ -75,7 +80,11 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     if !a.quiet {
         let held = if spp_min == spp_max { format!("{spp_min} spp") } else { format!("{spp_min}–{spp_max} spp") };
         let noise_text = noise.map_or(String::new(), |n| format!(", noise ≈ {:.2}%", 100.0 * n));
-        let dropped = if p.dropped_samples > 0 { format!(", {} NaN/Inf samples dropped", p.dropped_samples) } else { String::new() };
+        let dropped = if p.dropped_samples > 0 {
+            format!(", {} NaN/Inf samples dropped", p.dropped_samples)
+        } else {
+            String::new()
+        };
         let prefix = if interrupted { "interrupted: " } else { "" };
         eprintln!(
             "{prefix}wrote {} — {}×{}, {held} ({}, {}), {:.1} s, {}, {}{noise_text}{dropped}",
@@ -92,7 +101,8 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     if let Some(path) = &a.stats_json {
         let stats = RenderStats::new(&a.scene, &settings, p, spp_min, noise, interrupted);
         let json = serde_json::to_string_pretty(&stats).map_err(|e| CliError::runtime(e.to_string()))?;
-        std::fs::write(path, json + "\n").map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
+        std::fs::write(path, json + "\n")
+            .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
     }
     Ok(if interrupted { ExitCode::from(130) } else { ExitCode::SUCCESS })
 }

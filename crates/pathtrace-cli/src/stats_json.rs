@@ -34,7 +34,14 @@ pub struct RenderStats {
 }
 
 impl RenderStats {
-    pub fn new(scene: &str, s: &RenderSettings, p: &Progress, spp_reached: u32, noise: Option<f64>, interrupted: bool) -> Self {
+    pub fn new(
+        scene: &str,
+        s: &RenderSettings,
+        p: &Progress,
+        spp_reached: u32,
+        noise: Option<f64>,
+        interrupted: bool,
+    ) -> Self {
         let samples = p.samples.max(1) as f64;
         Self {
             scene: scene.to_string(),

@@ -41,18 +41,12 @@ impl ImageFormat {
 
     /// The format named by `path`'s extension, compared case-insensitively.
     pub fn from_path(path: &Path) -> Result<ImageFormat, ImageIoError> {
-        let extension = path
-            .extension()
-            .map(|e| e.to_string_lossy().into_owned())
-            .unwrap_or_default();
+        let extension = path.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_default();
         match extension.to_ascii_lowercase().as_str() {
             "png" => Ok(ImageFormat::Png),
             "exr" => Ok(ImageFormat::Exr),
             "pfm" => Ok(ImageFormat::Pfm),
-            _ => Err(ImageIoError::UnsupportedFormat {
-                path: path.to_path_buf(),
-                extension,
-            }),
+            _ => Err(ImageIoError::UnsupportedFormat { path: path.to_path_buf(), extension }),
         }
     }
 
@@ -87,38 +81,23 @@ impl fmt::Display for ImageFormat {
 /// EXR and PFM store the scene-linear values unchanged: `settings` is ignored for them.
 /// The file is written to a temporary sibling and renamed into place, so on error the
 /// destination is untouched. Empty or inconsistent images are rejected.
-pub fn write_image(
-    path: &Path,
-    image: &Image,
-    settings: &ToneMapSettings,
-) -> Result<(), ImageIoError> {
+pub fn write_image(path: &Path, image: &Image, settings: &ToneMapSettings) -> Result<(), ImageIoError> {
     let format = ImageFormat::from_path(path)?;
     check_writable(path, image, format)?;
     atomic::write_atomically(path, |out| match format {
-        ImageFormat::Png => {
-            png_codec::encode(out, image, settings).map_err(|source| ImageIoError::Png {
-                path: path.to_path_buf(),
-                source,
-            })
+        ImageFormat::Png => png_codec::encode(out, image, settings)
+            .map_err(|source| ImageIoError::Png { path: path.to_path_buf(), source }),
+        ImageFormat::Exr => {
+            exr_codec::encode(out, image).map_err(|source| ImageIoError::Exr { path: path.to_path_buf(), source })
         }
-        ImageFormat::Exr => exr_codec::encode(out, image).map_err(|source| ImageIoError::Exr {
-            path: path.to_path_buf(),
-            source,
-        }),
-        ImageFormat::Pfm => {
-            pfm_codec::encode(out, image).map_err(|e| ImageIoError::io(path, "write", e))
-        }
+        ImageFormat::Pfm => pfm_codec::encode(out, image).map_err(|e| ImageIoError::io(path, "write", e)),
     })
 }
 
 /// Rejects images that no format can store: empty, inconsistent, or too large.
 fn check_writable(path: &Path, image: &Image, format: ImageFormat) -> Result<(), ImageIoError> {
     if image.is_empty() {
-        return Err(ImageIoError::EmptyImage {
-            path: path.to_path_buf(),
-            width: image.width,
-            height: image.height,
-        });
+        return Err(ImageIoError::EmptyImage { path: path.to_path_buf(), width: image.width, height: image.height });
     }
     if !image.is_consistent() {
         return Err(ImageIoError::PixelCountMismatch {
@@ -129,11 +108,7 @@ fn check_writable(path: &Path, image: &Image, format: ImageFormat) -> Result<(),
         });
     }
     // The PNG specification limits each dimension to 2^31 − 1.
-    let limit = if format == ImageFormat::Png {
-        i32::MAX as u32
-    } else {
-        u32::MAX
-    };
+    let limit = if format == ImageFormat::Png { i32::MAX as u32 } else { u32::MAX };
     if image.width > limit || image.height > limit {
         return Err(ImageIoError::TooLarge {
             path: path.to_path_buf(),
@@ -154,17 +129,12 @@ pub fn read_image(path: &Path) -> Result<Image, ImageIoError> {
     match ImageFormat::from_path(path)? {
         ImageFormat::Pfm => {
             let bytes = fs::read(path).map_err(|e| ImageIoError::io(path, "read", e))?;
-            pfm_codec::decode(&bytes).map_err(|reason| ImageIoError::InvalidPfm {
-                path: path.to_path_buf(),
-                reason,
-            })
+            pfm_codec::decode(&bytes).map_err(|reason| ImageIoError::InvalidPfm { path: path.to_path_buf(), reason })
         }
         ImageFormat::Png => {
             let file = fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
-            png_codec::decode(BufReader::new(file)).map_err(|source| ImageIoError::Png {
-                path: path.to_path_buf(),
-                source,
-            })
+            png_codec::decode(BufReader::new(file))
+                .map_err(|source| ImageIoError::Png { path: path.to_path_buf(), source })
         }
         ImageFormat::Exr => read_exr(path),
     }
@@ -176,14 +146,8 @@ fn read_exr(path: &Path) -> Result<Image, ImageIoError> {
     fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
     let (width, height, pixels) =
         exr_codec::decode(path).map_err(|source| match exr_codec::missing_rgb_channels(path) {
-            Some(found) => ImageIoError::MissingChannels {
-                path: path.to_path_buf(),
-                found,
-            },
-            None => ImageIoError::Exr {
-                path: path.to_path_buf(),
-                source,
-            },
+            Some(found) => ImageIoError::MissingChannels { path: path.to_path_buf(), found },
+            None => ImageIoError::Exr { path: path.to_path_buf(), source },
         })?;
     let too_large = || ImageIoError::TooLarge {
         path: path.to_path_buf(),

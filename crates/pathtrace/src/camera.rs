@@ -20,13 +20,7 @@ pub struct CameraDesc {
 
 impl Default for CameraDesc {
     fn default() -> Self {
-        Self {
-            look_from: Vec3::ZERO,
-            look_at: -Vec3::Z,
-            up: Vec3::Y,
-            vfov_degrees: 40.0,
-            focal_length: 1.0,
-        }
+        Self { look_from: Vec3::ZERO, look_at: -Vec3::Z, up: Vec3::Y, vfov_degrees: 40.0, focal_length: 1.0 }
     }
 }
 
@@ -87,14 +81,7 @@ impl Camera {
         let du = viewport_u / width as f32;
         let dv = viewport_v / height as f32;
         let upper_left = desc.look_from - desc.focal_length * w - viewport_u / 2.0 - viewport_v / 2.0;
-        Ok(Self {
-            origin: desc.look_from,
-            pixel00: upper_left + 0.5 * (du + dv),
-            du,
-            dv,
-            width,
-            height,
-        })
+        Ok(Self { origin: desc.look_from, pixel00: upper_left + 0.5 * (du + dv), du, dv, width, height })
     }
 
     /// The ray through pixel `(x, y)` offset by `jitter ∈ [0,1)²` within the pixel

@@ -2,15 +2,15 @@
 //!
 //! The engine never prints, exits or opens a window; file formats live in `pathtrace-scene`.
 
+pub mod accel;
+pub mod camera;
 pub mod film;
+pub mod light;
+pub mod material;
 pub mod math;
 pub mod sampling;
-pub mod shape;
-pub mod accel;
-pub mod material;
-pub mod light;
-pub mod camera;
 pub mod scene;
+pub mod shape;
 
 pub use camera::{Camera, CameraDesc};
 pub use scene::{MaterialId, Scene, SceneBuilder};

@@ -91,10 +91,8 @@ impl Scene {
     /// Closest hit with `t ∈ [0, t_max]`.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let mut best = self
-            .bvh
-            .intersect(&self.prims, ray, 0.0, t_max)
-            .map(|(hit, i)| Hit { prim: PrimRef::Bounded(i), hit });
+        let mut best =
+            self.bvh.intersect(&self.prims, ray, 0.0, t_max).map(|(hit, i)| Hit { prim: PrimRef::Bounded(i), hit });
         for (i, p) in self.unbounded.iter().enumerate() {
             let limit = best.map_or(t_max, |b| b.hit.t);
             if let Some(hit) = p.shape.intersect(ray, 0.0, limit) {
@@ -224,7 +222,13 @@ impl SceneBuilder {
     }
 
     /// Adds the six quads of the box `[min, max]`, placed by `transform`.
-    pub fn add_box(&mut self, min: Vec3, max: Vec3, material: MaterialId, transform: &Transform) -> Result<(), BuildError> {
+    pub fn add_box(
+        &mut self,
+        min: Vec3,
+        max: Vec3,
+        material: MaterialId,
+        transform: &Transform,
+    ) -> Result<(), BuildError> {
         self.check_material(material)?;
         let faces = Quad::box_faces(min, max, transform).ok_or(BuildError::Degenerate("box"))?;
         self.shapes.extend(faces.into_iter().map(|q| (Shape::Quad(q), material.0)));
@@ -233,11 +237,17 @@ impl SceneBuilder {
 
     /// Adds every triangle of a mesh, placed by `transform`. Degenerate triangles are skipped
     /// (meshes often contain a few); returns how many were skipped.
-    pub fn mesh(&mut self, mesh: &TriangleMesh, material: MaterialId, transform: &Transform) -> Result<usize, BuildError> {
+    pub fn mesh(
+        &mut self,
+        mesh: &TriangleMesh,
+        material: MaterialId,
+        transform: &Transform,
+    ) -> Result<usize, BuildError> {
         self.check_material(material)?;
         mesh.validate()?;
         let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| transform.point(p)).collect();
-        let normals: Option<Vec<Vec3>> = mesh.normals.as_ref().map(|ns| ns.iter().map(|&n| transform.normal(n)).collect());
+        let normals: Option<Vec<Vec3>> =
+            mesh.normals.as_ref().map(|ns| ns.iter().map(|&n| transform.normal(n)).collect());
         let mut skipped = 0;
         for tri in &mesh.indices {
             let [a, b, c] = tri.map(|i| positions[i as usize]);
@@ -339,7 +349,9 @@ fn validate_material(m: &Material) -> Result<(), BuildError> {
         Material::Glossy(g) if !(g.exponent >= 0.0 && g.exponent.is_finite()) => {
             err(format!("glossy exponent {} must be a non-negative number", g.exponent))
         }
-        Material::Dielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => err(format!("dielectric ior {} must be positive", d.ior)),
+        Material::Dielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => {
+            err(format!("dielectric ior {} must be positive", d.ior))
+        }
         Material::Dielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
             err(format!("dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
         }

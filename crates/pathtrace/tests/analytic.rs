@@ -23,7 +23,13 @@ fn render_direct(strategy: Strategy) -> pathtrace::film::RegionEstimate {
     b.shape(Shape::Sphere(Sphere::new(Vec3::ZERO, R_LIGHT).unwrap()), light, &Transform::IDENTITY).unwrap();
     b.shape(Shape::Sphere(Sphere::new(Vec3::ZERO, R_ROOM).unwrap()), wall, &Transform::IDENTITY).unwrap();
     // Camera beside the light, looking away from it: every pixel sees the wall.
-    b.camera(CameraDesc { look_from: Vec3::new(0.0, 0.0, 5.0), look_at: Vec3::new(0.0, 0.0, 10.0), up: Vec3::Y, vfov_degrees: 30.0, focal_length: 1.0 });
+    b.camera(CameraDesc {
+        look_from: Vec3::new(0.0, 0.0, 5.0),
+        look_at: Vec3::new(0.0, 0.0, 10.0),
+        up: Vec3::Y,
+        vfov_degrees: 30.0,
+        focal_length: 1.0,
+    });
     let mut s = RenderSettings { width: 32, height: 32, spp: 256, seed: 3, ..Default::default() };
     s.path.strategy = strategy;
     s.path.max_depth = 2;

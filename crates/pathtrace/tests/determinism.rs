@@ -20,14 +20,20 @@ fn scene() -> Arc<Scene> {
     b.shape(Shape::Sphere(Sphere::new(Vec3::new(0.0, 1.0, 0.0), 1.0).unwrap()), glass, &Transform::IDENTITY).unwrap();
     let lamp = Quad::new(Vec3::new(-1.0, 4.0, -1.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 2.0)).unwrap();
     b.shape(Shape::Quad(lamp), light, &Transform::IDENTITY).unwrap();
-    b.camera(CameraDesc { look_from: Vec3::new(0.0, 2.0, -6.0), look_at: Vec3::new(0.0, 1.0, 0.0), ..Default::default() });
+    b.camera(CameraDesc {
+        look_from: Vec3::new(0.0, 2.0, -6.0),
+        look_at: Vec3::new(0.0, 1.0, 0.0),
+        ..Default::default()
+    });
     Arc::new(b.build().unwrap())
 }
 
 #[test]
 fn one_and_two_threads_give_bit_identical_films() {
-    for (strategy, sampler) in [(Strategy::Mis, SamplerKind::Independent), (Strategy::Mixture, SamplerKind::Stratified)] {
-        let mut s = RenderSettings { width: 40, height: 30, spp: 19, seed: 5, sampler, tile_size: 7, ..Default::default() };
+    for (strategy, sampler) in [(Strategy::Mis, SamplerKind::Independent), (Strategy::Mixture, SamplerKind::Stratified)]
+    {
+        let mut s =
+            RenderSettings { width: 40, height: 30, spp: 19, seed: 5, sampler, tile_size: 7, ..Default::default() };
         s.path.strategy = strategy;
         let one = render(scene(), RenderSettings { threads: 1, ..s.clone() }).unwrap().film;
         let two = render(scene(), RenderSettings { threads: 2, ..s.clone() }).unwrap().film;

@@ -14,7 +14,13 @@ fn furnace(material: Material, emission: f32, strategy: Strategy, spp: u32) -> p
     let mut b = SceneBuilder::new();
     let wall = b.material_with_emission(material, Emission { radiance: Rgb::splat(emission), two_sided: true });
     b.shape(Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap()), wall, &Transform::IDENTITY).unwrap();
-    b.camera(CameraDesc { look_from: Vec3::new(0.1, 0.2, 0.3), look_at: Vec3::new(1.0, 0.0, 0.0), up: Vec3::Y, vfov_degrees: 90.0, focal_length: 1.0 });
+    b.camera(CameraDesc {
+        look_from: Vec3::new(0.1, 0.2, 0.3),
+        look_at: Vec3::new(1.0, 0.0, 0.0),
+        up: Vec3::Y,
+        vfov_degrees: 90.0,
+        focal_length: 1.0,
+    });
     let scene = Arc::new(b.build().unwrap());
     let mut s = RenderSettings { width: 24, height: 24, spp, seed: 7, ..Default::default() };
     s.path.strategy = strategy;

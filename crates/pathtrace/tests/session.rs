@@ -11,7 +11,10 @@ use std::time::Duration;
 
 fn scene() -> Arc<Scene> {
     let mut b = SceneBuilder::new();
-    let wall = b.material_with_emission(Material::Lambertian(Lambertian { albedo: Rgb::splat(0.5) }), Emission { radiance: Rgb::splat(1.0), two_sided: true });
+    let wall = b.material_with_emission(
+        Material::Lambertian(Lambertian { albedo: Rgb::splat(0.5) }),
+        Emission { radiance: Rgb::splat(1.0), two_sided: true },
+    );
     b.shape(Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap()), wall, &Transform::IDENTITY).unwrap();
     b.camera(CameraDesc { look_at: Vec3::X, ..Default::default() });
     Arc::new(b.build().unwrap())
@@ -47,7 +50,13 @@ fn cancel_keeps_what_was_rendered() {
 
 #[test]
 fn time_limits_stop_open_ended_renders() {
-    let s = RenderSettings { width: 32, height: 32, spp: 0, time_limit: Some(Duration::from_millis(300)), ..Default::default() };
+    let s = RenderSettings {
+        width: 32,
+        height: 32,
+        spp: 0,
+        time_limit: Some(Duration::from_millis(300)),
+        ..Default::default()
+    };
     let out = RenderSession::start(scene(), s).unwrap().wait();
     assert!(out.progress.elapsed < Duration::from_secs(5));
     assert!(out.film.spp_range().0 >= 1);

@@ -43,8 +43,5 @@ pub(super) fn build() -> Result<LoadedScene, BuildError> {
         vfov_degrees: 40.0,
         focal_length: 1.0,
     });
-    Ok(LoadedScene {
-        scene: b.build()?,
-        defaults: RenderDefaults { width: 512, height: 512, spp: 256, max_depth: -1 },
-    })
+    Ok(LoadedScene { scene: b.build()?, defaults: RenderDefaults { width: 512, height: 512, spp: 256, max_depth: -1 } })
 }

@@ -22,11 +22,8 @@ pub(crate) fn write_atomically(
     let (temp, file) = TempFile::create(path)?;
     let mut writer = BufWriter::new(file);
     write(&mut writer)?;
-    let file = writer
-        .into_inner()
-        .map_err(|e| ImageIoError::io(path, "write", e.into_error()))?;
-    file.sync_all()
-        .map_err(|e| ImageIoError::io(path, "write", e))?;
+    let file = writer.into_inner().map_err(|e| ImageIoError::io(path, "write", e.into_error()))?;
+    file.sync_all().map_err(|e| ImageIoError::io(path, "write", e))?;
     drop(file);
     temp.persist(path)
 }
@@ -39,18 +36,10 @@ struct TempFile {
 impl TempFile {
     /// Creates `.<name>.<pid>.<n>.tmp` next to `target`, failing if it already exists.
     fn create(target: &Path) -> Result<(TempFile, File), ImageIoError> {
-        let name = target
-            .file_name()
-            .ok_or_else(|| ImageIoError::NotAFilePath {
-                path: target.to_path_buf(),
-            })?;
+        let name = target.file_name().ok_or_else(|| ImageIoError::NotAFilePath { path: target.to_path_buf() })?;
         let mut temp_name = OsString::from(".");
         temp_name.push(name);
-        temp_name.push(format!(
-            ".{}.{}.tmp",
-            std::process::id(),
-            NEXT_TEMP_ID.fetch_add(1, Ordering::Relaxed)
-        ));
+        temp_name.push(format!(".{}.{}.tmp", std::process::id(), NEXT_TEMP_ID.fetch_add(1, Ordering::Relaxed)));
         let path = target.with_file_name(temp_name);
         let file = OpenOptions::new()
             .write(true)
@@ -91,11 +80,8 @@ mod tests {
         let dir = ScratchDir::new("atomic-ok");
         let target = dir.path().join("out.bin");
         fs::write(&target, b"old").unwrap();
-        write_atomically(&target, |w| {
-            w.write_all(b"new contents")
-                .map_err(|e| ImageIoError::io(&target, "write", e))
-        })
-        .unwrap();
+        write_atomically(&target, |w| w.write_all(b"new contents").map_err(|e| ImageIoError::io(&target, "write", e)))
+            .unwrap();
         assert_eq!(fs::read(&target).unwrap(), b"new contents");
         assert_eq!(dir.entries(), ["out.bin"]);
     }
@@ -107,10 +93,7 @@ mod tests {
         fs::write(&target, b"old").unwrap();
         let result = write_atomically(&target, |w| {
             w.write_all(b"partial").unwrap();
-            Err(ImageIoError::InvalidPfm {
-                path: target.clone(),
-                reason: "simulated".into(),
-            })
+            Err(ImageIoError::InvalidPfm { path: target.clone(), reason: "simulated".into() })
         });
         assert!(result.is_err());
         assert_eq!(fs::read(&target).unwrap(), b"old");

@@ -123,10 +123,6 @@ pub enum ImageIoError {
 impl ImageIoError {
     /// An [`ImageIoError::Io`] for `path`.
     pub(crate) fn io(path: impl Into<PathBuf>, action: &'static str, source: io::Error) -> Self {
-        ImageIoError::Io {
-            path: path.into(),
-            action,
-            source,
-        }
+        ImageIoError::Io { path: path.into(), action, source }
     }
 }

@@ -4,8 +4,7 @@ use std::io::{Seek, Write};
 use std::path::Path;
 
 use exr::prelude::{
-    read_first_rgba_layer_from_file, Image as ExrImage, MetaData, SpecificChannels, Vec2,
-    WritableImage,
+    read_first_rgba_layer_from_file, Image as ExrImage, MetaData, SpecificChannels, Vec2, WritableImage,
 };
 use pathtrace::film::Image;
 use pathtrace::math::Rgb;
@@ -18,9 +17,7 @@ pub(crate) fn encode(out: &mut (impl Write + Seek), image: &Image) -> exr::error
         let p = image.pixels.get(y * width + x).copied().unwrap_or_default();
         (p.r, p.g, p.b)
     });
-    ExrImage::from_channels((width, image.height as usize), channels)
-        .write()
-        .to_buffered(out)
+    ExrImage::from_channels((width, image.height as usize), channels).write().to_buffered(out)
 }
 
 /// The pixels being filled in while reading.
@@ -54,22 +51,14 @@ pub(crate) fn decode(path: &Path) -> exr::error::Result<(usize, usize, Vec<Rgb>)
 /// does have (comma separated); `None` if it has such a layer or cannot be read.
 pub(crate) fn missing_rgb_channels(path: &Path) -> Option<String> {
     let meta = MetaData::read_from_file(path, false).ok()?;
-    let has_rgb = meta.headers.iter().any(|h| {
-        ["R", "G", "B"]
-            .iter()
-            .all(|want| h.channels.list.iter().any(|c| c.name.to_string() == *want))
-    });
+    let has_rgb = meta
+        .headers
+        .iter()
+        .any(|h| ["R", "G", "B"].iter().all(|want| h.channels.list.iter().any(|c| c.name.to_string() == *want)));
     if has_rgb {
         return None;
     }
-    let names: Vec<String> = meta
-        .headers
-        .iter()
-        .flat_map(|h| h.channels.list.iter().map(|c| c.name.to_string()))
-        .collect();
-    Some(if names.is_empty() {
-        "none".to_owned()
-    } else {
-        names.join(", ")
-    })
+    let names: Vec<String> =
+        meta.headers.iter().flat_map(|h| h.channels.list.iter().map(|c| c.name.to_string())).collect();
+    Some(if names.is_empty() { "none".to_owned() } else { names.join(", ") })
 }

@@ -36,23 +36,14 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<Image, String> {
     let channels = match header.token("the PF/Pf magic")? {
         "PF" => 3,
         "Pf" => 1,
-        other => {
-            return Err(format!(
-                "not a PFM file: starts with {:?}, expected \"PF\" or \"Pf\"",
-                truncate(other)
-            ))
-        }
+        other => return Err(format!("not a PFM file: starts with {:?}, expected \"PF\" or \"Pf\"", truncate(other))),
     };
     let width = header.dimension("width")?;
     let height = header.dimension("height")?;
     let scale_token = header.token("the scale")?;
-    let scale: f32 = scale_token
-        .parse()
-        .map_err(|_| format!("scale {:?} is not a number", truncate(scale_token)))?;
+    let scale: f32 = scale_token.parse().map_err(|_| format!("scale {:?} is not a number", truncate(scale_token)))?;
     if scale == 0.0 || !scale.is_finite() {
-        return Err(format!(
-            "scale {scale} must be a non-zero finite number (its sign gives the byte order)"
-        ));
+        return Err(format!("scale {scale} must be a non-zero finite number (its sign gives the byte order)"));
     }
     let little_endian = scale < 0.0;
     header.single_whitespace()?;
@@ -61,9 +52,7 @@ pub(crate) fn decode(bytes: &[u8]) -> Result<Image, String> {
         .checked_mul(height as usize)
         .and_then(|n| n.checked_mul(channels))
         .ok_or_else(|| format!("{width}x{height} is too large"))?;
-    let needed = floats
-        .checked_mul(4)
-        .ok_or_else(|| format!("{width}x{height} is too large"))?;
+    let needed = floats.checked_mul(4).ok_or_else(|| format!("{width}x{height} is too large"))?;
     let mut data = &bytes[header.pos..];
     // Tolerate a CRLF after the scale (written by some Windows tools).
     if data.len() == needed + 1 && bytes[header.pos - 1] == b'\r' && data[0] == b'\n' {
@@ -109,19 +98,11 @@ struct Header<'a> {
 impl<'a> Header<'a> {
     /// Skips whitespace and returns the next whitespace-delimited token.
     fn token(&mut self, what: &str) -> Result<&'a str, String> {
-        while self
-            .bytes
-            .get(self.pos)
-            .is_some_and(u8::is_ascii_whitespace)
-        {
+        while self.bytes.get(self.pos).is_some_and(u8::is_ascii_whitespace) {
             self.pos += 1;
         }
         let start = self.pos;
-        while self
-            .bytes
-            .get(self.pos)
-            .is_some_and(|b| !b.is_ascii_whitespace())
-        {
+        while self.bytes.get(self.pos).is_some_and(|b| !b.is_ascii_whitespace()) {
             self.pos += 1;
             if self.pos - start > 64 {
                 return Err(format!("header is garbled where {what} should be"));
@@ -140,10 +121,7 @@ impl<'a> Header<'a> {
         match token.parse::<u32>() {
             Ok(0) => Err(format!("{what} is 0")),
             Ok(v) => Ok(v),
-            Err(_) => Err(format!(
-                "{what} {:?} is not a positive integer",
-                truncate(token)
-            )),
+            Err(_) => Err(format!("{what} {:?} is not a positive integer", truncate(token))),
         }
     }
 
@@ -178,12 +156,7 @@ mod tests {
         Image::from_pixels(
             2,
             2,
-            vec![
-                Rgb::new(1.0, 2.0, 3.0),
-                Rgb::new(4.0, 5.0, 6.0),
-                Rgb::new(7.0, 8.0, 9.0),
-                Rgb::new(10.0, 11.0, 12.0),
-            ],
+            vec![Rgb::new(1.0, 2.0, 3.0), Rgb::new(4.0, 5.0, 6.0), Rgb::new(7.0, 8.0, 9.0), Rgb::new(10.0, 11.0, 12.0)],
         )
         .unwrap()
     }
@@ -262,11 +235,7 @@ mod tests {
             &[b'A'; 200],
         ];
         for bytes in cases {
-            assert!(
-                decode(bytes).is_err(),
-                "{:?}",
-                String::from_utf8_lossy(bytes)
-            );
+            assert!(decode(bytes).is_err(), "{:?}", String::from_utf8_lossy(bytes));
         }
     }
 }

@@ -66,10 +66,7 @@ fn pfm_round_trip_is_exact() {
 #[test]
 fn linear_formats_ignore_exposure_and_tone_map() {
     let dir = ScratchDir::new("io-linear");
-    let settings = ToneMapSettings {
-        exposure: 3.0,
-        tone_map: ToneMap::Aces,
-    };
+    let settings = ToneMapSettings { exposure: 3.0, tone_map: ToneMap::Aces };
     let img = hdr_image(4, 4);
     for name in ["a.exr", "a.pfm"] {
         let path = dir.path().join(name);
@@ -115,19 +112,11 @@ fn png_round_trip_within_8_bit_quantisation() {
 fn png_applies_exposure_and_clamps() {
     let dir = ScratchDir::new("io-png-exposure");
     let path = dir.path().join("out.png");
-    let img =
-        Image::from_pixels(3, 1, vec![Rgb::splat(0.25), Rgb::splat(9.0), Rgb::BLACK]).unwrap();
-    let settings = ToneMapSettings {
-        exposure: 1.0,
-        tone_map: ToneMap::Clamp,
-    };
+    let img = Image::from_pixels(3, 1, vec![Rgb::splat(0.25), Rgb::splat(9.0), Rgb::BLACK]).unwrap();
+    let settings = ToneMapSettings { exposure: 1.0, tone_map: ToneMap::Clamp };
     write_image(&path, &img, &settings).unwrap();
     let back = read_image(&path).unwrap();
-    assert!(
-        (back.pixels[0].g - 0.5).abs() < 0.003,
-        "{:?}",
-        back.pixels[0]
-    );
+    assert!((back.pixels[0].g - 0.5).abs() < 0.003, "{:?}", back.pixels[0]);
     assert_eq!(back.pixels[1], Rgb::WHITE);
     assert_eq!(back.pixels[2], Rgb::BLACK);
 }
@@ -136,28 +125,17 @@ fn png_applies_exposure_and_clamps() {
 fn png_16_bit_and_grey_are_decoded() {
     let dir = ScratchDir::new("io-png16");
     let path16 = dir.path().join("deep.png");
-    image::ImageBuffer::from_fn(2, 1, |x, _| {
-        image::Rgb([0u16, 65535, if x == 0 { 0 } else { 65535 }])
-    })
-    .save(&path16)
-    .unwrap();
+    image::ImageBuffer::from_fn(2, 1, |x, _| image::Rgb([0u16, 65535, if x == 0 { 0 } else { 65535 }]))
+        .save(&path16)
+        .unwrap();
     let img = read_image(&path16).unwrap();
-    assert_eq!(
-        img.pixels,
-        [Rgb::new(0.0, 1.0, 0.0), Rgb::new(0.0, 1.0, 1.0)]
-    );
+    assert_eq!(img.pixels, [Rgb::new(0.0, 1.0, 0.0), Rgb::new(0.0, 1.0, 1.0)]);
 
     let grey = dir.path().join("grey.png");
-    image::GrayImage::from_raw(1, 1, vec![188])
-        .unwrap()
-        .save(&grey)
-        .unwrap();
+    image::GrayImage::from_raw(1, 1, vec![188]).unwrap().save(&grey).unwrap();
     let img = read_image(&grey).unwrap();
     let v = img.pixels[0];
-    assert!(
-        v.r == v.g && v.g == v.b && (v.r - 0.5).abs() < 0.003,
-        "{v:?}"
-    );
+    assert!(v.r == v.g && v.g == v.b && (v.r - 0.5).abs() < 0.003, "{v:?}");
 }
 
 #[test]
@@ -167,12 +145,7 @@ fn exr_half_float_rgba_is_read() {
     let path = dir.path().join("half.exr");
     exr::prelude::write_rgba_file(&path, 3, 2, |x, y| {
         let v = f16::from_f32((x + 3 * y) as f32 * 0.5);
-        (
-            v,
-            f16::from_f32(2.0),
-            f16::from_f32(-1.0),
-            f16::from_f32(0.25),
-        )
+        (v, f16::from_f32(2.0), f16::from_f32(-1.0), f16::from_f32(0.25))
     })
     .unwrap();
     let img = read_image(&path).unwrap();
@@ -186,13 +159,8 @@ fn exr_without_rgb_channels_is_an_error() {
     use exr::prelude::*;
     let dir = ScratchDir::new("io-exr-depth");
     let path = dir.path().join("depth.exr");
-    let channels = SpecificChannels::build()
-        .with_channel("Z")
-        .with_pixel_fn(|_: Vec2<usize>| (1.5f32,));
-    Image::from_channels((4, 4), channels)
-        .write()
-        .to_file(&path)
-        .unwrap();
+    let channels = SpecificChannels::build().with_channel("Z").with_pixel_fn(|_: Vec2<usize>| (1.5f32,));
+    Image::from_channels((4, 4), channels).write().to_file(&path).unwrap();
     let err = read_image(&path).unwrap_err();
     assert!(matches!(err, ImageIoError::MissingChannels { .. }), "{err}");
     let msg = err.to_string();
@@ -235,18 +203,9 @@ fn missing_file_is_an_io_error_naming_it() {
 
 #[test]
 fn format_from_extension() {
-    assert_eq!(
-        ImageFormat::from_path(Path::new("a/b.png")).unwrap(),
-        ImageFormat::Png
-    );
-    assert_eq!(
-        ImageFormat::from_path(Path::new("B.EXR")).unwrap(),
-        ImageFormat::Exr
-    );
-    assert_eq!(
-        ImageFormat::from_path(Path::new("c.Pfm")).unwrap(),
-        ImageFormat::Pfm
-    );
+    assert_eq!(ImageFormat::from_path(Path::new("a/b.png")).unwrap(), ImageFormat::Png);
+    assert_eq!(ImageFormat::from_path(Path::new("B.EXR")).unwrap(), ImageFormat::Exr);
+    assert_eq!(ImageFormat::from_path(Path::new("c.Pfm")).unwrap(), ImageFormat::Pfm);
     for f in [ImageFormat::Png, ImageFormat::Exr, ImageFormat::Pfm] {
         let name = format!("x.{}", f.extension());
         assert_eq!(ImageFormat::from_path(Path::new(&name)).unwrap(), f);
@@ -293,16 +252,9 @@ fn empty_and_inconsistent_images_are_rejected() {
             let err = write_image(&path, &Image::new(w, h), &default_settings()).unwrap_err();
             assert!(matches!(err, ImageIoError::EmptyImage { .. }), "{err}");
         }
-        let bad = Image {
-            width: 2,
-            height: 2,
-            pixels: vec![Rgb::WHITE; 3],
-        };
+        let bad = Image { width: 2, height: 2, pixels: vec![Rgb::WHITE; 3] };
         let err = write_image(&path, &bad, &default_settings()).unwrap_err();
-        assert!(
-            matches!(err, ImageIoError::PixelCountMismatch { .. }),
-            "{err}"
-        );
+        assert!(matches!(err, ImageIoError::PixelCountMismatch { .. }), "{err}");
     }
     assert!(dir.entries().is_empty());
 }

@@ -59,11 +59,7 @@ impl Bvh {
         let mut items: Vec<BuildItem> = bounds
             .iter()
             .enumerate()
-            .map(|(i, b)| BuildItem {
-                bounds: b.padded(),
-                centroid: b.centroid(),
-                index: i as u32,
-            })
+            .map(|(i, b)| BuildItem { bounds: b.padded(), centroid: b.centroid(), index: i as u32 })
             .collect();
         let mut bvh = Bvh { nodes: Vec::with_capacity(2 * bounds.len().max(1)) };
         if !items.is_empty() {
@@ -97,7 +93,13 @@ impl Bvh {
 
     /// Closest hit among `prims` (in build order) with `t ∈ [t_min, t_max]`.
     #[inline]
-    pub fn intersect<P: Intersectable>(&self, prims: &[P], ray: &Ray, t_min: f32, mut t_max: f32) -> Option<(PrimHit, u32)> {
+    pub fn intersect<P: Intersectable>(
+        &self,
+        prims: &[P],
+        ray: &Ray,
+        t_min: f32,
+        mut t_max: f32,
+    ) -> Option<(PrimHit, u32)> {
         if self.nodes.is_empty() {
             return None;
         }
@@ -192,8 +194,18 @@ impl Bvh {
 
     fn dump_node(&self, index: usize, depth: usize, out: &mut String) {
         let Some(n) = self.nodes.get(index) else { return };
-        let kind = if n.count > 0 { format!("leaf {} prims from {}", n.count, n.offset) } else { format!("split axis {}", n.axis) };
-        out.push_str(&format!("{:indent$}{kind} [{:.0?} – {:.0?}]\n", "", n.bounds.min.to_array(), n.bounds.max.to_array(), indent = 2 * depth));
+        let kind = if n.count > 0 {
+            format!("leaf {} prims from {}", n.count, n.offset)
+        } else {
+            format!("split axis {}", n.axis)
+        };
+        out.push_str(&format!(
+            "{:indent$}{kind} [{:.0?} – {:.0?}]\n",
+            "",
+            n.bounds.min.to_array(),
+            n.bounds.max.to_array(),
+            indent = 2 * depth
+        ));
         if n.count == 0 {
             self.dump_node(index + 1, depth + 1, out);
             self.dump_node(n.offset as usize, depth + 1, out);

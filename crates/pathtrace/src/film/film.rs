@@ -51,7 +51,12 @@ pub struct Film {
 
 impl Film {
     pub fn new(width: u32, height: u32) -> Self {
-        Self { width, height, pixels: vec![PixelStats::default(); width as usize * height as usize], dropped_samples: 0 }
+        Self {
+            width,
+            height,
+            pixels: vec![PixelStats::default(); width as usize * height as usize],
+            dropped_samples: 0,
+        }
     }
 
     pub fn width(&self) -> u32 {

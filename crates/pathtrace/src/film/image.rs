@@ -19,20 +19,12 @@ impl Image {
     /// A black image of the given size (either side may be zero: an empty image).
     pub fn new(width: u32, height: u32) -> Image {
         let len = pixel_count(width, height).unwrap_or(0);
-        Image {
-            width,
-            height,
-            pixels: vec![Rgb::BLACK; len],
-        }
+        Image { width, height, pixels: vec![Rgb::BLACK; len] }
     }
 
     /// An image from row-major pixels, or `None` if `pixels.len() != width * height`.
     pub fn from_pixels(width: u32, height: u32, pixels: Vec<Rgb>) -> Option<Image> {
-        (pixel_count(width, height) == Some(pixels.len())).then_some(Image {
-            width,
-            height,
-            pixels,
-        })
+        (pixel_count(width, height) == Some(pixels.len())).then_some(Image { width, height, pixels })
     }
 
     /// True when the image has no pixels (zero width or zero height).
@@ -67,10 +59,7 @@ impl Image {
     pub fn get(&self, x: u32, y: u32) -> Rgb {
         match self.try_get(x, y) {
             Some(c) => c,
-            None => panic!(
-                "pixel ({x}, {y}) is outside the {}x{} image",
-                self.width, self.height
-            ),
+            None => panic!("pixel ({x}, {y}) is outside the {}x{} image", self.width, self.height),
         }
     }
 
@@ -99,8 +88,8 @@ impl Image {
             return Rgb::BLACK;
         }
         let w = self.width as usize;
-        let rows = (y0 as usize..y1 as usize)
-            .flat_map(move |y| self.pixels[y * w + x0 as usize..y * w + x1 as usize].iter());
+        let rows =
+            (y0 as usize..y1 as usize).flat_map(move |y| self.pixels[y * w + x0 as usize..y * w + x1 as usize].iter());
         mean_of(rows.copied())
     }
 }
@@ -124,11 +113,7 @@ fn mean_of(pixels: impl Iterator<Item = Rgb>) -> Rgb {
         return Rgb::BLACK;
     }
     let n = n as f64;
-    Rgb::new(
-        (sum[0] / n) as f32,
-        (sum[1] / n) as f32,
-        (sum[2] / n) as f32,
-    )
+    Rgb::new((sum[0] / n) as f32, (sum[1] / n) as f32, (sum[2] / n) as f32)
 }
 
 #[cfg(test)]

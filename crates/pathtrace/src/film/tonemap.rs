@@ -79,12 +79,7 @@ pub struct ParseToneMapError {
 
 impl fmt::Display for ParseToneMapError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "unknown tone map {:?}: expected one of {}",
-            self.input,
-            ToneMap::ACCEPTED_NAMES.join(", ")
-        )
+        write!(f, "unknown tone map {:?}: expected one of {}", self.input, ToneMap::ACCEPTED_NAMES.join(", "))
     }
 }
 
@@ -98,9 +93,7 @@ impl FromStr for ToneMap {
         match s.trim().to_ascii_lowercase().as_str() {
             "clamp" | "linear" => Ok(ToneMap::Clamp),
             "aces" | "filmic" => Ok(ToneMap::Aces),
-            _ => Err(ParseToneMapError {
-                input: s.to_owned(),
-            }),
+            _ => Err(ParseToneMapError { input: s.to_owned() }),
         }
     }
 }
@@ -155,9 +148,7 @@ pub fn srgb_decode(encoded: f32) -> f32 {
 /// Tone maps `rgb`, encodes it as sRGB and quantises each channel to 8 bits,
 /// rounding to nearest.
 pub fn to_srgb8(rgb: Rgb, settings: &ToneMapSettings) -> [u8; 3] {
-    tone_map(rgb, settings)
-        .to_array()
-        .map(|c| quantise8(srgb_encode(c)))
+    tone_map(rgb, settings).to_array().map(|c| quantise8(srgb_encode(c)))
 }
 
 /// `[0, 1]` → `0..=255`, rounding to nearest.
@@ -263,29 +254,17 @@ mod tests {
             }
         }
         let s = ToneMapSettings::default();
-        assert_eq!(
-            tone_map(Rgb::new(f32::NAN, -2.0, 0.5), &s),
-            Rgb::new(0.0, 0.0, 0.5)
-        );
+        assert_eq!(tone_map(Rgb::new(f32::NAN, -2.0, 0.5), &s), Rgb::new(0.0, 0.0, 0.5));
         assert_eq!(to_srgb8(Rgb::splat(f32::NAN), &s), [0, 0, 0]);
-        let nan_exposure = ToneMapSettings {
-            exposure: f32::NAN,
-            tone_map: ToneMap::Aces,
-        };
+        let nan_exposure = ToneMapSettings { exposure: f32::NAN, tone_map: ToneMap::Aces };
         assert_eq!(tone_map(Rgb::WHITE, &nan_exposure), Rgb::BLACK);
     }
 
     #[test]
     fn exposure_one_stop_doubles() {
         let s0 = ToneMapSettings::default();
-        let s1 = ToneMapSettings {
-            exposure: 1.0,
-            ..s0
-        };
-        let sm1 = ToneMapSettings {
-            exposure: -1.0,
-            ..s0
-        };
+        let s1 = ToneMapSettings { exposure: 1.0, ..s0 };
+        let sm1 = ToneMapSettings { exposure: -1.0, ..s0 };
         let c = Rgb::new(0.1, 0.2, 0.4);
         assert_eq!(tone_map(c, &s1), tone_map(c * 2.0, &s0));
         assert_eq!(tone_map(c, &s1), c * 2.0);

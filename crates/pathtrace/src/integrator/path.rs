@@ -60,7 +60,13 @@ struct PrevVertex {
 const SHADOW_EPSILON: f32 = 1e-4;
 
 /// Estimates the radiance arriving along `ray` (a camera ray).
-pub fn radiance(scene: &Scene, camera_ray: Ray, sampler: &mut Sampler, settings: &PathSettings, stats: &mut PathStats) -> Rgb {
+pub fn radiance(
+    scene: &Scene,
+    camera_ray: Ray,
+    sampler: &mut Sampler,
+    settings: &PathSettings,
+    stats: &mut PathStats,
+) -> Rgb {
     stats.camera_rays += 1;
     let max_depth = if settings.max_depth < 0 { u32::MAX } else { settings.max_depth as u32 };
     if max_depth == 0 {
@@ -138,7 +144,9 @@ pub fn radiance(scene: &Scene, camera_ray: Ray, sampler: &mut Sampler, settings:
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();
         let next = match strategy {
-            Strategy::Light if can_sample_lights => sample_towards_lights(scene, &material, &frame, p, wo, u_lobe, u_dir),
+            Strategy::Light if can_sample_lights => {
+                sample_towards_lights(scene, &material, &frame, p, wo, u_lobe, u_dir)
+            }
             Strategy::Mixture if can_sample_lights => sample_mixture(scene, &material, &frame, p, wo, u_lobe, u_dir),
             _ => material.sample(wo, u_lobe, u_dir).map(|s| Scatter {
                 wi_world: frame.to_world(s.wi),
@@ -193,7 +201,15 @@ fn same_side(n: Vec3, a: Vec3, b: Vec3) -> bool {
 
 /// The `light` strategy: continue towards a light point; pdf of the direction summed over all
 /// lights.
-fn sample_towards_lights(scene: &Scene, material: &Material, frame: &Frame, p: Vec3, wo: Vec3, u_select: f32, u: crate::math::Vec2) -> Option<Scatter> {
+fn sample_towards_lights(
+    scene: &Scene,
+    material: &Material,
+    frame: &Frame,
+    p: Vec3,
+    wo: Vec3,
+    u_select: f32,
+    u: crate::math::Vec2,
+) -> Option<Scatter> {
     let ls = scene.lights.sample(p, u_select, u)?;
     let pdf = scene.lights.pdf_direction(p, ls.wi);
     let f = material.eval(wo, frame.to_local(ls.wi));
@@ -202,7 +218,15 @@ fn sample_towards_lights(scene: &Scene, material: &Material, frame: &Frame, p: V
 
 /// The `mixture` strategy: half the time towards a light, half by the material; weighted by the
 /// mixture density 0.5·p_light + 0.5·p_bsdf of the chosen direction.
-fn sample_mixture(scene: &Scene, material: &Material, frame: &Frame, p: Vec3, wo: Vec3, u_choice: f32, u: crate::math::Vec2) -> Option<Scatter> {
+fn sample_mixture(
+    scene: &Scene,
+    material: &Material,
+    frame: &Frame,
+    p: Vec3,
+    wo: Vec3,
+    u_choice: f32,
+    u: crate::math::Vec2,
+) -> Option<Scatter> {
     // Reuse the one number for both the coin flip and the sub-strategy's 1D choice.
     let wi_world = if u_choice < 0.5 {
         scene.lights.sample(p, u_choice * 2.0, u)?.wi

@@ -16,10 +16,7 @@ impl Default for Aabb {
 }
 
 impl Aabb {
-    pub const EMPTY: Aabb = Aabb {
-        min: Vec3::splat(f32::INFINITY),
-        max: Vec3::splat(f32::NEG_INFINITY),
-    };
+    pub const EMPTY: Aabb = Aabb { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
 
     pub fn new(min: Vec3, max: Vec3) -> Self {
         Self { min, max }
@@ -61,7 +58,8 @@ impl Aabb {
     /// Grows the box by a relative margin so that rounding in primitive tests never falls
     /// outside it (rays grazing a box face still reach the primitive).
     pub fn padded(self) -> Self {
-        let pad = (self.extent() * 1e-5).max(Vec3::splat(1e-6 * (1.0 + self.max.abs().max(self.min.abs()).max_element())));
+        let pad =
+            (self.extent() * 1e-5).max(Vec3::splat(1e-6 * (1.0 + self.max.abs().max(self.min.abs()).max_element())));
         Self::new(self.min - pad, self.max + pad)
     }
 

@@ -29,10 +29,6 @@ impl Ray {
 /// far below any feature size the scenes use (0.06 units in the 555-unit Cornell box).
 pub fn offset_ray_origin(p: Vec3, geometric_normal: Vec3, dir: Vec3) -> Vec3 {
     let scale = 1e-4 * (1.0 + p.abs().max_element());
-    let n = if geometric_normal.dot(dir) >= 0.0 {
-        geometric_normal
-    } else {
-        -geometric_normal
-    };
+    let n = if geometric_normal.dot(dir) >= 0.0 { geometric_normal } else { -geometric_normal };
     p + n * scale
 }

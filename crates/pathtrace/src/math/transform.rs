@@ -16,10 +16,7 @@ impl Default for Transform {
 }
 
 impl Transform {
-    pub const IDENTITY: Transform = Transform {
-        matrix: Mat4::IDENTITY,
-        inverse: Mat4::IDENTITY,
-    };
+    pub const IDENTITY: Transform = Transform { matrix: Mat4::IDENTITY, inverse: Mat4::IDENTITY };
 
     /// Wraps a matrix; `None` when it is singular or not finite.
     pub fn from_matrix(matrix: Mat4) -> Option<Self> {
@@ -32,10 +29,7 @@ impl Transform {
     }
 
     pub fn translate(t: Vec3) -> Self {
-        Self {
-            matrix: Mat4::from_translation(t),
-            inverse: Mat4::from_translation(-t),
-        }
+        Self { matrix: Mat4::from_translation(t), inverse: Mat4::from_translation(-t) }
     }
 
     /// Non-uniform scale; `None` if a factor is zero.
@@ -59,18 +53,12 @@ impl Transform {
     }
 
     fn rotation(m: Mat4) -> Self {
-        Self {
-            matrix: m,
-            inverse: m.transpose(),
-        }
+        Self { matrix: m, inverse: m.transpose() }
     }
 
     /// `self.then(next)` applies `self` first, then `next` (so lists read in application order).
     pub fn then(&self, next: &Transform) -> Transform {
-        Transform {
-            matrix: next.matrix * self.matrix,
-            inverse: self.inverse * next.inverse,
-        }
+        Transform { matrix: next.matrix * self.matrix, inverse: self.inverse * next.inverse }
     }
 
     pub fn point(&self, p: Vec3) -> Vec3 {

@@ -13,9 +13,7 @@ pub fn mix64(mut z: u64) -> u64 {
 /// Hashes a list of words into one 64-bit value.
 #[inline]
 pub fn hash_words(words: &[u64]) -> u64 {
-    words
-        .iter()
-        .fold(0x6a09_e667_f3bc_c909, |h, &w| mix64(h ^ mix64(w.wrapping_add(0x9e37_79b9_7f4a_7c15))))
+    words.iter().fold(0x6a09_e667_f3bc_c909, |h, &w| mix64(h ^ mix64(w.wrapping_add(0x9e37_79b9_7f4a_7c15))))
 }
 
 /// The `index`-th element of a pseudo-random permutation of `0..len`, chosen by `seed`.

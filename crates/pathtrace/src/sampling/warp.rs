@@ -14,11 +14,7 @@ pub fn square_to_uniform_disk(u: Vec2) -> Vec2 {
     if a == 0.0 && b == 0.0 {
         return Vec2::ZERO;
     }
-    let (r, phi) = if a.abs() > b.abs() {
-        (a, (PI / 4.0) * (b / a))
-    } else {
-        (b, PI / 2.0 - (PI / 4.0) * (a / b))
-    };
+    let (r, phi) = if a.abs() > b.abs() { (a, (PI / 4.0) * (b / a)) } else { (b, PI / 2.0 - (PI / 4.0) * (a / b)) };
     Vec2::new(r * phi.cos(), r * phi.sin())
 }
 

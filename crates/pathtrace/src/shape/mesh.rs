@@ -31,10 +31,7 @@ impl TriangleMesh {
         }
         if let Some(n) = &self.normals {
             if n.len() != self.positions.len() {
-                return Err(MeshError::NormalCountMismatch {
-                    positions: self.positions.len(),
-                    normals: n.len(),
-                });
+                return Err(MeshError::NormalCountMismatch { positions: self.positions.len(), normals: n.len() });
             }
         }
         let count = self.positions.len();
@@ -58,9 +55,6 @@ mod tests {
             indices: vec![[0, 1, 2], [0, 2, 3]],
             normals: None,
         };
-        assert_eq!(
-            m.validate(),
-            Err(MeshError::IndexOutOfRange { triangle: 1, index: 3, count: 3 })
-        );
+        assert_eq!(m.validate(), Err(MeshError::IndexOutOfRange { triangle: 1, index: 3, count: 3 }));
     }
 }

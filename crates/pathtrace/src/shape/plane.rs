@@ -31,19 +31,11 @@ impl Plane {
         let p = ray.at(hit.t);
         let f = Frame::from_normal(self.normal);
         let d = p - self.point;
-        SurfacePoint {
-            p,
-            n_geometric: self.normal,
-            n_shading: self.normal,
-            uv: Vec2::new(d.dot(f.s), d.dot(f.t)),
-        }
+        SurfacePoint { p, n_geometric: self.normal, n_shading: self.normal, uv: Vec2::new(d.dot(f.s), d.dot(f.t)) }
     }
 
     pub(super) fn transformed(&self, t: &Transform) -> Plane {
-        Plane {
-            point: t.point(self.point),
-            normal: t.normal(self.normal),
-        }
+        Plane { point: t.point(self.point), normal: t.normal(self.normal) }
     }
 }
 

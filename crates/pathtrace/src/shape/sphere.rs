@@ -57,12 +57,7 @@ impl Sphere {
         let n = n.normalize_or(Vec3::Z);
         // Re-project onto the surface to cut the error of the intersection point.
         let p = self.center + n * self.radius;
-        SurfacePoint {
-            p,
-            n_geometric: n,
-            n_shading: n,
-            uv: sphere_uv(n),
-        }
+        SurfacePoint { p, n_geometric: n, n_shading: n, uv: sphere_uv(n) }
     }
 
     pub fn bounds(&self) -> Aabb {
@@ -75,10 +70,7 @@ impl Sphere {
 
     pub(super) fn transformed(&self, t: &Transform) -> Shape {
         match t.uniform_scale() {
-            Some(s) => Shape::Sphere(Sphere {
-                center: t.point(self.center),
-                radius: self.radius * s,
-            }),
+            Some(s) => Shape::Sphere(Sphere { center: t.point(self.center), radius: self.radius * s }),
             None => Shape::Ellipsoid(Ellipsoid {
                 to_world: Box::new(
                     Transform::scale(Vec3::splat(self.radius))
@@ -106,10 +98,7 @@ pub struct Ellipsoid {
 }
 
 impl Ellipsoid {
-    const UNIT: Sphere = Sphere {
-        center: Vec3::ZERO,
-        radius: 1.0,
-    };
+    const UNIT: Sphere = Sphere { center: Vec3::ZERO, radius: 1.0 };
 
     fn object_ray(&self, ray: &Ray) -> Ray {
         let inv = &self.to_world.inverse;
@@ -124,12 +113,7 @@ impl Ellipsoid {
     pub fn surface(&self, ray: &Ray, hit: &PrimHit) -> SurfacePoint {
         let local = Self::UNIT.surface(&self.object_ray(ray), hit);
         let n = self.to_world.normal(local.n_geometric);
-        SurfacePoint {
-            p: self.to_world.point(local.p),
-            n_geometric: n,
-            n_shading: n,
-            uv: local.uv,
-        }
+        SurfacePoint { p: self.to_world.point(local.p), n_geometric: n, n_shading: n, uv: local.uv }
     }
 
     pub fn bounds(&self) -> Aabb {
@@ -145,9 +129,7 @@ impl Ellipsoid {
     }
 
     pub(super) fn transformed(&self, t: &Transform) -> Ellipsoid {
-        Ellipsoid {
-            to_world: Box::new(self.to_world.then(t)),
-        }
+        Ellipsoid { to_world: Box::new(self.to_world.then(t)) }
     }
 }
 

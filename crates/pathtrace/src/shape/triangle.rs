@@ -79,12 +79,7 @@ impl Triangle {
             }
             None => n,
         };
-        SurfacePoint {
-            p,
-            n_geometric: n,
-            n_shading,
-            uv: Vec2::new(b1, b2),
-        }
+        SurfacePoint { p, n_geometric: n, n_shading, uv: Vec2::new(b1, b2) }
     }
 
     pub fn bounds(&self) -> Aabb {
@@ -120,12 +115,8 @@ mod tests {
     fn shared_edges_are_watertight() {
         // Two triangles sharing the diagonal of a skewed quad; rays through points on the
         // diagonal (computed in f32) must hit at least one of them.
-        let (a, b, c, d) = (
-            Vec3::new(0.1, 0.3, 2.0),
-            Vec3::new(10.7, 0.2, 2.5),
-            Vec3::new(11.3, 9.1, 3.0),
-            Vec3::new(0.4, 8.9, 2.2),
-        );
+        let (a, b, c, d) =
+            (Vec3::new(0.1, 0.3, 2.0), Vec3::new(10.7, 0.2, 2.5), Vec3::new(11.3, 9.1, 3.0), Vec3::new(0.4, 8.9, 2.2));
         let t1 = Triangle::new(a, b, c, Triangle::FLAT).unwrap();
         let t2 = Triangle::new(a, c, d, Triangle::FLAT).unwrap();
         let origin = Vec3::new(3.3, 4.1, -20.0);
