@@ -1,1 +1,11 @@
-//! Statistical test helpers.
+//! Statistical test helpers for pathtrace (dev-only): a deterministic RNG, the
+//! chi-square goodness-of-fit test for direction samplers, pdf integration over the
+//! sphere, and z-tests between Monte Carlo estimates.
+
+mod p_value;
+mod quadrature;
+mod rng;
+
+pub use p_value::chi_square_p_value;
+pub use quadrature::integrate_over_sphere;
+pub use rng::TestRng;
