@@ -72,15 +72,10 @@ impl ChiSquareTest {
     /// Draws the samples, integrates the pdf, pools small bins and computes the
     /// statistic. Never panics; configuration or sampler problems are reported in
     /// [`ChiSquareOutcome::problems`] and make the test fail.
-    pub fn run(
-        &self,
-        mut sample: impl FnMut([f64; 2]) -> Option<Vec3>,
-        pdf: impl Fn(Vec3) -> f64,
-    ) -> ChiSquareOutcome {
+    pub fn run(&self, mut sample: impl FnMut([f64; 2]) -> Option<Vec3>, pdf: impl Fn(Vec3) -> f64) -> ChiSquareOutcome {
         let mut out = ChiSquareOutcome::empty(self);
         if self.theta_bins == 0 || self.phi_bins == 0 || self.samples == 0 {
-            out.problems
-                .push("theta_bins, phi_bins and samples must all be positive".to_owned());
+            out.problems.push("theta_bins, phi_bins and samples must all be positive".to_owned());
             return out;
         }
         self.histogram(&mut sample, &mut out);
@@ -88,11 +83,7 @@ impl ChiSquareTest {
         out.finish(self.min_expected);
         // With everything pooled into one bin there is nothing to test (and the
         // statistic is rounding noise).
-        out.p_value = if out.dof == 0 {
-            1.0
-        } else {
-            chi_square_p_value(out.statistic, out.dof)
-        };
+        out.p_value = if out.dof == 0 { 1.0 } else { chi_square_p_value(out.statistic, out.dof) };
         out.passed = out.problems.is_empty() && out.p_value >= self.significance;
         out
     }
@@ -110,11 +101,7 @@ impl ChiSquareTest {
     }
 
     /// Fills the observed counts, missing and invalid samples.
-    fn histogram(
-        &self,
-        sample: &mut impl FnMut([f64; 2]) -> Option<Vec3>,
-        out: &mut ChiSquareOutcome,
-    ) {
+    fn histogram(&self, sample: &mut impl FnMut([f64; 2]) -> Option<Vec3>, out: &mut ChiSquareOutcome) {
         let mut rng = TestRng::new(self.seed);
         let mut first_invalid = None;
         for _ in 0..self.samples {
@@ -131,21 +118,14 @@ impl ChiSquareTest {
             out.observed[self.bin(d / len)] += 1.0;
         }
         if let Some(d) = first_invalid {
-            out.problems.push(format!(
-                "{} sampled directions were not unit vectors (first: {d})",
-                out.invalid_samples
-            ));
+            out.problems.push(format!("{} sampled directions were not unit vectors (first: {d})", out.invalid_samples));
         }
     }
 
     /// Fills the expected counts by integrating the pdf over each bin.
     fn expected_counts(&self, pdf: &dyn Fn(Vec3) -> f64, out: &mut ChiSquareOutcome) {
         let bins = (self.theta_bins * self.phi_bins) as f64;
-        let q = Quadrature {
-            segments: self.integration_res.max(1),
-            tolerance: 1e-9 / bins,
-            ..Quadrature::default()
-        };
+        let q = Quadrature { segments: self.integration_res.max(1), tolerance: 1e-9 / bins, ..Quadrature::default() };
         let n = self.samples as f64;
         let mut mass = 0.0;
         for i in 0..self.theta_bins {
@@ -158,12 +138,9 @@ impl ChiSquareTest {
             }
         }
         if !mass.is_finite() || out.expected.iter().any(|&e| e < 0.0) {
-            out.problems.push(format!(
-                "the pdf is negative or not finite somewhere (∫pdf = {mass})"
-            ));
+            out.problems.push(format!("the pdf is negative or not finite somewhere (∫pdf = {mass})"));
         } else if mass > 1.0 + PDF_MASS_TOLERANCE {
-            out.problems
-                .push(format!("the pdf integrates to {mass} > 1 over the sphere"));
+            out.problems.push(format!("the pdf integrates to {mass} > 1 over the sphere"));
         }
         out.pdf_integral = mass;
         out.missing_expected = n * (1.0 - mass).max(0.0);

@@ -65,19 +65,10 @@ impl ChiSquareOutcome {
 
     /// Checks for impossible samples, pools small bins and sets `statistic` and `dof`.
     pub(crate) fn finish(&mut self, min_expected: f64) {
-        let mut cells: Vec<(f64, f64)> = self
-            .observed
-            .iter()
-            .copied()
-            .zip(self.expected.iter().copied())
-            .collect();
+        let mut cells: Vec<(f64, f64)> = self.observed.iter().copied().zip(self.expected.iter().copied()).collect();
         cells.push((self.missing_observed, self.missing_expected));
 
-        let impossible: f64 = cells
-            .iter()
-            .filter(|&&(o, e)| e <= 0.0 && o > 0.0)
-            .map(|&(o, _)| o)
-            .sum();
+        let impossible: f64 = cells.iter().filter(|&&(o, e)| e <= 0.0 && o > 0.0).map(|&(o, _)| o).sum();
         if impossible > 0.0 {
             self.problems.push(format!(
                 "{impossible} samples fell where the pdf integrates to 0 (or were rejected \
@@ -97,19 +88,13 @@ impl ChiSquareOutcome {
             split += 1;
         }
         self.pooled_bins = split;
-        let pool = cells[..split]
-            .iter()
-            .fold((0.0, 0.0), |acc, c| (acc.0 + c.0, acc.1 + c.1));
+        let pool = cells[..split].iter().fold((0.0, 0.0), |acc, c| (acc.0 + c.0, acc.1 + c.1));
         let mut kept: Vec<(f64, f64)> = cells[split..].to_vec();
         if split > 0 {
             kept.push(pool);
         }
 
-        self.statistic = kept
-            .iter()
-            .filter(|c| c.1 > 0.0)
-            .map(|&(o, e)| (o - e) * (o - e) / e)
-            .sum();
+        self.statistic = kept.iter().filter(|c| c.1 > 0.0).map(|&(o, e)| (o - e) * (o - e) / e).sum();
         self.dof = kept.len().saturating_sub(1);
     }
 
@@ -130,11 +115,7 @@ impl ChiSquareOutcome {
             s,
             "∫pdf dω = {:.6}; missing samples: observed {}, expected {:.1}; {} bins pooled; \
              {} invalid samples",
-            self.pdf_integral,
-            self.missing_observed,
-            self.missing_expected,
-            self.pooled_bins,
-            self.invalid_samples
+            self.pdf_integral, self.missing_observed, self.missing_expected, self.pooled_bins, self.invalid_samples
         );
         for p in &self.problems {
             let _ = writeln!(s, "problem: {p}");
@@ -155,10 +136,7 @@ impl ChiSquareOutcome {
 
     /// Appends one table of `cell(observed, expected)` values.
     fn table(&self, s: &mut String, title: &str, cell: impl Fn(f64, f64) -> f64) {
-        let _ = writeln!(
-            s,
-            "{title} (rows: cos θ from +1 down to −1; columns: φ from 0):"
-        );
+        let _ = writeln!(s, "{title} (rows: cos θ from +1 down to −1; columns: φ from 0):");
         for i in (0..self.theta_bins).rev() {
             let upper = -1.0 + 2.0 * (i + 1) as f64 / self.theta_bins as f64;
             let _ = write!(s, "{upper:+6.2} |");

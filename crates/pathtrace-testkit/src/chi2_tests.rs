@@ -10,11 +10,7 @@ fn uniform_sphere([u, v]: [f64; 2]) -> Option<Vec3> {
     let z = 1.0 - 2.0 * u;
     let r = (1.0 - z * z).max(0.0).sqrt();
     let phi = TAU * v;
-    Some(Vec3::new(
-        (r * phi.cos()) as f32,
-        (r * phi.sin()) as f32,
-        z as f32,
-    ))
+    Some(Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32))
 }
 
 /// Cosine-weighted about +z via Malley's method: a uniform disk point lifted to the
@@ -23,11 +19,7 @@ fn cosine_hemisphere([u, v]: [f64; 2]) -> Option<Vec3> {
     let r = u.sqrt();
     let phi = TAU * v;
     let z = (1.0 - u).max(0.0).sqrt();
-    Some(Vec3::new(
-        (r * phi.cos()) as f32,
-        (r * phi.sin()) as f32,
-        z as f32,
-    ))
+    Some(Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32))
 }
 
 fn cosine_pdf(w: Vec3) -> f64 {
@@ -90,11 +82,7 @@ fn sharp_phong_lobe_passes_and_a_wrong_exponent_fails() {
     // The lobe is ~0.03 rad wide: finer bins give it ~25 degrees of freedom, enough to
     // tell exponent 1000 from 950.
     let axis = Vec3::new(0.3, -0.5, 0.8).normalize();
-    let test = ChiSquareTest {
-        theta_bins: 40,
-        phi_bins: 80,
-        ..ChiSquareTest::default()
-    };
+    let test = ChiSquareTest { theta_bins: 40, phi_bins: 80, ..ChiSquareTest::default() };
     let good = test.run(phong_sampler(axis, 1000.0), phong_pdf(axis, 1000.0));
     assert!(good.passed, "{good}");
     assert!(good.dof > 10, "{good}");
@@ -120,10 +108,7 @@ fn rejected_samples_are_compared_with_the_missing_mass() {
     assert!(!bad.passed, "{bad}");
     let claims_no_absorption = test.run(absorbing, |_| 1.0 / (4.0 * PI));
     assert!(!claims_no_absorption.passed);
-    assert!(
-        !claims_no_absorption.problems.is_empty(),
-        "{claims_no_absorption}"
-    );
+    assert!(!claims_no_absorption.problems.is_empty(), "{claims_no_absorption}");
 }
 
 #[test]
@@ -133,48 +118,27 @@ fn samples_where_the_pdf_is_zero_fail() {
         let d = cosine_hemisphere([u, v])?;
         Some(if u < 0.01 { -d } else { d })
     };
-    let test = ChiSquareTest {
-        samples: 100_000,
-        ..ChiSquareTest::default()
-    };
+    let test = ChiSquareTest { samples: 100_000, ..ChiSquareTest::default() };
     let outcome = test.run(leaky, cosine_pdf);
     assert!(!outcome.passed);
-    assert!(
-        outcome
-            .problems
-            .iter()
-            .any(|p| p.contains("pdf integrates to 0")),
-        "{outcome}"
-    );
+    assert!(outcome.problems.iter().any(|p| p.contains("pdf integrates to 0")), "{outcome}");
 }
 
 #[test]
 fn non_unit_directions_fail() {
-    let test = ChiSquareTest {
-        samples: 10_000,
-        ..ChiSquareTest::default()
-    };
+    let test = ChiSquareTest { samples: 10_000, ..ChiSquareTest::default() };
     let nan = test.run(|_| Some(Vec3::NAN), |_| 1.0 / (4.0 * PI));
     assert!(!nan.passed && nan.invalid_samples == 10_000, "{nan}");
-    let long = test.run(
-        |uv| uniform_sphere(uv).map(|d| d * 2.0),
-        |_| 1.0 / (4.0 * PI),
-    );
+    let long = test.run(|uv| uniform_sphere(uv).map(|d| d * 2.0), |_| 1.0 / (4.0 * PI));
     assert!(!long.passed && long.invalid_samples == 10_000);
 }
 
 #[test]
 fn pdf_with_too_much_mass_fails() {
-    let test = ChiSquareTest {
-        samples: 10_000,
-        ..ChiSquareTest::default()
-    };
+    let test = ChiSquareTest { samples: 10_000, ..ChiSquareTest::default() };
     let outcome = test.run(uniform_sphere, |_| 1.1 / (4.0 * PI));
     assert!(!outcome.passed);
-    assert!(
-        outcome.problems.iter().any(|p| p.contains("> 1")),
-        "{outcome}"
-    );
+    assert!(outcome.problems.iter().any(|p| p.contains("> 1")), "{outcome}");
     let nan = test.run(uniform_sphere, |_| f64::NAN);
     assert!(!nan.passed && !nan.problems.is_empty());
 }
@@ -183,11 +147,7 @@ fn pdf_with_too_much_mass_fails() {
 fn small_bins_are_pooled() {
     // 2 000 samples over 200 bins expect 10 each: all below 20, so all pool into one
     // bin, which is then the whole distribution (dof 0: nothing to test).
-    let test = ChiSquareTest {
-        samples: 2_000,
-        min_expected: 20.0,
-        ..ChiSquareTest::default()
-    };
+    let test = ChiSquareTest { samples: 2_000, min_expected: 20.0, ..ChiSquareTest::default() };
     let outcome = test.run(uniform_sphere, |_| 1.0 / (4.0 * PI));
     assert_eq!(outcome.pooled_bins, 200);
     assert_eq!(outcome.dof, 0);
@@ -197,10 +157,7 @@ fn small_bins_are_pooled() {
     // Cosine lobe, 2 000 samples: the 20 bins with cos θ ∈ [0, 0.2] expect
     // 2000 · 0.04/20 = 4 each, so they pool (with the near-empty missing-sample bin,
     // if the integral left any mass for it); the other 80 upper bins expect ≥ 12.
-    let test = ChiSquareTest {
-        samples: 2_000,
-        ..ChiSquareTest::default()
-    };
+    let test = ChiSquareTest { samples: 2_000, ..ChiSquareTest::default() };
     let outcome = test.run(cosine_hemisphere, cosine_pdf);
     assert!((20..=21).contains(&outcome.pooled_bins), "{outcome}");
     let cells = 100 + usize::from(outcome.missing_expected > 0.0);
@@ -210,49 +167,30 @@ fn small_bins_are_pooled() {
 
 #[test]
 fn same_seed_same_outcome_and_bad_config_is_reported() {
-    let test = ChiSquareTest {
-        samples: 10_000,
-        ..ChiSquareTest::default()
-    };
+    let test = ChiSquareTest { samples: 10_000, ..ChiSquareTest::default() };
     let a = test.run(uniform_sphere, |_| 1.0 / (4.0 * PI));
     let b = test.run(uniform_sphere, |_| 1.0 / (4.0 * PI));
     assert_eq!(a, b);
-    let empty = ChiSquareTest {
-        theta_bins: 0,
-        ..test
-    };
+    let empty = ChiSquareTest { theta_bins: 0, ..test };
     let outcome = empty.run(uniform_sphere, |_| 1.0 / (4.0 * PI));
     assert!(!outcome.passed && !outcome.problems.is_empty());
 }
 
 #[test]
 fn summary_shows_tables() {
-    let test = ChiSquareTest {
-        theta_bins: 3,
-        phi_bins: 4,
-        samples: 1_000,
-        ..ChiSquareTest::default()
-    };
+    let test = ChiSquareTest { theta_bins: 3, phi_bins: 4, samples: 1_000, ..ChiSquareTest::default() };
     let text = test.run(cosine_hemisphere, cosine_pdf).to_string();
     for needle in ["PASSED", "observed", "expected", "residual", "dof"] {
         assert!(text.contains(needle), "{text}");
     }
     // A title line plus 3 rows per table.
-    assert_eq!(
-        text.lines().filter(|l| l.contains('|')).count(),
-        9,
-        "{text}"
-    );
+    assert_eq!(text.lines().filter(|l| l.contains('|')).count(), 9, "{text}");
 }
 
 #[test]
 fn rng_feeds_the_sampler_uniform_points() {
     // The sampler sees exactly TestRng(seed)'s 2D points.
-    let test = ChiSquareTest {
-        samples: 3,
-        seed: 99,
-        ..ChiSquareTest::default()
-    };
+    let test = ChiSquareTest { samples: 3, seed: 99, ..ChiSquareTest::default() };
     let mut seen = Vec::new();
     test.run(
         |uv| {

@@ -25,25 +25,13 @@ impl MeanEstimate {
             m2 += delta * (x - mean);
         }
         let n = samples.len();
-        let variance_of_mean = if n < 2 {
-            f64::INFINITY
-        } else {
-            m2 / (n - 1) as f64 / n as f64
-        };
-        MeanEstimate {
-            mean: if n == 0 { f64::NAN } else { mean },
-            variance_of_mean,
-            count: n,
-        }
+        let variance_of_mean = if n < 2 { f64::INFINITY } else { m2 / (n - 1) as f64 / n as f64 };
+        MeanEstimate { mean: if n == 0 { f64::NAN } else { mean }, variance_of_mean, count: n }
     }
 
     /// A known value (e.g. an analytic result): zero variance, count 0.
     pub fn exact(value: f64) -> MeanEstimate {
-        MeanEstimate {
-            mean: value,
-            variance_of_mean: 0.0,
-            count: 0,
-        }
+        MeanEstimate { mean: value, variance_of_mean: 0.0, count: 0 }
     }
 
     /// The standard error: √variance_of_mean.
@@ -77,11 +65,7 @@ pub fn assert_agree(a: &MeanEstimate, b: &MeanEstimate, max_z: f64) {
         }
     };
     for m in [a, b] {
-        assert!(
-            !m.mean.is_nan() && !m.variance_of_mean.is_nan(),
-            "estimate {} contains NaN",
-            describe(m)
-        );
+        assert!(!m.mean.is_nan() && !m.variance_of_mean.is_nan(), "estimate {} contains NaN", describe(m));
         assert!(
             m.variance_of_mean.is_finite(),
             "estimate {} has no variance estimate (needs at least 2 samples)",
@@ -126,31 +110,16 @@ mod tests {
         let m = MeanEstimate::from_samples(&xs);
         // Variance of alternating 0/1 is 0.25·n/(n − 1).
         let expected = 0.25 * 1000.0 / 999.0 / 1000.0;
-        assert!(
-            (m.variance_of_mean - expected).abs() < 1e-12,
-            "{}",
-            m.variance_of_mean
-        );
+        assert!((m.variance_of_mean - expected).abs() < 1e-12, "{}", m.variance_of_mean);
     }
 
     #[test]
     fn z_scores() {
-        let a = MeanEstimate {
-            mean: 1.0,
-            variance_of_mean: 0.01,
-            count: 100,
-        };
-        let b = MeanEstimate {
-            mean: 1.5,
-            variance_of_mean: 0.03,
-            count: 100,
-        };
+        let a = MeanEstimate { mean: 1.0, variance_of_mean: 0.01, count: 100 };
+        let b = MeanEstimate { mean: 1.5, variance_of_mean: 0.03, count: 100 };
         assert!((z_score(&a, &b) + 2.5).abs() < 1e-12);
         assert!((z_score(&b, &a) - 2.5).abs() < 1e-12);
-        assert_eq!(
-            z_score(&MeanEstimate::exact(2.0), &MeanEstimate::exact(2.0)),
-            0.0
-        );
+        assert_eq!(z_score(&MeanEstimate::exact(2.0), &MeanEstimate::exact(2.0)), 0.0);
         assert!(z_score(&MeanEstimate::exact(2.0), &MeanEstimate::exact(3.0)).is_infinite());
     }
 
@@ -169,21 +138,13 @@ mod tests {
     fn disagreement_panics() {
         let mut rng = TestRng::new(4);
         let xs: Vec<f64> = (0..10_000).map(|_| rng.next_f64()).collect();
-        assert_agree(
-            &MeanEstimate::from_samples(&xs),
-            &MeanEstimate::exact(0.52),
-            4.0,
-        );
+        assert_agree(&MeanEstimate::from_samples(&xs), &MeanEstimate::exact(0.52), 4.0);
     }
 
     #[test]
     #[should_panic(expected = "no variance estimate")]
     fn single_sample_cannot_agree() {
-        assert_agree(
-            &MeanEstimate::from_samples(&[0.5]),
-            &MeanEstimate::exact(0.5),
-            4.0,
-        );
+        assert_agree(&MeanEstimate::from_samples(&[0.5]), &MeanEstimate::exact(0.5), 4.0);
     }
 
     #[test]

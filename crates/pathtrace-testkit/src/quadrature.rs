@@ -42,11 +42,7 @@ impl Default for Quadrature {
 pub(crate) fn direction(u: f64, phi: f64) -> Vec3 {
     let u = u.clamp(-1.0, 1.0);
     let sin_theta = (1.0 - u * u).max(0.0).sqrt();
-    Vec3::new(
-        (sin_theta * phi.cos()) as f32,
-        (sin_theta * phi.sin()) as f32,
-        u as f32,
-    )
+    Vec3::new((sin_theta * phi.cos()) as f32, (sin_theta * phi.sin()) as f32, u as f32)
 }
 
 /// ∫∫ pdf(ω) dω over `u ∈ [u0, u1]`, `φ ∈ [phi0, phi1]`, by nested adaptive Simpson.
@@ -58,18 +54,8 @@ pub(crate) fn integrate_region(
 ) -> f64 {
     let budget = Cell::new(q.max_evaluations);
     // An error ε in the inner integral adds at most ε·(u1 − u0) to the outer one.
-    let inner_q = Quadrature {
-        tolerance: 0.5 * q.tolerance / (u1 - u0).abs().max(1e-300),
-        ..q
-    };
-    let inner = |u: f64| {
-        adaptive_simpson(
-            &|phi| pdf(direction(u, phi)),
-            (phi0, phi1),
-            inner_q,
-            &budget,
-        )
-    };
+    let inner_q = Quadrature { tolerance: 0.5 * q.tolerance / (u1 - u0).abs().max(1e-300), ..q };
+    let inner = |u: f64| adaptive_simpson(&|phi| pdf(direction(u, phi)), (phi0, phi1), inner_q, &budget);
     adaptive_simpson(&inner, (u0, u1), q, &budget)
 }
 
@@ -83,10 +69,7 @@ pub(crate) fn integrate_region(
 /// resolutions count as 1.
 pub fn integrate_over_sphere(pdf: impl Fn(Vec3) -> f64, theta_res: usize, phi_res: usize) -> f64 {
     let (nu, nphi) = (theta_res.max(1), phi_res.max(1));
-    let q = Quadrature {
-        tolerance: 1e-10 / (nu * nphi) as f64,
-        ..Quadrature::default()
-    };
+    let q = Quadrature { tolerance: 1e-10 / (nu * nphi) as f64, ..Quadrature::default() };
     let mut total = 0.0;
     for i in 0..nu {
         let u_range = cell_range(i, nu, -1.0, 2.0);
@@ -107,32 +90,16 @@ pub(crate) fn cell_range(i: usize, n: usize, start: f64, length: f64) -> (f64, f
 /// (Lyness, "Notes on the adaptive Simpson quadrature routine", JACM 1969), with the
 /// tolerance shared out evenly and Richardson's correction (S₂ + (S₂ − S₁)/15).
 /// Each evaluation of `f` takes one unit of `budget`; at zero, refinement stops.
-pub(crate) fn adaptive_simpson(
-    f: &dyn Fn(f64) -> f64,
-    (a, b): (f64, f64),
-    q: Quadrature,
-    budget: &Cell<u64>,
-) -> f64 {
+pub(crate) fn adaptive_simpson(f: &dyn Fn(f64) -> f64, (a, b): (f64, f64), q: Quadrature, budget: &Cell<u64>) -> f64 {
     let n = q.segments.max(1);
-    let piece = Quadrature {
-        tolerance: q.tolerance / n as f64,
-        ..q
-    };
+    let piece = Quadrature { tolerance: q.tolerance / n as f64, ..q };
     (0..n)
         .map(|i| {
             let (lo, hi) = cell_range(i, n, a, b - a);
             spend(budget, 3);
             let (flo, fmid, fhi) = (f(lo), f(0.5 * (lo + hi)), f(hi));
             let whole = simpson(lo, hi, flo, fmid, fhi);
-            refine(
-                f,
-                (lo, hi),
-                (flo, fmid, fhi),
-                whole,
-                piece,
-                q.max_depth,
-                budget,
-            )
+            refine(f, (lo, hi), (flo, fmid, fhi), whole, piece, q.max_depth, budget)
         })
         .sum()
 }
@@ -170,10 +137,7 @@ fn refine(
     if depth == 0 || budget.get() == 0 || !delta.is_finite() || delta.abs() <= 15.0 * tolerance {
         return left + right + delta / 15.0;
     }
-    let half = Quadrature {
-        tolerance: 0.5 * q.tolerance,
-        ..q
-    };
+    let half = Quadrature { tolerance: 0.5 * q.tolerance, ..q };
     refine(f, (a, m), (fa, flm, fm), left, half, depth - 1, budget)
         + refine(f, (m, b), (fm, frm, fb), right, half, depth - 1, budget)
 }
@@ -185,11 +149,7 @@ mod tests {
 
     #[test]
     fn simpson_1d_polynomial_and_peak() {
-        let q = |segments| Quadrature {
-            segments,
-            tolerance: 1e-12,
-            ..Quadrature::default()
-        };
+        let q = |segments| Quadrature { segments, tolerance: 1e-12, ..Quadrature::default() };
         let budget = Cell::new(u64::MAX);
         let cubic = adaptive_simpson(&|x| x * x * x - x, (0.0, 2.0), q(1), &budget);
         assert!((cubic - 2.0).abs() < 1e-12);
@@ -229,13 +189,7 @@ mod tests {
     #[test]
     fn budget_stops_runaway_refinement() {
         // A zero tolerance is (almost) never met, but the budget ends the work.
-        let q = Quadrature {
-            tolerance: 0.0,
-            relative: 0.0,
-            max_depth: 60,
-            max_evaluations: 1000,
-            segments: 1,
-        };
+        let q = Quadrature { tolerance: 0.0, relative: 0.0, max_depth: 60, max_evaluations: 1000, segments: 1 };
         let budget = Cell::new(q.max_evaluations);
         let v = adaptive_simpson(&|x: f64| x.sin(), (0.0, 1.0), q, &budget);
         assert!((v - (1.0 - 1f64.cos())).abs() < 1e-6, "{v}");
