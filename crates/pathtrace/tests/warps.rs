@@ -1,0 +1,111 @@
+//! Every warp's pdf integrates to 1 over the sphere, and a chi-square test accepts the warp's
+//! samples against its pdf. Light sampling is checked the same way: directions produced by
+//! sampling a quad or sphere light from a point must follow `LightSet::pdf_direction`.
+
+use pathtrace::light::{AreaLight, Emission, LightSet, LightShape};
+use pathtrace::math::{Rgb, Vec2, Vec3};
+use pathtrace::sampling::warp;
+use pathtrace::shape::{Quad, Sphere};
+use pathtrace_testkit::{integrate_over_sphere, ChiSquareTest};
+
+fn v2(u: [f64; 2]) -> Vec2 {
+    Vec2::new(u[0] as f32, u[1] as f32)
+}
+
+fn check(
+    name: &str,
+    test: &ChiSquareTest,
+    sample: impl FnMut([f64; 2]) -> Option<Vec3>,
+    pdf: impl Fn(Vec3) -> f64 + Copy,
+) {
+    let integral = integrate_over_sphere(pdf, 64, 128);
+    assert!((integral - 1.0).abs() < 2e-3, "{name}: pdf integrates to {integral}");
+    let outcome = test.run(sample, pdf);
+    assert!(outcome.passed, "{name}: chi-square rejected the sampler\n{}", outcome.summary());
+}
+
+#[test]
+fn uniform_sphere_and_hemisphere() {
+    let t = ChiSquareTest::default();
+    check("uniform sphere", &t, |u| Some(warp::square_to_uniform_sphere(v2(u))), |_| warp::uniform_sphere_pdf() as f64);
+    check(
+        "uniform hemisphere",
+        &t,
+        |u| Some(warp::square_to_uniform_hemisphere(v2(u))),
+        |w| warp::uniform_hemisphere_pdf(w) as f64,
+    );
+}
+
+#[test]
+fn cosine_hemisphere() {
+    check(
+        "cosine hemisphere",
+        &ChiSquareTest::default(),
+        |u| Some(warp::square_to_cosine_hemisphere(v2(u))),
+        |w| warp::cosine_hemisphere_pdf(w) as f64,
+    );
+}
+
+#[test]
+fn uniform_cone() {
+    let cos_max = 0.7f32;
+    check(
+        "cone",
+        &ChiSquareTest::default(),
+        |u| Some(warp::square_to_uniform_cone(v2(u), cos_max)),
+        move |w| warp::uniform_cone_pdf(w, cos_max) as f64,
+    );
+}
+
+#[test]
+fn power_cosine_lobes() {
+    for (n, bins) in [(1.0f32, (10, 20)), (10.0, (20, 40)), (80.0, (40, 80))] {
+        let t = ChiSquareTest { theta_bins: bins.0, phi_bins: bins.1, ..Default::default() };
+        // The pdf in f64 so that its own rounding does not bias the expected counts.
+        let pdf = move |w: Vec3| {
+            if w.z <= 0.0 {
+                0.0
+            } else {
+                (n as f64 + 1.0) / (2.0 * std::f64::consts::PI) * (w.z as f64).powf(n as f64)
+            }
+        };
+        check(&format!("power cosine n={n}"), &t, |u| Some(warp::square_to_power_cosine(v2(u), n)), pdf);
+    }
+}
+
+fn light_set(shape: LightShape) -> LightSet {
+    LightSet::new(vec![AreaLight { shape, emission: Emission { radiance: Rgb::splat(1.0), two_sided: true } }])
+}
+
+#[test]
+fn quad_light_directions_follow_r2_over_cos_a() {
+    let quad = Quad::new(Vec3::new(-0.5, 1.0, -0.8), Vec3::new(1.5, 0.2, 0.0), Vec3::new(0.0, 0.3, 1.2)).unwrap();
+    let lights = light_set(LightShape::Quad(quad));
+    let p = Vec3::new(0.1, -0.3, 0.2);
+    check(
+        "quad light",
+        &ChiSquareTest { theta_bins: 40, phi_bins: 80, ..Default::default() },
+        |u| lights.sample(p, 0.5, v2(u)).map(|s| s.wi),
+        |w| lights.pdf_direction(p, w) as f64,
+    );
+}
+
+#[test]
+fn sphere_light_directions_follow_the_cone_and_area_pdfs() {
+    let sphere = Sphere::new(Vec3::new(0.3, 2.0, -0.4), 0.9).unwrap();
+    let lights = light_set(LightShape::Sphere(sphere));
+    let outside = Vec3::new(0.0, 0.0, 0.0);
+    check(
+        "sphere light from outside",
+        &ChiSquareTest { theta_bins: 40, phi_bins: 80, ..Default::default() },
+        |u| lights.sample(outside, 0.5, v2(u)).map(|s| s.wi),
+        |w| lights.pdf_direction(outside, w) as f64,
+    );
+    let inside = Vec3::new(0.5, 2.2, -0.2);
+    check(
+        "sphere light from inside",
+        &ChiSquareTest::default(),
+        |u| lights.sample(inside, 0.5, v2(u)).map(|s| s.wi),
+        |w| lights.pdf_direction(inside, w) as f64,
+    );
+}
