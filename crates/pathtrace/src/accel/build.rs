@@ -94,6 +94,15 @@ pub(super) fn choose_split(
     let Some((cost, axis, split)) = best else {
         return (n > MAX_LEAF).then(|| median_split(items, widest));
     };
+    let large_cost = large_small_cost(items, parent_area);
+    if large_cost.is_some_and(|c| c < cost) {
+        let split_cost = TRAVERSAL_COST + large_cost.unwrap_or(cost) / parent_area;
+        if split_cost >= leaf_cost(n) && n <= MAX_LEAF {
+            return None;
+        }
+        let mid = partition(items, |it| is_large(it, parent_area));
+        return Some((widest, mid));
+    }
     let split_cost = TRAVERSAL_COST + cost / parent_area;
     if split_cost >= leaf_cost(n) && n <= MAX_LEAF {
         return None;
@@ -107,6 +116,32 @@ pub(super) fn choose_split(
         return Some(median_split(items, axis));
     }
     Some((axis, mid))
+}
+
+/// Primitives whose box has at least this fraction of their node's surface area are "large".
+const LARGE_FRACTION: f32 = 0.25;
+
+fn is_large(it: &BuildItem, parent_area: f32) -> bool {
+    it.bounds.surface_area() >= LARGE_FRACTION * parent_area
+}
+
+/// An extra SAH candidate besides the centroid planes: large primitives in one child, the rest
+/// in the other. Centroid splits cannot group the walls of a room (their centroids surround
+/// everything else), so without it every split keeps some wall and every child spans the room.
+/// Returns `A_L C(N_L) + A_R C(N_R)`, or `None` if either side would be empty.
+fn large_small_cost(items: &[BuildItem], parent_area: f32) -> Option<f32> {
+    let (mut large, mut small) = ((Aabb::EMPTY, 0), (Aabb::EMPTY, 0));
+    for it in items {
+        let side = if is_large(it, parent_area) {
+            &mut large
+        } else {
+            &mut small
+        };
+        *side = (side.0.union(it.bounds), side.1 + 1);
+    }
+    (large.1 > 0 && small.1 > 0).then(|| {
+        large.0.surface_area() * leaf_cost(large.1) + small.0.surface_area() * leaf_cost(small.1)
+    })
 }
 
 fn median_split(items: &mut [BuildItem], axis: usize) -> (usize, usize) {
