@@ -1,11 +1,12 @@
 //! A bounding volume hierarchy built with the binned surface area heuristic (see `build.rs`),
 //! stored as a flat node array in depth-first order (the left child follows its parent), and
-//! traversed near child first. Leaves test their quads and triangles four at a time (see
-//! `leaf.rs`).
+//! traversed as a four-wide tree (see `wide.rs`). Leaves test their quads and triangles four
+//! at a time (see `leaf.rs`).
 
 use super::build::{choose_split, BuildItem};
 use super::lanes::RayX4;
 use super::leaf::{Leaves, Packable};
+use super::wide::{collapse, Node4, RayBox4, EMPTY, LEAF};
 use crate::math::{Aabb, Ray};
 use crate::shape::PrimHit;
 
@@ -18,10 +19,10 @@ pub trait Intersectable {
 /// record; interior nodes have their left child at `index + 1` and their right child at
 /// `offset`.
 #[derive(Clone, Copy, Debug)]
-struct Node {
-    bounds: Aabb,
-    offset: u32,
-    count: u16,
+pub(super) struct Node {
+    pub bounds: Aabb,
+    pub offset: u32,
+    pub count: u16,
     axis: u16,
 }
 
@@ -38,13 +39,16 @@ pub struct BvhStats {
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
+    /// The same tree, four children per node, for traversal.
+    wide: Vec<Node4>,
     leaves: Leaves,
-    /// Longest root-to-leaf path, in nodes; a traversal stack needs one slot less.
-    depth: usize,
+    /// Traversal stack slots needed: a four-wide node visit pushes at most four children and
+    /// pops one, so 3 per level (the wide tree is no deeper than the binary one) plus 1.
+    stack_need: usize,
 }
 
-/// Depth ≤ 32 + log2(n) < 64 for any n below 2³².
-const STACK_SIZE: usize = 64;
+/// Depth ≤ 32 + log2(n) < 64 for any n below 2³², so 3 · 64 + 1 slots always suffice.
+const STACK_SIZE: usize = 3 * 64 + 1;
 /// Most trees fit this smaller stack, which is cheaper to zero for every ray (zeroing the
 /// large one cost ~4% of all instructions on the Cornell box).
 const SMALL_STACK: usize = 16;
@@ -66,8 +70,9 @@ impl Bvh {
             .collect();
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * bounds.len().max(1)),
+            wide: Vec::new(),
             leaves: Leaves::default(),
-            depth: 0,
+            stack_need: 0,
         };
         if !items.is_empty() {
             let n = items.len();
@@ -81,7 +86,8 @@ impl Bvh {
                 start..start + node.count as usize,
             );
         }
-        bvh.depth = bvh.stats().max_depth;
+        bvh.stack_need = 3 * bvh.stats().max_depth + 1;
+        bvh.wide = collapse(&bvh.nodes);
         (bvh, order)
     }
 
@@ -130,7 +136,7 @@ impl Bvh {
         if self.nodes.is_empty() {
             return None;
         }
-        if self.depth <= SMALL_STACK {
+        if self.stack_need <= SMALL_STACK {
             self.closest::<P, SMALL_STACK>(prims, ray, t_min, t_max)
         } else {
             self.closest::<P, STACK_SIZE>(prims, ray, t_min, t_max)
@@ -145,20 +151,25 @@ impl Bvh {
         t_min: f32,
         mut t_max: f32,
     ) -> Option<(PrimHit, u32)> {
-        let inv_dir = glam::Vec3A::from(ray.dir).recip();
-        let origin = glam::Vec3A::from(ray.origin);
+        let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
-        let neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
         let mut stack = [0u32; N];
         let mut sp = 0;
-        let mut node_index = 0usize;
+        let mut node = 0u32;
         let mut best = None;
         loop {
-            let node = &self.nodes[node_index];
-            if node.bounds.hit(origin, inv_dir, t_min, t_max).is_some() {
-                if node.count > 0 {
+            let n = &self.wide[node as usize];
+            let mut lanes = n.hit(&rb, t_min, t_max).bitmask();
+            // Leaves are tested at once (shrinking t_max for the rest); interior children wait.
+            while lanes != 0 {
+                let child = n.children[lanes.trailing_zeros() as usize];
+                lanes &= lanes - 1;
+                if child & LEAF == 0 {
+                    stack[sp] = child;
+                    sp += 1;
+                } else if child != EMPTY {
                     self.leaves.intersect(
-                        node.offset,
+                        child & !LEAF,
                         prims,
                         ray,
                         &rx4,
@@ -166,26 +177,14 @@ impl Bvh {
                         &mut t_max,
                         &mut best,
                     );
-                } else {
-                    // Visit the child on the ray's near side first; push the far one.
-                    let (near, far) = if neg[node.axis as usize] {
-                        (node.offset as usize, node_index + 1)
-                    } else {
-                        (node_index + 1, node.offset as usize)
-                    };
-                    stack[sp] = far as u32;
-                    sp += 1;
-                    node_index = near;
-                    continue;
                 }
             }
             if sp == 0 {
-                break;
+                return best;
             }
             sp -= 1;
-            node_index = stack[sp] as usize;
+            node = stack[sp];
         }
-        best
     }
 
     /// True if anything blocks the ray within `[t_min, t_max]` (stops at the first blocker).
@@ -200,7 +199,7 @@ impl Bvh {
         if self.nodes.is_empty() {
             return false;
         }
-        if self.depth <= SMALL_STACK {
+        if self.stack_need <= SMALL_STACK {
             self.any_hit::<P, SMALL_STACK>(prims, ray, t_min, t_max)
         } else {
             self.any_hit::<P, STACK_SIZE>(prims, ray, t_min, t_max)
@@ -215,34 +214,33 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
     ) -> bool {
-        let inv_dir = glam::Vec3A::from(ray.dir).recip();
-        let origin = glam::Vec3A::from(ray.origin);
+        let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
         let mut stack = [0u32; N];
         let mut sp = 0;
-        let mut node_index = 0usize;
+        let mut node = 0u32;
         loop {
-            let node = &self.nodes[node_index];
-            if node.bounds.hit(origin, inv_dir, t_min, t_max).is_some() {
-                if node.count > 0 {
-                    if self
-                        .leaves
-                        .occluded(node.offset, prims, ray, &rx4, t_min, t_max)
-                    {
-                        return true;
-                    }
-                } else {
-                    stack[sp] = node.offset;
+            let n = &self.wide[node as usize];
+            let mut lanes = n.hit(&rb, t_min, t_max).bitmask();
+            while lanes != 0 {
+                let child = n.children[lanes.trailing_zeros() as usize];
+                lanes &= lanes - 1;
+                if child & LEAF == 0 {
+                    stack[sp] = child;
                     sp += 1;
-                    node_index += 1;
-                    continue;
+                } else if child != EMPTY
+                    && self
+                        .leaves
+                        .occluded(child & !LEAF, prims, ray, &rx4, t_min, t_max)
+                {
+                    return true;
                 }
             }
             if sp == 0 {
                 return false;
             }
             sp -= 1;
-            node_index = stack[sp] as usize;
+            node = stack[sp];
         }
     }
 

@@ -6,6 +6,7 @@ mod lanes;
 mod leaf;
 mod quad4;
 mod tri4;
+mod wide;
 
 pub use bvh::{Bvh, BvhStats, Intersectable};
 pub use leaf::Packable;
