@@ -57,6 +57,18 @@ fn pack<S: Copy, G>(items: &[(u32, S)], make: fn(&[S]) -> G, out: &mut Vec<Packe
     items.len().div_ceil(4) as u8
 }
 
+/// `v[start..start + n]`, skipping the bounds checks when the range is empty (most leaves
+/// hold one kind of primitive).
+#[inline(always)]
+fn part<T>(v: &[T], start: u32, n: u8) -> &[T] {
+    if n == 0 {
+        &[]
+    } else {
+        let start = start as usize;
+        &v[start..start + n as usize]
+    }
+}
+
 impl Leaves {
     /// Adds a leaf over the primitives at positions `range` (`kind(i)` says how position `i`
     /// is stored); returns its index.
@@ -98,19 +110,19 @@ impl Leaves {
         best: &mut Option<(PrimHit, u32)>,
     ) {
         let leaf = &self.leaves[index as usize];
-        for p in &self.quads[leaf.quads as usize..][..leaf.n_quads as usize] {
+        for p in part(&self.quads, leaf.quads, leaf.n_quads) {
             if let Some((lane, hit)) = p.geom.intersect(rx4, t_min, *t_max).closest() {
                 *t_max = hit.t;
                 *best = Some((hit, p.ids[lane]));
             }
         }
-        for p in &self.tris[leaf.tris as usize..][..leaf.n_tris as usize] {
+        for p in part(&self.tris, leaf.tris, leaf.n_tris) {
             if let Some((lane, hit)) = p.geom.intersect(rx4, t_min, *t_max).closest() {
                 *t_max = hit.t;
                 *best = Some((hit, p.ids[lane]));
             }
         }
-        for &i in &self.scalar[leaf.scalar as usize..][..leaf.n_scalar as usize] {
+        for &i in part(&self.scalar, leaf.scalar, leaf.n_scalar) {
             if let Some(hit) = prims[i as usize].intersect(ray, t_min, *t_max) {
                 *t_max = hit.t;
                 *best = Some((hit, i));
@@ -130,13 +142,13 @@ impl Leaves {
         t_max: f32,
     ) -> bool {
         let leaf = &self.leaves[index as usize];
-        self.quads[leaf.quads as usize..][..leaf.n_quads as usize]
+        part(&self.quads, leaf.quads, leaf.n_quads)
             .iter()
             .any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
-            || self.tris[leaf.tris as usize..][..leaf.n_tris as usize]
+            || part(&self.tris, leaf.tris, leaf.n_tris)
                 .iter()
                 .any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
-            || self.scalar[leaf.scalar as usize..][..leaf.n_scalar as usize]
+            || part(&self.scalar, leaf.scalar, leaf.n_scalar)
                 .iter()
                 .any(|&i| prims[i as usize].intersect(ray, t_min, t_max).is_some())
     }
