@@ -130,6 +130,14 @@ fn same_hit(a: &Hit, b: &Hit) -> bool {
     a.prim == b.prim || (a.hit.t - b.hit.t).abs() <= 1e-4 * a.hit.t.abs().max(b.hit.t.abs())
 }
 
+/// The hit names the primitive that was really hit: its surface, rebuilt from `(u, v)`, lies
+/// where the ray is at `t`.
+fn consistent(scene: &Scene, ray: &Ray, h: &Hit) -> bool {
+    let p = scene.interaction(ray, h).surface.p;
+    let q = ray.at(h.hit.t);
+    (p - q).length() <= 1e-3 * (1.0 + q.abs().max_element())
+}
+
 fn check_scenes(seed: u64, scenes: usize, prims: usize, rays: usize) {
     let mut rng = Pcg32::new(seed, 1);
     let (mut hits, mut total) = (0, 0);
@@ -145,10 +153,16 @@ fn check_scenes(seed: u64, scenes: usize, prims: usize, rays: usize) {
             let bvh = scene.intersect(&ray, t_max);
             let brute = scene.intersect_brute_force(&ray, t_max);
             match (&bvh, &brute) {
-                (Some(a), Some(b)) => assert!(
-                    same_hit(a, b),
-                    "scene {s} {ray:?}: bvh {a:?} vs brute force {b:?}"
-                ),
+                (Some(a), Some(b)) => {
+                    assert!(
+                        same_hit(a, b),
+                        "scene {s} {ray:?}: bvh {a:?} vs brute force {b:?}"
+                    );
+                    assert!(
+                        consistent(&scene, &ray, a),
+                        "scene {s} {ray:?}: bvh {a:?} is elsewhere"
+                    );
+                }
                 (None, None) => {}
                 _ => {
                     panic!("scene {s} {ray:?} t_max {t_max}: bvh {bvh:?} vs brute force {brute:?}")
