@@ -1,7 +1,7 @@
 //! The renderable scene (primitives in a BVH, materials, lights, camera) and the
 //! [`SceneBuilder`] that every front end — files, built-in scenes, tests — goes through.
 
-use crate::accel::{Bvh, Intersectable};
+use crate::accel::{Bvh, Intersectable, Packable};
 use crate::camera::CameraDesc;
 use crate::light::{AreaLight, Emission, LightSet, LightShape};
 use crate::material::Material;
@@ -305,7 +305,15 @@ impl SceneBuilder {
             return Err(BuildError::NoLights);
         }
         let bounds: Vec<_> = bounded.iter().map(|p| p.shape.bounds().unwrap_or_default()).collect();
-        let (bvh, order) = Bvh::build(&bounds);
+        let kinds: Vec<_> = bounded
+            .iter()
+            .map(|p| match p.shape {
+                Shape::Quad(q) => Packable::Quad(q),
+                Shape::Triangle(t) => Packable::Triangle(t),
+                _ => Packable::No,
+            })
+            .collect();
+        let (bvh, order) = Bvh::build(&bounds, &kinds);
         let mut slots: Vec<Option<Primitive>> = bounded.into_iter().map(Some).collect();
         let prims = order.iter().filter_map(|&i| slots[i as usize].take()).collect();
         Ok(Scene {

@@ -1,8 +1,13 @@
-//! A bounding volume hierarchy built with the binned surface area heuristic (Wald, "On fast
-//! Construction of SAH-based Bounding Volume Hierarchies", RT 2007), stored as a flat node array
-//! in depth-first order (the left child follows its parent), and traversed near child first.
+//! A bounding volume hierarchy built with the binned surface area heuristic (see `build.rs`),
+//! stored as a flat node array in depth-first order (the left child follows its parent), and
+//! traversed as a four-wide tree (see `wide.rs`). Leaves test their quads and triangles four
+//! at a time (see `leaf.rs`).
 
-use crate::math::{Aabb, Ray, Vec3};
+use super::build::{choose_split, BuildItem};
+use super::lanes::RayX4;
+use super::leaf::{Leaves, Packable};
+use super::wide::{collapse, Node4, RayBox4, EMPTY, LEAF};
+use crate::math::{Aabb, Ray};
 use crate::shape::PrimHit;
 
 /// Anything the BVH can hold.
@@ -10,13 +15,14 @@ pub trait Intersectable {
     fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit>;
 }
 
-/// One node: 32 bytes. Leaves hold `count > 0` primitives from `offset`; interior nodes have
-/// their left child at `index + 1` and their right child at `offset`.
+/// One node: 32 bytes. Leaves have `count > 0` primitives and `offset` indexes their leaf
+/// record; interior nodes have their left child at `index + 1` and their right child at
+/// `offset`.
 #[derive(Clone, Copy, Debug)]
-struct Node {
-    bounds: Aabb,
-    offset: u32,
-    count: u16,
+pub(super) struct Node {
+    pub bounds: Aabb,
+    pub offset: u32,
+    pub count: u16,
     axis: u16,
 }
 
@@ -33,48 +39,71 @@ pub struct BvhStats {
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
+    /// The same tree, four children per node, for traversal.
+    wide: Vec<Node4>,
+    leaves: Leaves,
+    /// Traversal stack slots needed: a four-wide node visit pushes at most four children and
+    /// pops one, so 3 per level (the wide tree is no deeper than the binary one) plus 1.
+    stack_need: usize,
 }
 
-const BINS: usize = 16;
-/// SAH costs relative to one primitive test: a node visit costs about as much as one
-/// ray–primitive test for the small primitives used here (quads, triangles, spheres).
-const TRAVERSAL_COST: f32 = 1.0;
-const MAX_LEAF: usize = 8;
-/// Below this depth the SAH decides; deeper subtrees split at the object median, which bounds
-/// the depth (and the traversal stack) for pathological inputs.
-const SAH_DEPTH_LIMIT: usize = 32;
-/// Depth ≤ 32 + log2(n) < 64 for any n below 2³².
-const STACK_SIZE: usize = 64;
-
-struct BuildItem {
-    bounds: Aabb,
-    centroid: Vec3,
-    index: u32,
-}
+/// Depth ≤ 32 + log2(n) < 64 for any n below 2³², so 3 · 64 + 1 slots always suffice.
+const STACK_SIZE: usize = 3 * 64 + 1;
+/// Most trees fit this smaller stack, which is cheaper to zero for every ray (zeroing the
+/// large one cost ~4% of all instructions on the Cornell box).
+const SMALL_STACK: usize = 16;
 
 impl Bvh {
-    /// Builds over the given primitive bounds. Returns the tree and the primitive order it
-    /// expects (position `i` in the reordered array holds original primitive `order[i]`).
-    pub fn build(bounds: &[Aabb]) -> (Bvh, Vec<u32>) {
+    /// Builds over the given primitive bounds; `kinds[i]` says whether primitive `i` goes into
+    /// a SIMD packet. Returns the tree and the primitive order it expects (position `i` in the
+    /// reordered array holds original primitive `order[i]`).
+    pub fn build(bounds: &[Aabb], kinds: &[Packable]) -> (Bvh, Vec<u32>) {
+        assert_eq!(bounds.len(), kinds.len());
         let mut items: Vec<BuildItem> = bounds
             .iter()
             .enumerate()
             .map(|(i, b)| BuildItem { bounds: b.padded(), centroid: b.centroid(), index: i as u32 })
             .collect();
-        let mut bvh = Bvh { nodes: Vec::with_capacity(2 * bounds.len().max(1)) };
+        let mut bvh = Bvh {
+            nodes: Vec::with_capacity(2 * bounds.len().max(1)),
+            wide: Vec::new(),
+            leaves: Leaves::default(),
+            stack_need: 0,
+        };
         if !items.is_empty() {
             let n = items.len();
             bvh.build_node(&mut items, 0, n, 0);
         }
-        let order = items.iter().map(|it| it.index).collect();
+        let order: Vec<u32> = items.iter().map(|it| it.index).collect();
+        for node in bvh.nodes.iter_mut().filter(|n| n.count > 0) {
+            let start = node.offset as usize;
+            node.offset = bvh.leaves.push(
+                |i| kinds[order[i] as usize],
+                start..start + node.count as usize,
+            );
+        }
+        bvh.stack_need = 3 * bvh.stats().max_depth + 1;
+        bvh.wide = collapse(&bvh.nodes);
         (bvh, order)
     }
 
-    fn build_node(&mut self, items: &mut [BuildItem], start: usize, end: usize, depth: usize) -> usize {
+    fn build_node(
+        &mut self,
+        items: &mut [BuildItem],
+        start: usize,
+        end: usize,
+        depth: usize,
+    ) -> usize {
         let node_index = self.nodes.len();
         let slice = &mut items[start..end];
         let bounds = slice.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
-        self.nodes.push(Node { bounds, offset: start as u32, count: slice.len() as u16, axis: 0 });
+        // Leaves hold their first item's position until `build` replaces it by a leaf record.
+        self.nodes.push(Node {
+            bounds,
+            offset: start as u32,
+            count: slice.len() as u16,
+            axis: 0,
+        });
         if slice.len() == 1 {
             return node_index;
         }
@@ -98,85 +127,116 @@ impl Bvh {
         prims: &[P],
         ray: &Ray,
         t_min: f32,
-        mut t_max: f32,
+        t_max: f32,
     ) -> Option<(PrimHit, u32)> {
         if self.nodes.is_empty() {
             return None;
         }
-        let inv_dir = glam::Vec3A::from(ray.dir).recip();
-        let origin = glam::Vec3A::from(ray.origin);
-        let neg = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
-        let mut stack = [0u32; STACK_SIZE];
+        if self.stack_need <= SMALL_STACK {
+            self.closest::<P, SMALL_STACK>(prims, ray, t_min, t_max)
+        } else {
+            self.closest::<P, STACK_SIZE>(prims, ray, t_min, t_max)
+        }
+    }
+
+    #[inline(always)]
+    fn closest<P: Intersectable, const N: usize>(
+        &self,
+        prims: &[P],
+        ray: &Ray,
+        t_min: f32,
+        mut t_max: f32,
+    ) -> Option<(PrimHit, u32)> {
+        let rb = RayBox4::new(ray);
+        let rx4 = RayX4::new(ray);
+        let mut stack = [0u32; N];
         let mut sp = 0;
-        let mut node_index = 0usize;
+        let mut node = 0u32;
         let mut best = None;
         loop {
-            let node = &self.nodes[node_index];
-            if node.bounds.hit(origin, inv_dir, t_min, t_max).is_some() {
-                if node.count > 0 {
-                    let first = node.offset as usize;
-                    for (k, prim) in prims[first..first + node.count as usize].iter().enumerate() {
-                        if let Some(hit) = prim.intersect(ray, t_min, t_max) {
-                            t_max = hit.t;
-                            best = Some((hit, (first + k) as u32));
-                        }
-                    }
-                } else {
-                    // Visit the child on the ray's near side first; push the far one.
-                    let (near, far) = if neg[node.axis as usize] {
-                        (node.offset as usize, node_index + 1)
-                    } else {
-                        (node_index + 1, node.offset as usize)
-                    };
-                    stack[sp] = far as u32;
+            let n = &self.wide[node as usize];
+            let mut lanes = n.hit(&rb, t_min, t_max).bitmask();
+            // Leaves are tested at once (shrinking t_max for the rest); interior children wait.
+            while lanes != 0 {
+                let child = n.children[lanes.trailing_zeros() as usize];
+                lanes &= lanes - 1;
+                if child & LEAF == 0 {
+                    stack[sp] = child;
                     sp += 1;
-                    node_index = near;
-                    continue;
+                } else if child != EMPTY {
+                    self.leaves.intersect(
+                        child & !LEAF,
+                        prims,
+                        ray,
+                        &rx4,
+                        t_min,
+                        &mut t_max,
+                        &mut best,
+                    );
                 }
             }
             if sp == 0 {
-                break;
+                return best;
             }
             sp -= 1;
-            node_index = stack[sp] as usize;
+            node = stack[sp];
         }
-        best
     }
 
     /// True if anything blocks the ray within `[t_min, t_max]` (stops at the first blocker).
     #[inline]
-    pub fn occluded<P: Intersectable>(&self, prims: &[P], ray: &Ray, t_min: f32, t_max: f32) -> bool {
+    pub fn occluded<P: Intersectable>(
+        &self,
+        prims: &[P],
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+    ) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
-        let inv_dir = glam::Vec3A::from(ray.dir).recip();
-        let origin = glam::Vec3A::from(ray.origin);
-        let mut stack = [0u32; STACK_SIZE];
+        if self.stack_need <= SMALL_STACK {
+            self.any_hit::<P, SMALL_STACK>(prims, ray, t_min, t_max)
+        } else {
+            self.any_hit::<P, STACK_SIZE>(prims, ray, t_min, t_max)
+        }
+    }
+
+    #[inline(always)]
+    fn any_hit<P: Intersectable, const N: usize>(
+        &self,
+        prims: &[P],
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+    ) -> bool {
+        let rb = RayBox4::new(ray);
+        let rx4 = RayX4::new(ray);
+        let mut stack = [0u32; N];
         let mut sp = 0;
-        let mut node_index = 0usize;
+        let mut node = 0u32;
         loop {
-            let node = &self.nodes[node_index];
-            if node.bounds.hit(origin, inv_dir, t_min, t_max).is_some() {
-                if node.count > 0 {
-                    let first = node.offset as usize;
-                    if prims[first..first + node.count as usize]
-                        .iter()
-                        .any(|p| p.intersect(ray, t_min, t_max).is_some())
-                    {
-                        return true;
-                    }
-                } else {
-                    stack[sp] = node.offset;
+            let n = &self.wide[node as usize];
+            let mut lanes = n.hit(&rb, t_min, t_max).bitmask();
+            while lanes != 0 {
+                let child = n.children[lanes.trailing_zeros() as usize];
+                lanes &= lanes - 1;
+                if child & LEAF == 0 {
+                    stack[sp] = child;
                     sp += 1;
-                    node_index += 1;
-                    continue;
+                } else if child != EMPTY
+                    && self
+                        .leaves
+                        .occluded(child & !LEAF, prims, ray, &rx4, t_min, t_max)
+                {
+                    return true;
                 }
             }
             if sp == 0 {
                 return false;
             }
             sp -= 1;
-            node_index = stack[sp] as usize;
+            node = stack[sp];
         }
     }
 
@@ -193,9 +253,15 @@ impl Bvh {
     }
 
     fn dump_node(&self, index: usize, depth: usize, out: &mut String) {
-        let Some(n) = self.nodes.get(index) else { return };
+        let Some(n) = self.nodes.get(index) else {
+            return;
+        };
         let kind = if n.count > 0 {
-            format!("leaf {} prims from {}", n.count, n.offset)
+            let (packets, scalar) = self.leaves.sizes(n.offset);
+            format!(
+                "leaf {} prims ({packets} packets + {scalar} single)",
+                n.count
+            )
         } else {
             format!("split axis {}", n.axis)
         };
@@ -213,7 +279,10 @@ impl Bvh {
     }
 
     pub fn stats(&self) -> BvhStats {
-        let mut stats = BvhStats { nodes: self.nodes.len(), ..Default::default() };
+        let mut stats = BvhStats {
+            nodes: self.nodes.len(),
+            ..Default::default()
+        };
         if !self.nodes.is_empty() {
             self.walk_stats(0, 1, &mut stats);
         }
@@ -231,100 +300,4 @@ impl Bvh {
             self.walk_stats(node.offset as usize, depth + 1, stats);
         }
     }
-}
-
-/// Picks a split: (axis, number of items going left), after partitioning `items` in place.
-/// `None` means "make a leaf".
-fn choose_split(items: &mut [BuildItem], bounds: &Aabb, depth: usize) -> Option<(usize, usize)> {
-    let n = items.len();
-    let centroid_bounds = items.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.centroid));
-    let extent = centroid_bounds.extent();
-    let widest = if extent.x >= extent.y && extent.x >= extent.z {
-        0
-    } else if extent.y >= extent.z {
-        1
-    } else {
-        2
-    };
-    if extent[widest] <= 0.0 {
-        // All centroids coincide: no spatial split helps.
-        return (n > MAX_LEAF).then(|| median_split(items, widest));
-    }
-    if depth >= SAH_DEPTH_LIMIT {
-        return Some(median_split(items, widest));
-    }
-
-    // Binned SAH over all three axes: cost = C_trav + (A_L N_L + A_R N_R) / A_parent.
-    let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, bins on the left)
-    for axis in 0..3 {
-        let lo = centroid_bounds.min[axis];
-        let width = extent[axis];
-        if width <= 0.0 {
-            continue;
-        }
-        let scale = BINS as f32 / width;
-        let mut bin_bounds = [Aabb::EMPTY; BINS];
-        let mut bin_counts = [0usize; BINS];
-        for it in items.iter() {
-            let b = (((it.centroid[axis] - lo) * scale) as usize).min(BINS - 1);
-            bin_counts[b] += 1;
-            bin_bounds[b] = bin_bounds[b].union(it.bounds);
-        }
-        // Sweep from the right to get suffix areas, then from the left.
-        let mut right_area = [0.0f32; BINS];
-        let mut right_count = [0usize; BINS];
-        let (mut acc_b, mut acc_n) = (Aabb::EMPTY, 0);
-        for i in (1..BINS).rev() {
-            acc_b = acc_b.union(bin_bounds[i]);
-            acc_n += bin_counts[i];
-            right_area[i] = acc_b.surface_area();
-            right_count[i] = acc_n;
-        }
-        let (mut left_b, mut left_n) = (Aabb::EMPTY, 0);
-        for split in 1..BINS {
-            left_b = left_b.union(bin_bounds[split - 1]);
-            left_n += bin_counts[split - 1];
-            if left_n == 0 || right_count[split] == 0 {
-                continue;
-            }
-            let cost = left_b.surface_area() * left_n as f32 + right_area[split] * right_count[split] as f32;
-            if best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, axis, split));
-            }
-        }
-    }
-    let parent_area = bounds.surface_area().max(f32::MIN_POSITIVE);
-    let Some((cost, axis, split)) = best else {
-        return (n > MAX_LEAF).then(|| median_split(items, widest));
-    };
-    let split_cost = TRAVERSAL_COST + cost / parent_area;
-    let leaf_cost = n as f32;
-    if split_cost >= leaf_cost && n <= MAX_LEAF {
-        return None;
-    }
-    let lo = centroid_bounds.min[axis];
-    let scale = BINS as f32 / extent[axis];
-    let mid = partition(items, |it| ((((it.centroid[axis] - lo) * scale) as usize).min(BINS - 1)) < split);
-    if mid == 0 || mid == n {
-        return Some(median_split(items, axis));
-    }
-    Some((axis, mid))
-}
-
-fn median_split(items: &mut [BuildItem], axis: usize) -> (usize, usize) {
-    let mid = items.len() / 2;
-    items.select_nth_unstable_by(mid, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
-    (axis, mid)
-}
-
-/// In-place partition; returns the number of items for which `pred` holds (now at the front).
-fn partition(items: &mut [BuildItem], pred: impl Fn(&BuildItem) -> bool) -> usize {
-    let mut first = 0;
-    for i in 0..items.len() {
-        if pred(&items[i]) {
-            items.swap(first, i);
-            first += 1;
-        }
-    }
-    first
 }

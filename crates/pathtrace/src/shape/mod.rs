@@ -12,6 +12,7 @@ pub use plane::Plane;
 pub use quad::Quad;
 pub use sphere::{Ellipsoid, Sphere};
 pub use triangle::Triangle;
+pub(crate) use triangle::EDGE_SLACK;
 
 use crate::math::{Aabb, Ray, Transform, Vec2, Vec3};
 

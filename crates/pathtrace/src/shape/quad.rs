@@ -39,6 +39,11 @@ impl Quad {
         self.u.cross(self.v).length()
     }
 
+    /// The precomputed intersection data `(q, n, ũ, ṽ)`, for the BVH's SIMD packets.
+    pub(crate) fn intersection_data(&self) -> [Vec3; 4] {
+        [self.q, self.n, self.u_dual, self.v_dual]
+    }
+
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
         let denom = self.n.dot(ray.dir);

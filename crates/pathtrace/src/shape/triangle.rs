@@ -7,7 +7,7 @@ use crate::math::{Aabb, Ray, Vec2, Vec3};
 /// Barycentric slack: edges are tested against `-EDGE_SLACK` rather than 0 so that a ray through
 /// an edge shared by two triangles hits at least one of them despite rounding (both may
 /// report a hit; the nearer wins). It widens each triangle by 1e-6 of its size.
-pub(super) const EDGE_SLACK: f32 = 1e-6;
+pub(crate) const EDGE_SLACK: f32 = 1e-6;
 
 /// Möller–Trumbore on the triangle spanned by `e1`, `e2` from `p0`.
 #[inline(always)]

@@ -1,0 +1,161 @@
+//! BVH leaves: their quads and triangles packed four to a SIMD packet (lanes = primitives, as
+//! in Embree's "quad4"/"triangle4" leaves), other shapes kept as indices tested one by one.
+
+use super::lanes::RayX4;
+use super::quad4::Quad4;
+use super::tri4::Tri4;
+use super::Intersectable;
+use crate::math::Ray;
+use crate::shape::{PrimHit, Quad, Triangle};
+
+/// How a primitive is stored in a leaf.
+#[derive(Clone, Copy, Debug)]
+pub enum Packable {
+    Quad(Quad),
+    Triangle(Triangle),
+    /// Tested with [`Intersectable::intersect`].
+    No,
+}
+
+/// A packet and the primitive index of each lane (unused lanes repeat a valid index; they
+/// never hit).
+#[derive(Clone, Copy, Debug)]
+struct Packed<G> {
+    geom: G,
+    ids: [u32; 4],
+}
+
+/// One leaf: ranges in the packet and index arrays.
+#[derive(Clone, Copy, Debug, Default)]
+struct Leaf {
+    quads: u32,
+    tris: u32,
+    scalar: u32,
+    n_quads: u8,
+    n_tris: u8,
+    n_scalar: u8,
+}
+
+/// Every leaf of a tree.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Leaves {
+    leaves: Vec<Leaf>,
+    quads: Vec<Packed<Quad4>>,
+    tris: Vec<Packed<Tri4>>,
+    scalar: Vec<u32>,
+}
+
+fn pack<S: Copy, G>(items: &[(u32, S)], make: fn(&[S]) -> G, out: &mut Vec<Packed<G>>) -> u8 {
+    for chunk in items.chunks(4) {
+        let shapes: Vec<S> = chunk.iter().map(|&(_, s)| s).collect();
+        let ids = [0, 1, 2, 3].map(|k| chunk[k.min(chunk.len() - 1)].0);
+        out.push(Packed {
+            geom: make(&shapes),
+            ids,
+        });
+    }
+    items.len().div_ceil(4) as u8
+}
+
+/// `v[start..start + n]`, skipping the bounds checks when the range is empty (most leaves
+/// hold one kind of primitive).
+#[inline(always)]
+fn part<T>(v: &[T], start: u32, n: u8) -> &[T] {
+    if n == 0 {
+        &[]
+    } else {
+        let start = start as usize;
+        &v[start..start + n as usize]
+    }
+}
+
+impl Leaves {
+    /// Adds a leaf over the primitives at positions `range` (`kind(i)` says how position `i`
+    /// is stored); returns its index.
+    pub fn push(&mut self, kind: impl Fn(usize) -> Packable, range: std::ops::Range<usize>) -> u32 {
+        let (mut quads, mut tris) = (Vec::new(), Vec::new());
+        let mut leaf = Leaf {
+            quads: self.quads.len() as u32,
+            tris: self.tris.len() as u32,
+            scalar: self.scalar.len() as u32,
+            ..Default::default()
+        };
+        for i in range {
+            match kind(i) {
+                Packable::Quad(q) => quads.push((i as u32, q)),
+                Packable::Triangle(t) => tris.push((i as u32, t)),
+                Packable::No => {
+                    self.scalar.push(i as u32);
+                    leaf.n_scalar += 1;
+                }
+            }
+        }
+        leaf.n_quads = pack(&quads, Quad4::new, &mut self.quads);
+        leaf.n_tris = pack(&tris, Tri4::new, &mut self.tris);
+        self.leaves.push(leaf);
+        self.leaves.len() as u32 - 1
+    }
+
+    /// Closest hit in leaf `index` with `t ≤ *t_max`; shrinks `t_max` and updates `best`.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn intersect<P: Intersectable>(
+        &self,
+        index: u32,
+        prims: &[P],
+        ray: &Ray,
+        rx4: &RayX4,
+        t_min: f32,
+        t_max: &mut f32,
+        best: &mut Option<(PrimHit, u32)>,
+    ) {
+        let leaf = &self.leaves[index as usize];
+        for p in part(&self.quads, leaf.quads, leaf.n_quads) {
+            if let Some((lane, hit)) = p.geom.intersect(rx4, t_min, *t_max).closest() {
+                *t_max = hit.t;
+                *best = Some((hit, p.ids[lane]));
+            }
+        }
+        for p in part(&self.tris, leaf.tris, leaf.n_tris) {
+            if let Some((lane, hit)) = p.geom.intersect(rx4, t_min, *t_max).closest() {
+                *t_max = hit.t;
+                *best = Some((hit, p.ids[lane]));
+            }
+        }
+        for &i in part(&self.scalar, leaf.scalar, leaf.n_scalar) {
+            if let Some(hit) = prims[i as usize].intersect(ray, t_min, *t_max) {
+                *t_max = hit.t;
+                *best = Some((hit, i));
+            }
+        }
+    }
+
+    /// True if anything in leaf `index` is hit within `[t_min, t_max]`.
+    #[inline(always)]
+    pub fn occluded<P: Intersectable>(
+        &self,
+        index: u32,
+        prims: &[P],
+        ray: &Ray,
+        rx4: &RayX4,
+        t_min: f32,
+        t_max: f32,
+    ) -> bool {
+        let leaf = &self.leaves[index as usize];
+        part(&self.quads, leaf.quads, leaf.n_quads)
+            .iter()
+            .any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
+            || part(&self.tris, leaf.tris, leaf.n_tris)
+                .iter()
+                .any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
+            || part(&self.scalar, leaf.scalar, leaf.n_scalar)
+                .iter()
+                .any(|&i| prims[i as usize].intersect(ray, t_min, t_max).is_some())
+    }
+
+    /// Number of SIMD packets and of primitives tested one by one in leaf `index`.
+    pub fn sizes(&self, index: u32) -> (usize, usize) {
+        let l = &self.leaves[index as usize];
+        (l.n_quads as usize + l.n_tris as usize, l.n_scalar as usize)
+    }
+}

@@ -1,0 +1,122 @@
+//! A four-wide BVH collapsed from the binary SAH tree (Dammertz et al., "Shallow Bounding Volume
+//! Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays", EGSR 2008): each node holds four
+//! child boxes in SIMD lanes and tests them with one slab test (Kay & Kajiya 1986).
+
+use glam::{BVec4A, Vec4};
+
+use super::bvh::Node;
+use crate::math::Ray;
+
+/// Child tag for leaves (the low bits are the leaf record).
+pub(super) const LEAF: u32 = 1 << 31;
+/// Child slot without a child.
+pub(super) const EMPTY: u32 = u32::MAX;
+
+/// Four children: their boxes (min x, y, z, max x, y, z; one child per lane) and indices (an
+/// interior node, `LEAF | leaf record`, or `EMPTY`). Empty lanes have the box `[+∞, +∞]`,
+/// whose slab distances all have one sign, so it is never hit.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Node4 {
+    bounds: [Vec4; 6],
+    pub children: [u32; 4],
+}
+
+/// A ray prepared for slab tests on four boxes.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RayBox4 {
+    origin: [Vec4; 3],
+    inv_dir: [Vec4; 3],
+}
+
+impl RayBox4 {
+    #[inline(always)]
+    pub fn new(ray: &Ray) -> Self {
+        let inv = ray.dir.recip();
+        Self {
+            origin: [ray.origin.x, ray.origin.y, ray.origin.z].map(Vec4::splat),
+            inv_dir: [inv.x, inv.y, inv.z].map(Vec4::splat),
+        }
+    }
+}
+
+impl Node4 {
+    /// Lanes whose box overlaps the ray within `[t_min, t_max]`.
+    #[inline(always)]
+    pub fn hit(&self, r: &RayBox4, t_min: f32, t_max: f32) -> BVec4A {
+        let mut near = Vec4::splat(t_min);
+        let mut far = Vec4::splat(t_max);
+        for axis in 0..3 {
+            let t0 = (self.bounds[axis] - r.origin[axis]) * r.inv_dir[axis];
+            let t1 = (self.bounds[axis + 3] - r.origin[axis]) * r.inv_dir[axis];
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        near.cmple(far)
+    }
+}
+
+/// Collapses the binary tree `nodes` (root at 0) into four-wide nodes (root at 0).
+pub(super) fn collapse(nodes: &[Node]) -> Vec<Node4> {
+    let mut out = Vec::new();
+    if let Some(root) = nodes.first() {
+        if root.count > 0 {
+            out.push(node4(nodes, &[0], |_| LEAF | root.offset));
+        } else {
+            collapse_node(nodes, 0, &mut out);
+        }
+    }
+    out
+}
+
+fn node4(nodes: &[Node], kids: &[usize], mut child: impl FnMut(usize) -> u32) -> Node4 {
+    let mut n = Node4 {
+        bounds: [Vec4::INFINITY; 6],
+        children: [EMPTY; 4],
+    };
+    for (lane, &k) in kids.iter().enumerate() {
+        let b = nodes[k].bounds;
+        for axis in 0..3 {
+            n.bounds[axis][lane] = b.min[axis];
+            n.bounds[axis + 3][lane] = b.max[axis];
+        }
+        n.children[lane] = child(k);
+    }
+    n
+}
+
+/// Gathers up to four descendants of interior node `index` by repeatedly opening the interior
+/// child with the largest surface area (the most likely to be hit), then recurses.
+fn collapse_node(nodes: &[Node], index: usize, out: &mut Vec<Node4>) -> u32 {
+    let children = |i: usize| [i + 1, nodes[i].offset as usize];
+    let mut kids: Vec<usize> = children(index).to_vec();
+    while kids.len() < 4 {
+        let open = kids
+            .iter()
+            .enumerate()
+            .filter(|(_, &k)| nodes[k].count == 0)
+            .max_by(|(_, &a), (_, &b)| {
+                nodes[a]
+                    .bounds
+                    .surface_area()
+                    .total_cmp(&nodes[b].bounds.surface_area())
+            })
+            .map(|(pos, _)| pos);
+        let Some(pos) = open else { break };
+        let k = kids.remove(pos);
+        kids.extend(children(k));
+    }
+    let me = out.len();
+    out.push(Node4 {
+        bounds: [Vec4::INFINITY; 6],
+        children: [EMPTY; 4],
+    });
+    let node = node4(nodes, &kids, |k| {
+        if nodes[k].count > 0 {
+            LEAF | nodes[k].offset
+        } else {
+            collapse_node(nodes, k, out)
+        }
+    });
+    out[me] = node;
+    me as u32
+}
