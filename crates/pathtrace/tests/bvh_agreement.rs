@@ -15,11 +15,7 @@ fn uniform(rng: &mut Pcg32, lo: f32, hi: f32) -> f32 {
 }
 
 fn point(rng: &mut Pcg32, extent: f32) -> Vec3 {
-    Vec3::new(
-        uniform(rng, -extent, extent),
-        uniform(rng, -extent, extent),
-        uniform(rng, -extent, extent),
-    )
+    Vec3::new(uniform(rng, -extent, extent), uniform(rng, -extent, extent), uniform(rng, -extent, extent))
 }
 
 fn direction(rng: &mut Pcg32) -> Vec3 {
@@ -37,19 +33,9 @@ fn random_shape(rng: &mut Pcg32, kind: u32) -> Option<Shape> {
     let size = uniform(rng, 0.05, 3.0);
     let corner = point(rng, 5.0);
     match kind {
-        0 => Quad::new(
-            corner,
-            direction(rng) * size,
-            direction(rng) * size * uniform(rng, 0.2, 1.5),
-        )
-        .map(Shape::Quad),
-        1 => Triangle::new(
-            corner,
-            corner + direction(rng) * size,
-            corner + direction(rng) * size,
-            Triangle::FLAT,
-        )
-        .map(Shape::Triangle),
+        0 => Quad::new(corner, direction(rng) * size, direction(rng) * size * uniform(rng, 0.2, 1.5)).map(Shape::Quad),
+        1 => Triangle::new(corner, corner + direction(rng) * size, corner + direction(rng) * size, Triangle::FLAT)
+            .map(Shape::Triangle),
         _ => Sphere::new(corner, 0.5 * size).map(Shape::Sphere),
     }
 }
@@ -96,8 +82,7 @@ fn random_scene(rng: &mut Pcg32, n: usize, with_plane: bool) -> (Scene, Vec<Shap
     }
     // A box of quads whose faces share edges, as in the Cornell box.
     let lo = point(rng, 3.0);
-    b.add_box(lo, lo + Vec3::new(1.0, 2.0, 1.5), m, &Transform::IDENTITY)
-        .unwrap();
+    b.add_box(lo, lo + Vec3::new(1.0, 2.0, 1.5), m, &Transform::IDENTITY).unwrap();
     if with_plane {
         let p = Plane::new(Vec3::new(0.0, -6.0, 0.0), direction(rng)).unwrap();
         b.shape(Shape::Plane(p), m, &Transform::IDENTITY).unwrap();
@@ -145,57 +130,34 @@ fn check_scenes(seed: u64, scenes: usize, prims: usize, rays: usize) {
         let (scene, shapes) = random_scene(&mut rng, prims, s % 2 == 1);
         for _ in 0..rays {
             let ray = random_ray(&mut rng, &shapes);
-            let t_max = if rng.next_f32() < 0.5 {
-                f32::INFINITY
-            } else {
-                uniform(&mut rng, 0.0, 12.0)
-            };
+            let t_max = if rng.next_f32() < 0.5 { f32::INFINITY } else { uniform(&mut rng, 0.0, 12.0) };
             let bvh = scene.intersect(&ray, t_max);
             let brute = scene.intersect_brute_force(&ray, t_max);
             match (&bvh, &brute) {
                 (Some(a), Some(b)) => {
-                    assert!(
-                        same_hit(a, b),
-                        "scene {s} {ray:?}: bvh {a:?} vs brute force {b:?}"
-                    );
-                    assert!(
-                        consistent(&scene, &ray, a),
-                        "scene {s} {ray:?}: bvh {a:?} is elsewhere"
-                    );
+                    assert!(same_hit(a, b), "scene {s} {ray:?}: bvh {a:?} vs brute force {b:?}");
+                    assert!(consistent(&scene, &ray, a), "scene {s} {ray:?}: bvh {a:?} is elsewhere");
                 }
                 (None, None) => {}
                 _ => {
                     panic!("scene {s} {ray:?} t_max {t_max}: bvh {bvh:?} vs brute force {brute:?}")
                 }
             }
-            assert_eq!(
-                scene.occluded(&ray, t_max),
-                bvh.is_some(),
-                "scene {s} {ray:?} t_max {t_max}"
-            );
+            assert_eq!(scene.occluded(&ray, t_max), bvh.is_some(), "scene {s} {ray:?} t_max {t_max}");
             if let Some(h) = bvh {
                 // Just before the closest hit nothing blocks, unless another surface is there too.
                 let before = 0.999 * h.hit.t;
                 if before > 0.0 {
-                    assert_eq!(
-                        scene.occluded(&ray, before),
-                        scene.intersect(&ray, before).is_some()
-                    );
+                    assert_eq!(scene.occluded(&ray, before), scene.intersect(&ray, before).is_some());
                 }
-                assert!(matches!(
-                    h.prim,
-                    PrimRef::Bounded(_) | PrimRef::Unbounded(_)
-                ));
+                assert!(matches!(h.prim, PrimRef::Bounded(_) | PrimRef::Unbounded(_)));
                 hits += 1;
             }
             total += 1;
         }
     }
     // The ray mix must exercise both outcomes.
-    assert!(
-        hits > total / 10 && hits < total * 9 / 10,
-        "{hits} hits of {total}"
-    );
+    assert!(hits > total / 10 && hits < total * 9 / 10, "{hits} hits of {total}");
 }
 
 #[test]

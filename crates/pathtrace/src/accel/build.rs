@@ -27,11 +27,7 @@ fn leaf_cost(n: usize) -> f32 {
 
 /// Picks a split: (axis, number of items going left), after partitioning `items` in place.
 /// `None` means "make a leaf".
-pub(super) fn choose_split(
-    items: &mut [BuildItem],
-    bounds: &Aabb,
-    depth: usize,
-) -> Option<(usize, usize)> {
+pub(super) fn choose_split(items: &mut [BuildItem], bounds: &Aabb, depth: usize) -> Option<(usize, usize)> {
     let n = items.len();
     let centroid_bounds = items.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.centroid));
     let extent = centroid_bounds.extent();
@@ -83,8 +79,7 @@ pub(super) fn choose_split(
             if left_n == 0 || right_count[split] == 0 {
                 continue;
             }
-            let cost = left_b.surface_area() * leaf_cost(left_n)
-                + right_area[split] * leaf_cost(right_count[split]);
+            let cost = left_b.surface_area() * leaf_cost(left_n) + right_area[split] * leaf_cost(right_count[split]);
             if best.map_or(true, |(c, _, _)| cost < c) {
                 best = Some((cost, axis, split));
             }
@@ -109,9 +104,7 @@ pub(super) fn choose_split(
     }
     let lo = centroid_bounds.min[axis];
     let scale = BINS as f32 / extent[axis];
-    let mid = partition(items, |it| {
-        ((((it.centroid[axis] - lo) * scale) as usize).min(BINS - 1)) < split
-    });
+    let mid = partition(items, |it| ((((it.centroid[axis] - lo) * scale) as usize).min(BINS - 1)) < split);
     if mid == 0 || mid == n {
         return Some(median_split(items, axis));
     }
@@ -132,16 +125,11 @@ fn is_large(it: &BuildItem, parent_area: f32) -> bool {
 fn large_small_cost(items: &[BuildItem], parent_area: f32) -> Option<f32> {
     let (mut large, mut small) = ((Aabb::EMPTY, 0), (Aabb::EMPTY, 0));
     for it in items {
-        let side = if is_large(it, parent_area) {
-            &mut large
-        } else {
-            &mut small
-        };
+        let side = if is_large(it, parent_area) { &mut large } else { &mut small };
         *side = (side.0.union(it.bounds), side.1 + 1);
     }
-    (large.1 > 0 && small.1 > 0).then(|| {
-        large.0.surface_area() * leaf_cost(large.1) + small.0.surface_area() * leaf_cost(small.1)
-    })
+    (large.1 > 0 && small.1 > 0)
+        .then(|| large.0.surface_area() * leaf_cost(large.1) + small.0.surface_area() * leaf_cost(small.1))
 }
 
 fn median_split(items: &mut [BuildItem], axis: usize) -> (usize, usize) {

@@ -77,33 +77,19 @@ impl Bvh {
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
         for node in bvh.nodes.iter_mut().filter(|n| n.count > 0) {
             let start = node.offset as usize;
-            node.offset = bvh.leaves.push(
-                |i| kinds[order[i] as usize],
-                start..start + node.count as usize,
-            );
+            node.offset = bvh.leaves.push(|i| kinds[order[i] as usize], start..start + node.count as usize);
         }
         bvh.stack_need = 3 * bvh.stats().max_depth + 1;
         bvh.wide = collapse(&bvh.nodes);
         (bvh, order)
     }
 
-    fn build_node(
-        &mut self,
-        items: &mut [BuildItem],
-        start: usize,
-        end: usize,
-        depth: usize,
-    ) -> usize {
+    fn build_node(&mut self, items: &mut [BuildItem], start: usize, end: usize, depth: usize) -> usize {
         let node_index = self.nodes.len();
         let slice = &mut items[start..end];
         let bounds = slice.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
         // Leaves hold their first item's position until `build` replaces it by a leaf record.
-        self.nodes.push(Node {
-            bounds,
-            offset: start as u32,
-            count: slice.len() as u16,
-            axis: 0,
-        });
+        self.nodes.push(Node { bounds, offset: start as u32, count: slice.len() as u16, axis: 0 });
         if slice.len() == 1 {
             return node_index;
         }
@@ -164,15 +150,7 @@ impl Bvh {
                     stack[sp] = child;
                     sp += 1;
                 } else if child != EMPTY {
-                    self.leaves.intersect(
-                        child & !LEAF,
-                        prims,
-                        ray,
-                        &rx4,
-                        t_min,
-                        &mut t_max,
-                        &mut best,
-                    );
+                    self.leaves.intersect(child & !LEAF, prims, ray, &rx4, t_min, &mut t_max, &mut best);
                 }
             }
             if sp == 0 {
@@ -185,13 +163,7 @@ impl Bvh {
 
     /// True if anything blocks the ray within `[t_min, t_max]` (stops at the first blocker).
     #[inline]
-    pub fn occluded<P: Intersectable>(
-        &self,
-        prims: &[P],
-        ray: &Ray,
-        t_min: f32,
-        t_max: f32,
-    ) -> bool {
+    pub fn occluded<P: Intersectable>(&self, prims: &[P], ray: &Ray, t_min: f32, t_max: f32) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
@@ -203,13 +175,7 @@ impl Bvh {
     }
 
     #[inline(always)]
-    fn any_hit<P: Intersectable, const N: usize>(
-        &self,
-        prims: &[P],
-        ray: &Ray,
-        t_min: f32,
-        t_max: f32,
-    ) -> bool {
+    fn any_hit<P: Intersectable, const N: usize>(&self, prims: &[P], ray: &Ray, t_min: f32, t_max: f32) -> bool {
         let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
         let mut stack = [0u32; N];
@@ -224,11 +190,7 @@ impl Bvh {
                 if child & LEAF == 0 {
                     stack[sp] = child;
                     sp += 1;
-                } else if child != EMPTY
-                    && self
-                        .leaves
-                        .occluded(child & !LEAF, prims, ray, &rx4, t_min, t_max)
-                {
+                } else if child != EMPTY && self.leaves.occluded(child & !LEAF, prims, ray, &rx4, t_min, t_max) {
                     return true;
                 }
             }
@@ -258,10 +220,7 @@ impl Bvh {
         };
         let kind = if n.count > 0 {
             let (packets, scalar) = self.leaves.sizes(n.offset);
-            format!(
-                "leaf {} prims ({packets} packets + {scalar} single)",
-                n.count
-            )
+            format!("leaf {} prims ({packets} packets + {scalar} single)", n.count)
         } else {
             format!("split axis {}", n.axis)
         };
@@ -279,10 +238,7 @@ impl Bvh {
     }
 
     pub fn stats(&self) -> BvhStats {
-        let mut stats = BvhStats {
-            nodes: self.nodes.len(),
-            ..Default::default()
-        };
+        let mut stats = BvhStats { nodes: self.nodes.len(), ..Default::default() };
         if !self.nodes.is_empty() {
             self.walk_stats(0, 1, &mut stats);
         }

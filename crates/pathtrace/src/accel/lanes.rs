@@ -20,19 +20,11 @@ impl Vec3x4 {
     pub fn gather(vs: &[Vec3]) -> Self {
         let lane = |i: usize, f: fn(&Vec3) -> f32| vs.get(i).map_or(0.0, f);
         let axis = |f: fn(&Vec3) -> f32| Vec4::new(lane(0, f), lane(1, f), lane(2, f), lane(3, f));
-        Self {
-            x: axis(|v| v.x),
-            y: axis(|v| v.y),
-            z: axis(|v| v.z),
-        }
+        Self { x: axis(|v| v.x), y: axis(|v| v.y), z: axis(|v| v.z) }
     }
 
     pub fn splat(v: Vec3) -> Self {
-        Self {
-            x: Vec4::splat(v.x),
-            y: Vec4::splat(v.y),
-            z: Vec4::splat(v.z),
-        }
+        Self { x: Vec4::splat(v.x), y: Vec4::splat(v.y), z: Vec4::splat(v.z) }
     }
 
     /// Lane-wise dot product, summed in glam's scalar order `x·x' + y·y' + z·z'` so that each
@@ -45,20 +37,12 @@ impl Vec3x4 {
     /// Lane-wise cross product, in glam's scalar operand order (bit-identical lanes).
     #[inline(always)]
     pub fn cross(&self, o: &Self) -> Self {
-        Self {
-            x: self.y * o.z - o.y * self.z,
-            y: self.z * o.x - o.z * self.x,
-            z: self.x * o.y - o.x * self.y,
-        }
+        Self { x: self.y * o.z - o.y * self.z, y: self.z * o.x - o.z * self.x, z: self.x * o.y - o.x * self.y }
     }
 
     #[inline(always)]
     pub fn sub(&self, o: &Self) -> Self {
-        Self {
-            x: self.x - o.x,
-            y: self.y - o.y,
-            z: self.z - o.z,
-        }
+        Self { x: self.x - o.x, y: self.y - o.y, z: self.z - o.z }
     }
 }
 
@@ -72,10 +56,7 @@ pub(super) struct RayX4 {
 impl RayX4 {
     #[inline(always)]
     pub fn new(ray: &Ray) -> Self {
-        Self {
-            origin: Vec3x4::splat(ray.origin),
-            dir: Vec3x4::splat(ray.dir),
-        }
+        Self { origin: Vec3x4::splat(ray.origin), dir: Vec3x4::splat(ray.dir) }
     }
 }
 
@@ -97,14 +78,8 @@ impl HitX4 {
         }
         let t = Vec4::select(self.mask, self.t, Vec4::INFINITY);
         let nearest = t.min_element();
-        let lane = (t.cmpeq(Vec4::splat(nearest)) & self.mask)
-            .bitmask()
-            .trailing_zeros() as usize;
-        let hit = PrimHit {
-            t: self.t[lane],
-            u: self.u[lane],
-            v: self.v[lane],
-        };
+        let lane = (t.cmpeq(Vec4::splat(nearest)) & self.mask).bitmask().trailing_zeros() as usize;
+        let hit = PrimHit { t: self.t[lane], u: self.u[lane], v: self.v[lane] };
         Some((lane, hit))
     }
 }

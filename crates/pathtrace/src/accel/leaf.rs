@@ -49,10 +49,7 @@ fn pack<S: Copy, G>(items: &[(u32, S)], make: fn(&[S]) -> G, out: &mut Vec<Packe
     for chunk in items.chunks(4) {
         let shapes: Vec<S> = chunk.iter().map(|&(_, s)| s).collect();
         let ids = [0, 1, 2, 3].map(|k| chunk[k.min(chunk.len() - 1)].0);
-        out.push(Packed {
-            geom: make(&shapes),
-            ids,
-        });
+        out.push(Packed { geom: make(&shapes), ids });
     }
     items.len().div_ceil(4) as u8
 }
@@ -142,12 +139,8 @@ impl Leaves {
         t_max: f32,
     ) -> bool {
         let leaf = &self.leaves[index as usize];
-        part(&self.quads, leaf.quads, leaf.n_quads)
-            .iter()
-            .any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
-            || part(&self.tris, leaf.tris, leaf.n_tris)
-                .iter()
-                .any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
+        part(&self.quads, leaf.quads, leaf.n_quads).iter().any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
+            || part(&self.tris, leaf.tris, leaf.n_tris).iter().any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
             || part(&self.scalar, leaf.scalar, leaf.n_scalar)
                 .iter()
                 .any(|&i| prims[i as usize].intersect(ray, t_min, t_max).is_some())

@@ -21,20 +21,8 @@ impl Quad4 {
     /// Packs one to four quads.
     pub fn new(quads: &[Quad]) -> Self {
         debug_assert!((1..=4).contains(&quads.len()));
-        let field = |k: usize| {
-            Vec3x4::gather(
-                &quads
-                    .iter()
-                    .map(|q| q.intersection_data()[k])
-                    .collect::<Vec<_>>(),
-            )
-        };
-        Self {
-            q: field(0),
-            n: field(1),
-            u_dual: field(2),
-            v_dual: field(3),
-        }
+        let field = |k: usize| Vec3x4::gather(&quads.iter().map(|q| q.intersection_data()[k]).collect::<Vec<_>>());
+        Self { q: field(0), n: field(1), u_dual: field(2), v_dual: field(3) }
     }
 
     /// Per-lane hits with `t ∈ [t_min, t_max]`.
@@ -56,11 +44,6 @@ impl Quad4 {
         let lo = Vec4::splat(-EDGE_SLACK);
         let hi = Vec4::splat(1.0 + EDGE_SLACK);
         let mask = in_range & a.cmpge(lo) & a.cmple(hi) & b.cmpge(lo) & b.cmple(hi);
-        HitX4 {
-            mask,
-            t,
-            u: a,
-            v: b,
-        }
+        HitX4 { mask, t, u: a, v: b }
     }
 }

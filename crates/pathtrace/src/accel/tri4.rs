@@ -20,14 +20,8 @@ impl Tri4 {
     /// Packs one to four triangles.
     pub fn new(tris: &[Triangle]) -> Self {
         debug_assert!((1..=4).contains(&tris.len()));
-        let field = |f: fn(&Triangle) -> glam::Vec3| {
-            Vec3x4::gather(&tris.iter().map(f).collect::<Vec<_>>())
-        };
-        Self {
-            p0: field(|t| t.p0),
-            e1: field(|t| t.e1),
-            e2: field(|t| t.e2),
-        }
+        let field = |f: fn(&Triangle) -> glam::Vec3| Vec3x4::gather(&tris.iter().map(f).collect::<Vec<_>>());
+        Self { p0: field(|t| t.p0), e1: field(|t| t.e1), e2: field(|t| t.e2) }
     }
 
     /// Per-lane hits with `t ∈ [t_min, t_max]`.
@@ -46,12 +40,7 @@ impl Tri4 {
         let t = self.e2.dot(&qvec) * inv_det;
         // The scalar test rejects `v < −ε || u + v > 1 + ε`, which lets NaN through; so here.
         let v_ok = !(v.cmplt(lo) | (u + v).cmpgt(hi));
-        let mask = ok
-            & u.cmpge(lo)
-            & u.cmple(hi)
-            & v_ok
-            & t.cmpge(Vec4::splat(t_min))
-            & t.cmple(Vec4::splat(t_max));
+        let mask = ok & u.cmpge(lo) & u.cmple(hi) & v_ok & t.cmpge(Vec4::splat(t_min)) & t.cmple(Vec4::splat(t_max));
         HitX4 { mask, t, u, v }
     }
 }

@@ -69,10 +69,7 @@ pub(super) fn collapse(nodes: &[Node]) -> Vec<Node4> {
 }
 
 fn node4(nodes: &[Node], kids: &[usize], mut child: impl FnMut(usize) -> u32) -> Node4 {
-    let mut n = Node4 {
-        bounds: [Vec4::INFINITY; 6],
-        children: [EMPTY; 4],
-    };
+    let mut n = Node4 { bounds: [Vec4::INFINITY; 6], children: [EMPTY; 4] };
     for (lane, &k) in kids.iter().enumerate() {
         let b = nodes[k].bounds;
         for axis in 0..3 {
@@ -94,29 +91,16 @@ fn collapse_node(nodes: &[Node], index: usize, out: &mut Vec<Node4>) -> u32 {
             .iter()
             .enumerate()
             .filter(|(_, &k)| nodes[k].count == 0)
-            .max_by(|(_, &a), (_, &b)| {
-                nodes[a]
-                    .bounds
-                    .surface_area()
-                    .total_cmp(&nodes[b].bounds.surface_area())
-            })
+            .max_by(|(_, &a), (_, &b)| nodes[a].bounds.surface_area().total_cmp(&nodes[b].bounds.surface_area()))
             .map(|(pos, _)| pos);
         let Some(pos) = open else { break };
         let k = kids.remove(pos);
         kids.extend(children(k));
     }
     let me = out.len();
-    out.push(Node4 {
-        bounds: [Vec4::INFINITY; 6],
-        children: [EMPTY; 4],
-    });
-    let node = node4(nodes, &kids, |k| {
-        if nodes[k].count > 0 {
-            LEAF | nodes[k].offset
-        } else {
-            collapse_node(nodes, k, out)
-        }
-    });
+    out.push(Node4 { bounds: [Vec4::INFINITY; 6], children: [EMPTY; 4] });
+    let node =
+        node4(nodes, &kids, |k| if nodes[k].count > 0 { LEAF | nodes[k].offset } else { collapse_node(nodes, k, out) });
     out[me] = node;
     me as u32
 }
