@@ -288,7 +288,7 @@ impl SceneBuilder {
                         Shape::Plane(_) => return Err(BuildError::EmissivePlane),
                         Shape::Ellipsoid(_) => return Err(BuildError::EmissiveEllipsoid),
                     };
-                    lights.push(AreaLight { shape: light_shape, emission: e });
+                    lights.push(AreaLight::new(light_shape, e));
                     lights.len() as u32 - 1
                 }
                 _ => Primitive::NO_LIGHT,

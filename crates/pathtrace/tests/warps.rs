@@ -74,7 +74,7 @@ fn power_cosine_lobes() {
 }
 
 fn light_set(shape: LightShape) -> LightSet {
-    LightSet::new(vec![AreaLight { shape, emission: Emission { radiance: Rgb::splat(1.0), two_sided: true } }])
+    LightSet::new(vec![AreaLight::new(shape, Emission { radiance: Rgb::splat(1.0), two_sided: true })])
 }
 
 #[test]

@@ -80,7 +80,7 @@ pub(super) fn choose_split(items: &mut [BuildItem], bounds: &Aabb, depth: usize)
                 continue;
             }
             let cost = left_b.surface_area() * leaf_cost(left_n) + right_area[split] * leaf_cost(right_count[split]);
-            if best.map_or(true, |(c, _, _)| cost < c) {
+            if best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, split));
             }
         }

@@ -29,19 +29,45 @@ pub enum LightShape {
     Sphere(Sphere),
 }
 
-/// One emissive primitive.
+/// One emissive primitive, with its area and (for flat shapes) unit normal precomputed: light
+/// sampling runs at every path vertex.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AreaLight {
     pub shape: LightShape,
     pub emission: Emission,
+    area: f32,
+    normal: Vec3,
 }
 
-/// A point chosen on a light, with its solid-angle density at the reference point.
+/// A point chosen on a light, with its solid-angle density at the reference point and the
+/// unit direction and distance to it (computed once here, reused by the caller).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct ShapeSample {
     pub point: Vec3,
     pub normal: Vec3,
+    pub wi: Vec3,
+    pub dist: f32,
     pub pdf: f32,
+}
+
+impl ShapeSample {
+    /// Completes a sample from the chosen point and its solid-angle pdf function.
+    fn new(ref_p: Vec3, point: Vec3, normal: Vec3, pdf_of: impl FnOnce(f32, Vec3) -> f32) -> Option<Self> {
+        let d = point - ref_p;
+        let dist = d.length();
+        if !(dist > 0.0) {
+            return None;
+        }
+        let wi = d / dist;
+        let pdf = pdf_of(dist, wi);
+        (pdf > 0.0 && pdf.is_finite()).then_some(Self { point, normal, wi, dist, pdf })
+    }
+}
+
+/// r² / (|cos θ_l| · A) from the distance and unit direction to the light point.
+#[inline]
+fn solid_angle_pdf(dist: f32, wi: Vec3, normal: Vec3, area: f32) -> f32 {
+    dist * dist / (normal.dot(wi).abs() * area)
 }
 
 fn area_to_solid_angle(ref_p: Vec3, point: Vec3, normal: Vec3, area: f32) -> f32 {
@@ -55,12 +81,17 @@ fn area_to_solid_angle(ref_p: Vec3, point: Vec3, normal: Vec3, area: f32) -> f32
 }
 
 impl AreaLight {
+    pub fn new(shape: LightShape, emission: Emission) -> Self {
+        let (area, normal) = match &shape {
+            LightShape::Quad(q) => (q.area(), q.normal()),
+            LightShape::Triangle(t) => (t.area(), t.e1.cross(t.e2).normalize()),
+            LightShape::Sphere(s) => (s.area(), Vec3::ZERO),
+        };
+        Self { shape, emission, area, normal }
+    }
+
     pub fn area(&self) -> f32 {
-        match &self.shape {
-            LightShape::Quad(q) => q.area(),
-            LightShape::Triangle(t) => t.area(),
-            LightShape::Sphere(s) => s.area(),
-        }
+        self.area
     }
 
     /// Total emitted power in luminance units: L·A·π per emitting face.
@@ -80,16 +111,15 @@ impl AreaLight {
     }
 
     pub(super) fn sample(&self, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
-        let (point, normal, area) = match &self.shape {
-            LightShape::Quad(q) => (q.point_at(u.x, u.y), q.normal(), q.area()),
+        let point = match &self.shape {
+            LightShape::Quad(q) => q.point_at(u.x, u.y),
             LightShape::Triangle(t) => {
                 let b = warp::square_to_uniform_triangle(u);
-                (t.p0 + b.x * t.e1 + b.y * t.e2, t.e1.cross(t.e2).normalize(), t.area())
+                t.p0 + b.x * t.e1 + b.y * t.e2
             }
             LightShape::Sphere(s) => return sample_sphere(s, ref_p, u),
         };
-        let pdf = area_to_solid_angle(ref_p, point, normal, area);
-        (pdf > 0.0 && pdf.is_finite()).then_some(ShapeSample { point, normal, pdf })
+        ShapeSample::new(ref_p, point, self.normal, |dist, wi| solid_angle_pdf(dist, wi, self.normal, self.area))
     }
 
     /// Density (solid angle at `ref_p`) with which [`AreaLight::sample`] picks the surface
@@ -109,10 +139,10 @@ impl AreaLight {
         match &self.shape {
             LightShape::Quad(q) => q
                 .intersect(&ray, 0.0, f32::INFINITY)
-                .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), q.normal(), q.area())),
+                .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), self.normal, self.area)),
             LightShape::Triangle(t) => t
                 .intersect(&ray, 0.0, f32::INFINITY)
-                .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), t.e1.cross(t.e2).normalize(), t.area())),
+                .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), self.normal, self.area)),
             LightShape::Sphere(s) => {
                 if sees_outside(s, ref_p) {
                     let d2 = (s.center - ref_p).length_squared();
@@ -164,8 +194,7 @@ fn sample_sphere(s: &Sphere, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
     if !sees_outside(s, ref_p) {
         let n = warp::square_to_uniform_sphere(u);
         let point = s.center + n * s.radius;
-        let pdf = area_to_solid_angle(ref_p, point, n, s.area());
-        return (pdf > 0.0 && pdf.is_finite()).then_some(ShapeSample { point, normal: n, pdf });
+        return ShapeSample::new(ref_p, point, n, |dist, wi| solid_angle_pdf(dist, wi, n, s.area()));
     }
     let cos_max = cone_cos_max(s, d2);
     let frame = Frame::from_normal(to_center / d2.sqrt());
@@ -177,8 +206,7 @@ fn sample_sphere(s: &Sphere, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
         None => s.center + (ray.at(to_center.dot(dir)) - s.center).normalize_or(-dir) * s.radius,
     };
     let normal = (point - s.center) / s.radius;
-    let pdf = warp::uniform_cone_pdf(Vec3::Z, cos_max);
-    (pdf > 0.0 && pdf.is_finite()).then_some(ShapeSample { point, normal, pdf })
+    ShapeSample::new(ref_p, point, normal, |_, _| warp::uniform_cone_pdf(Vec3::Z, cos_max))
 }
 
 fn sphere_pdf(s: &Sphere, ref_p: Vec3, p: Vec3, n: Vec3) -> f32 {

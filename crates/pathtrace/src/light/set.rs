@@ -61,19 +61,13 @@ impl LightSet {
         let (id, pmf) = self.selection.as_ref()?.sample(u_select);
         let light = &self.lights[id];
         let s = light.sample(ref_p, u)?;
-        let d = s.point - ref_p;
-        let dist = d.length();
-        if dist <= 0.0 {
-            return None;
-        }
-        let wi = d / dist;
         Some(LightSample {
             point: s.point,
             normal: s.normal,
-            wi,
-            dist,
+            wi: s.wi,
+            dist: s.dist,
             pdf: s.pdf * pmf,
-            radiance: light.emitted(s.normal, -wi),
+            radiance: light.emitted(s.normal, -s.wi),
         })
     }
 
