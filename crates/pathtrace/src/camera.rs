@@ -86,7 +86,7 @@ impl Camera {
 
     /// The ray through pixel `(x, y)` offset by `jitter ∈ [0,1)²` within the pixel
     /// (`(0.5, 0.5)` is the pixel centre). The direction is unit length.
-    #[inline]
+    #[inline(always)]
     pub fn generate_ray(&self, x: u32, y: u32, jitter: Vec2) -> Ray {
         let target = self.pixel00 + (x as f32 + jitter.x - 0.5) * self.du + (y as f32 + jitter.y - 0.5) * self.dv;
         Ray::new(self.origin, (target - self.origin).normalize())

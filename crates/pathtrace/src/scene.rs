@@ -89,7 +89,7 @@ pub struct Scene {
 
 impl Scene {
     /// Closest hit with `t ∈ [0, t_max]`.
-    #[inline]
+    #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let mut best =
             self.bvh.intersect(&self.prims, ray, 0.0, t_max).map(|(hit, i)| Hit { prim: PrimRef::Bounded(i), hit });
@@ -103,7 +103,7 @@ impl Scene {
     }
 
     /// True if anything lies on the ray within `[0, t_max]`.
-    #[inline]
+    #[inline(always)]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.unbounded.iter().any(|p| p.shape.intersect(ray, 0.0, t_max).is_some())
             || self.bvh.occluded(&self.prims, ray, 0.0, t_max)
@@ -117,7 +117,7 @@ impl Scene {
     }
 
     /// Surface details of a hit found with `ray`.
-    #[inline]
+    #[inline(always)]
     pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
         let prim = self.primitive(hit.prim);
         Interaction {

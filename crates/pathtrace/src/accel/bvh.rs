@@ -107,7 +107,7 @@ impl Bvh {
     }
 
     /// Closest hit among `prims` (in build order) with `t ∈ [t_min, t_max]`.
-    #[inline]
+    #[inline(always)]
     pub fn intersect<P: Intersectable>(
         &self,
         prims: &[P],
@@ -162,7 +162,7 @@ impl Bvh {
     }
 
     /// True if anything blocks the ray within `[t_min, t_max]` (stops at the first blocker).
-    #[inline]
+    #[inline(always)]
     pub fn occluded<P: Intersectable>(&self, prims: &[P], ray: &Ray, t_min: f32, t_max: f32) -> bool {
         if self.nodes.is_empty() {
             return false;

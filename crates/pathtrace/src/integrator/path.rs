@@ -60,6 +60,7 @@ struct PrevVertex {
 const SHADOW_EPSILON: f32 = 1e-4;
 
 /// Estimates the radiance arriving along `ray` (a camera ray).
+#[inline(always)]
 pub fn radiance(
     scene: &Scene,
     camera_ray: Ray,

@@ -55,7 +55,7 @@ impl ShapeSample {
     fn new(ref_p: Vec3, point: Vec3, normal: Vec3, pdf_of: impl FnOnce(f32, Vec3) -> f32) -> Option<Self> {
         let d = point - ref_p;
         let dist = d.length();
-        if !(dist > 0.0) {
+        if dist.is_nan() || dist <= 0.0 {
             return None;
         }
         let wi = d / dist;
@@ -101,7 +101,7 @@ impl AreaLight {
     }
 
     /// Radiance leaving a point with geometric normal `n` in direction `w`.
-    #[inline]
+    #[inline(always)]
     pub fn emitted(&self, n: Vec3, w: Vec3) -> Rgb {
         if self.emission.two_sided || n.dot(w) > 0.0 {
             self.emission.radiance
@@ -110,6 +110,7 @@ impl AreaLight {
         }
     }
 
+    #[inline(always)]
     pub(super) fn sample(&self, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
         let point = match &self.shape {
             LightShape::Quad(q) => q.point_at(u.x, u.y),
@@ -124,6 +125,7 @@ impl AreaLight {
 
     /// Density (solid angle at `ref_p`) with which [`AreaLight::sample`] picks the surface
     /// point `p` (normal `n`) — the point a ray from `ref_p` actually hit.
+    #[inline(always)]
     pub(super) fn pdf_hit(&self, ref_p: Vec3, p: Vec3, n: Vec3) -> f32 {
         match &self.shape {
             LightShape::Sphere(s) => sphere_pdf(s, ref_p, p, n),

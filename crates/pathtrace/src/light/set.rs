@@ -56,7 +56,7 @@ impl LightSet {
     }
 
     /// Picks a light by power and a point on it.
-    #[inline]
+    #[inline(always)]
     pub fn sample(&self, ref_p: Vec3, u_select: f32, u: Vec2) -> Option<LightSample> {
         let (id, pmf) = self.selection.as_ref()?.sample(u_select);
         let light = &self.lights[id];
@@ -72,7 +72,7 @@ impl LightSet {
     }
 
     /// Density of sampling hit point `p` on light `id` from `ref_p` (selection included).
-    #[inline]
+    #[inline(always)]
     pub fn pdf_hit(&self, id: u32, ref_p: Vec3, p: Vec3, n: Vec3) -> f32 {
         let pmf = self.selection_pmf(id);
         if pmf <= 0.0 {

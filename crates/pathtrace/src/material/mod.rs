@@ -49,7 +49,7 @@ pub enum Material {
 
 impl Material {
     /// Samples `wi` given `wo`, a number for lobe selection and a 2D point.
-    #[inline]
+    #[inline(always)]
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         match self {
             Material::Black => None,
@@ -62,7 +62,7 @@ impl Material {
     }
 
     /// `f(wo, wi)·|cos θi|`; zero for delta lobes.
-    #[inline]
+    #[inline(always)]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
         match self {
             Material::Diffuse(m) => m.eval(wo, wi),
@@ -73,7 +73,7 @@ impl Material {
     }
 
     /// Solid-angle density with which [`Material::sample`] produces `wi`; zero for delta lobes.
-    #[inline]
+    #[inline(always)]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         match self {
             Material::Diffuse(m) => m.pdf(wo, wi),

@@ -37,7 +37,46 @@ pub(super) struct TileResult {
 
 /// Renders samples `first .. first + count` of every pixel in `tile`. Each pixel sample's
 /// random numbers depend only on (seed, pixel, sample index), never on the thread.
+///
+/// On x86-64 CPUs with AVX2 the same code runs compiled for AVX2 (chosen at run time, so the
+/// binary stays portable). Rust never fuses multiply-adds on its own, so both versions compute
+/// bit-identical images; the AVX2 build is about 6% faster (3-operand VEX encoding; measured in
+/// docs/benchmarks.md). Setting the environment variable `PATHTRACE_NO_AVX2` forces the portable
+/// build, for that measurement.
 pub(super) fn render_tile(
+    scene: &Scene,
+    camera: &Camera,
+    path: &PathSettings,
+    sampler: &mut Sampler,
+    tile: Tile,
+    first: u32,
+    count: u32,
+) -> TileResult {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") && std::env::var_os("PATHTRACE_NO_AVX2").is_none() {
+        // SAFETY: `render_tile_avx2` only requires AVX2, which the CPU was just checked to have.
+        #[allow(unsafe_code)]
+        return unsafe { render_tile_avx2(scene, camera, path, sampler, tile, first, count) };
+    }
+    render_tile_body(scene, camera, path, sampler, tile, first, count)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn render_tile_avx2(
+    scene: &Scene,
+    camera: &Camera,
+    path: &PathSettings,
+    sampler: &mut Sampler,
+    tile: Tile,
+    first: u32,
+    count: u32,
+) -> TileResult {
+    render_tile_body(scene, camera, path, sampler, tile, first, count)
+}
+
+#[inline(always)]
+fn render_tile_body(
     scene: &Scene,
     camera: &Camera,
     path: &PathSettings,

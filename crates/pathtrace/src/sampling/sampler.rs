@@ -84,7 +84,7 @@ impl Sampler {
     }
 
     /// Begins sample `index` of pixel `(x, y)`.
-    #[inline]
+    #[inline(always)]
     pub fn start(&mut self, x: u32, y: u32, index: u32) {
         self.pixel_hash = hash_words(&[self.seed, ((x as u64) << 32) | y as u64]);
         self.index_in_round = index % self.strata_count;
@@ -101,7 +101,7 @@ impl Sampler {
     }
 
     /// One uniform number in `[0, 1)`.
-    #[inline]
+    #[inline(always)]
     pub fn next_1d(&mut self) -> f32 {
         match self.kind {
             SamplerKind::Independent => {
@@ -119,7 +119,7 @@ impl Sampler {
     }
 
     /// A uniform point in `[0, 1)²`.
-    #[inline]
+    #[inline(always)]
     pub fn next_2d(&mut self) -> Vec2 {
         match self.kind {
             SamplerKind::Independent => {

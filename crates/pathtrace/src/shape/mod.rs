@@ -62,6 +62,7 @@ impl Shape {
     }
 
     /// Rebuilds the surface at a hit found by [`Shape::intersect`] with the same ray.
+    #[inline(always)]
     pub fn surface(&self, ray: &Ray, hit: &PrimHit, vertex_normals: &[[Vec3; 3]]) -> SurfacePoint {
         match self {
             Shape::Sphere(s) => s.surface(ray, hit),
