@@ -1,0 +1,177 @@
+//! The `pathtrace` binary end to end: outputs, statistics, errors and exit codes, Ctrl-C.
+
+use std::path::PathBuf;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn pathtrace() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_pathtrace"))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("pathtrace-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(args: &[&str]) -> Output {
+    pathtrace().args(args).output().unwrap()
+}
+
+#[test]
+fn renders_png_exr_and_pfm_with_statistics() {
+    let dir = temp_dir("formats");
+    for ext in ["png", "exr", "pfm"] {
+        let out = dir.join(format!("box.{ext}"));
+        let stats = dir.join(format!("stats-{ext}.json"));
+        let o = run(&[
+            "render",
+            "cornell-box",
+            "--size",
+            "32x24",
+            "--spp",
+            "4",
+            "--max-depth",
+            "4",
+            "-o",
+            out.to_str().unwrap(),
+            "--stats-json",
+            stats.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let img = pathtrace_scene::image_io::read_image(&out).unwrap();
+        assert_eq!((img.width, img.height), (32, 24));
+        assert!(img.mean().g > 0.01, "image is black");
+        let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+        assert_eq!(json["spp"], 4);
+        assert_eq!(json["samples"], 32 * 24 * 4);
+        assert_eq!(json["camera_rays"], 32 * 24 * 4);
+        assert!(json["samples_per_second"].as_f64().unwrap() > 0.0);
+        assert_eq!(json["interrupted"], false);
+        let summary = String::from_utf8_lossy(&o.stderr);
+        assert!(summary.contains("4 spp") && summary.contains("samples/s"), "{summary}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn same_seed_same_image_different_seed_different_image() {
+    let dir = temp_dir("seeds");
+    let render = |seed: &str, threads: &str, name: &str| {
+        let out = dir.join(name);
+        let o = run(&[
+            "render",
+            "--size",
+            "16x16",
+            "--spp",
+            "3",
+            "--seed",
+            seed,
+            "--threads",
+            threads,
+            "-q",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success());
+        std::fs::read(out).unwrap()
+    };
+    assert_eq!(render("1", "1", "a.pfm"), render("1", "2", "b.pfm"));
+    assert_ne!(render("1", "2", "c.pfm"), render("2", "2", "d.pfm"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_arguments_give_one_line_and_exit_code_2() {
+    let dir = temp_dir("errors");
+    let cases: Vec<Vec<String>> = vec![
+        vec!["render".into(), "--size".into(), "12".into()],
+        vec!["render".into(), "--spp".into(), "0".into()],
+        vec!["render".into(), "--strategy".into(), "magic".into()],
+        vec!["render".into(), "--sampler".into(), "sobol9".into()],
+        vec!["render".into(), "--max-depth".into(), "-5".into()],
+        vec!["render".into(), "--time".into(), "-1".into()],
+        vec!["render".into(), "--spp".into(), "4".into(), "--time".into(), "2".into()],
+        vec!["render".into(), "no-such-scene".into()],
+        vec!["render".into(), "-o".into(), dir.join("x.jpg").to_string_lossy().into()],
+        vec!["render".into(), "-o".into(), dir.join("missing/x.png").to_string_lossy().into()],
+        vec!["render".into(), "--frobnicate".into()],
+        vec!["explode".into()],
+    ];
+    for args in cases {
+        let o = pathtrace().args(&args).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: expected one line, got:\n{err}");
+        assert!(err.starts_with("error"), "{args:?}: {err}");
+    }
+    assert!(std::fs::read_dir(&dir).unwrap().next().is_none(), "no output may be written on error");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn help_explains_the_commands() {
+    let o = run(&["--help"]);
+    assert!(o.status.success());
+    let help = String::from_utf8_lossy(&o.stdout);
+    assert!(help.contains("render") && help.contains("bench"));
+    let o = run(&["render", "--help"]);
+    let help = String::from_utf8_lossy(&o.stdout);
+    for word in ["--spp", "--time", "--strategy", "--sampler", "--max-depth", "Ctrl-C"] {
+        assert!(help.contains(word), "render --help lacks {word}");
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_writes_the_image_rendered_so_far() {
+    let dir = temp_dir("interrupt");
+    let out = dir.join("partial.exr");
+    let stats = dir.join("stats.json");
+    let mut child = pathtrace()
+        .args([
+            "render",
+            "--size",
+            "64x64",
+            "--spp",
+            "100000",
+            "-o",
+            out.to_str().unwrap(),
+            "--stats-json",
+            stats.to_str().unwrap(),
+        ])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    let status = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(status.success());
+    let start = Instant::now();
+    let output = loop {
+        if let Some(_status) = child.try_wait().unwrap() {
+            break child.wait_with_output().unwrap();
+        }
+        assert!(start.elapsed() < Duration::from_secs(30), "render did not stop after Ctrl-C");
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    assert_eq!(output.status.code(), Some(130));
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert!(err.contains("interrupted") && err.contains("spp"), "{err}");
+    let img = pathtrace_scene::image_io::read_image(&out).unwrap();
+    assert!(img.mean().g > 0.01);
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(json["interrupted"], true);
+    let spp = json["spp"].as_u64().unwrap();
+    assert!(spp >= 1 && spp < 100_000, "{spp}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bench_reports_speed_as_json() {
+    let o = run(&["bench", "--size", "32x32", "--spp", "2", "--runs", "1", "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(json["median_samples_per_second"].as_f64().unwrap() > 0.0);
+    assert_eq!(json["runs"][0]["max_depth"], 8);
+}
