@@ -163,7 +163,7 @@ fn ctrl_c_writes_the_image_rendered_so_far() {
     let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
     assert_eq!(json["interrupted"], true);
     let spp = json["spp"].as_u64().unwrap();
-    assert!(spp >= 1 && spp < 100_000, "{spp}");
+    assert!((1..100_000).contains(&spp), "{spp}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
