@@ -26,6 +26,28 @@ pub enum Command {
     Render(RenderArgs),
     /// Measure rendering speed (samples/s, rays/s) on the built-in Cornell box.
     Bench(BenchArgs),
+    /// Compare an image with a reference: MSE, RMSE, relative MSE, PSNR (8-bit and linear), SSIM.
+    ///
+    /// Both may be PNG, EXR or PFM. PSNR on 8-bit values uses MAX = 255 on the displayed (clamped,
+    /// sRGB) images; linear PSNR uses the reference's peak value.
+    Compare(CompareArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// The image to judge
+    pub image: PathBuf,
+    /// The reference image
+    pub reference: PathBuf,
+    /// Write a difference image: changed pixels in red over a grey copy of the reference
+    #[arg(long, value_name = "FILE")]
+    pub diff: Option<PathBuf>,
+    /// A pixel counts as changed when a channel differs by more than this many 8-bit steps
+    #[arg(long, default_value_t = 8)]
+    pub threshold: u8,
+    /// Print the metrics as JSON
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Options shared by everything that renders.

@@ -2,6 +2,7 @@
 
 mod args;
 mod bench;
+mod compare;
 mod interrupt;
 mod progress;
 mod render;
@@ -22,6 +23,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         args::Command::Render(a) => render::run(a),
         args::Command::Bench(a) => bench::run(a),
+        args::Command::Compare(a) => compare::run(a),
     };
     match result {
         Ok(code) => code,

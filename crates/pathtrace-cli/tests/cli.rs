@@ -175,3 +175,36 @@ fn bench_reports_speed_as_json() {
     assert!(json["median_samples_per_second"].as_f64().unwrap() > 0.0);
     assert_eq!(json["runs"][0]["max_depth"], 8);
 }
+
+#[test]
+fn compare_reports_metrics_writes_a_diff_and_rejects_mismatched_sizes() {
+    let dir = temp_dir("compare");
+    let a = dir.join("a.exr");
+    let b = dir.join("b.exr");
+    let small = dir.join("small.pfm");
+    for (path, spp, size) in [(&a, "2", "24x24"), (&b, "64", "24x24"), (&small, "1", "8x8")] {
+        let o = run(&["render", "--size", size, "--spp", spp, "-q", "-o", path.to_str().unwrap()]);
+        assert!(o.status.success());
+    }
+    let diff = dir.join("diff.png");
+    let o = run(&["compare", a.to_str().unwrap(), b.to_str().unwrap(), "--diff", diff.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let psnr = json["psnr_8bit_db"].as_f64().unwrap();
+    assert!(psnr > 5.0 && psnr < 60.0, "{psnr}");
+    assert!(json["mse"].as_f64().unwrap() > 0.0);
+    assert!(json["changed_pixels"].as_u64().unwrap() > 0);
+    assert!(pathtrace_scene::image_io::read_image(&diff).is_ok());
+    // An image against itself: zero error, infinite PSNR (null in JSON), SSIM 1.
+    let o = run(&["compare", a.to_str().unwrap(), a.to_str().unwrap(), "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(json["mse"], 0.0);
+    assert!(json["psnr_8bit_db"].is_null());
+    assert!((json["ssim"].as_f64().unwrap() - 1.0).abs() < 1e-12);
+    // Different sizes: one line, exit code 2.
+    let o = run(&["compare", a.to_str().unwrap(), small.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("differ in size") && err.trim_end().lines().count() == 1, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

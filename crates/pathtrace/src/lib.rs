@@ -18,3 +18,4 @@ pub mod integrator;
 pub mod render;
 
 pub use render::{render, Progress, RenderOutcome, RenderSession, RenderSettings};
+pub mod metrics;
