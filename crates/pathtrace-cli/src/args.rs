@@ -165,9 +165,13 @@ pub fn report_parse_error(e: clap::Error) -> ExitCode {
             }
         }
         _ => {
+            // clap's first paragraph, folded onto one line (e.g. the list of missing arguments).
             let rendered = e.render().to_string();
-            let first = rendered.lines().find(|l| !l.trim().is_empty()).unwrap_or("invalid arguments");
-            eprintln!("{} (see 'pathtrace --help')", first.trim_end());
+            let paragraph: Vec<&str> =
+                rendered.lines().map(str::trim).skip_while(|l| l.is_empty()).take_while(|l| !l.is_empty()).collect();
+            let message =
+                if paragraph.is_empty() { "error: invalid arguments".to_string() } else { paragraph.join(" ") };
+            eprintln!("{message} (see 'pathtrace --help')");
             ExitCode::from(crate::EXIT_USAGE)
         }
     }

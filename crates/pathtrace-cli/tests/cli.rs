@@ -98,6 +98,7 @@ fn bad_arguments_give_one_line_and_exit_code_2() {
         vec!["render".into(), "-o".into(), dir.join("missing/x.png").to_string_lossy().into()],
         vec!["render".into(), "--frobnicate".into()],
         vec!["explode".into()],
+        vec!["compare".into()],
     ];
     for args in cases {
         let o = pathtrace().args(&args).output().unwrap();
