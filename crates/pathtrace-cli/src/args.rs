@@ -64,7 +64,8 @@ pub struct QualityArgs {
     /// (biased teaching mode: loses indirect light)
     #[arg(long, default_value = "mis", value_parser = parse_from_str::<Strategy>)]
     pub strategy: Strategy,
-    /// Pixel sampler: independent (random supersampling) or stratified (jittered strata)
+    /// Pixel sampler: independent (random supersampling), stratified (jittered strata) or sobol
+    /// (low-discrepancy: Owen-scrambled Sobol')
     #[arg(long, default_value = "independent", value_parser = parse_from_str::<SamplerKind>)]
     pub sampler: SamplerKind,
     /// Random seed: the same seed, scene and settings give the same image

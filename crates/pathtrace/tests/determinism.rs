@@ -30,8 +30,11 @@ fn scene() -> Arc<Scene> {
 
 #[test]
 fn one_and_two_threads_give_bit_identical_films() {
-    for (strategy, sampler) in [(Strategy::Mis, SamplerKind::Independent), (Strategy::Mixture, SamplerKind::Stratified)]
-    {
+    for (strategy, sampler) in [
+        (Strategy::Mis, SamplerKind::Independent),
+        (Strategy::Mixture, SamplerKind::Stratified),
+        (Strategy::Bsdf, SamplerKind::Sobol),
+    ] {
         let mut s =
             RenderSettings { width: 40, height: 30, spp: 19, seed: 5, sampler, tile_size: 7, ..Default::default() };
         s.path.strategy = strategy;

@@ -6,6 +6,7 @@ pub mod hash;
 mod mis;
 mod pcg;
 mod sampler;
+pub mod sobol;
 pub mod warp;
 
 pub use distribution::Distribution1D;

@@ -8,9 +8,14 @@
 //!   of the grid, so when `nx·ny > n` a few random cells stay empty: each sample is still
 //!   uniform over the square (unbiased), and the strata are still disjoint. Sample indices past
 //!   `n` start a new, independently permuted round.
+//! - `sobol`: low-discrepancy — a padded, Owen-scrambled 2D Sobol' sequence, shuffled per pixel
+//!   and dimension (see `sobol.rs`); any power-of-two prefix of a pixel's samples is a
+//!   (0, k, 2)-net in every 2D dimension pair, and the hashed scrambles decorrelate pixels,
+//!   which gives the error a blue-noise-like spread across the image.
 
 use super::hash::{hash_words, permutation_element};
 use super::pcg::Pcg32;
+use super::sobol;
 use crate::math::Vec2;
 
 /// Which sampler to use.
@@ -19,15 +24,18 @@ pub enum SamplerKind {
     #[default]
     Independent,
     Stratified,
+    /// Low-discrepancy: Owen-scrambled Sobol'.
+    Sobol,
 }
 
 impl SamplerKind {
-    pub const NAMES: [&'static str; 2] = ["independent", "stratified"];
+    pub const NAMES: [&'static str; 3] = ["independent", "stratified", "sobol"];
 
     pub fn name(self) -> &'static str {
         match self {
             SamplerKind::Independent => "independent",
             SamplerKind::Stratified => "stratified",
+            SamplerKind::Sobol => "sobol",
         }
     }
 }
@@ -38,6 +46,7 @@ impl std::str::FromStr for SamplerKind {
         match s.to_ascii_lowercase().as_str() {
             "independent" | "random" => Ok(SamplerKind::Independent),
             "stratified" | "jittered" => Ok(SamplerKind::Stratified),
+            "sobol" | "low-discrepancy" | "ld" => Ok(SamplerKind::Sobol),
             _ => Err(format!("unknown sampler '{s}' (expected one of: {})", Self::NAMES.join(", "))),
         }
     }
@@ -57,6 +66,7 @@ pub struct Sampler {
     seed: u64,
     strata_count: u32,
     pixel_hash: u64,
+    index: u32,
     index_in_round: u32,
     round: u32,
     dimension: u32,
@@ -72,6 +82,7 @@ impl Sampler {
             seed,
             strata_count: strata_count.max(1),
             pixel_hash: 0,
+            index: 0,
             index_in_round: 0,
             round: 0,
             dimension: 0,
@@ -87,6 +98,7 @@ impl Sampler {
     #[inline(always)]
     pub fn start(&mut self, x: u32, y: u32, index: u32) {
         self.pixel_hash = hash_words(&[self.seed, ((x as u64) << 32) | y as u64]);
+        self.index = index;
         self.index_in_round = index % self.strata_count;
         self.round = index / self.strata_count;
         self.dimension = 0;
@@ -115,6 +127,11 @@ impl Sampler {
                 let jitter = self.rng.next_f32();
                 ((stratum as f32 + jitter) / n as f32).min(ONE_MINUS_EPSILON)
             }
+            SamplerKind::Sobol => {
+                let h = self.next_dimension_hash();
+                let j = sobol::shuffle(self.index, h as u32);
+                sobol::to_unit(sobol::owen_scramble(sobol::sobol_dim0(j), (h >> 32) as u32))
+            }
         }
     }
 
@@ -138,6 +155,16 @@ impl Sampler {
                 Vec2::new(
                     ((cx as f32 + jx) / nx as f32).min(ONE_MINUS_EPSILON),
                     ((cy as f32 + jy) / ny as f32).min(ONE_MINUS_EPSILON),
+                )
+            }
+            SamplerKind::Sobol => {
+                let h = self.next_dimension_hash();
+                let j = sobol::shuffle(self.index, h as u32);
+                let sx = (h >> 32) as u32;
+                let sy = hash_words(&[h]) as u32;
+                Vec2::new(
+                    sobol::to_unit(sobol::owen_scramble(sobol::sobol_dim0(j), sx)),
+                    sobol::to_unit(sobol::owen_scramble(sobol::sobol_dim1(j), sy)),
                 )
             }
         }
@@ -199,8 +226,40 @@ mod tests {
     }
 
     #[test]
+    fn sobol_2d_dimensions_are_nets_in_every_pixel() {
+        let n = 64u32;
+        for (px, py) in [(0, 0), (5, 9), (300, 17)] {
+            let mut s = Sampler::new(SamplerKind::Sobol, 3, n);
+            for dim in 0..4 {
+                for (nx, ny) in [(8usize, 8usize), (64, 1), (1, 64), (16, 4), (2, 32)] {
+                    let mut cells = vec![0; 64];
+                    for i in 0..n {
+                        s.start(px, py, i);
+                        for _ in 0..dim {
+                            s.next_2d();
+                        }
+                        let p = s.next_2d();
+                        cells[(p.y * ny as f32) as usize * nx + (p.x * nx as f32) as usize] += 1;
+                    }
+                    assert!(cells.iter().all(|&c| c == 1), "pixel ({px},{py}) dim {dim} grid {nx}x{ny}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sobol_differs_between_pixels() {
+        let mut s = Sampler::new(SamplerKind::Sobol, 3, 16);
+        s.start(0, 0, 0);
+        let a = s.next_2d();
+        s.start(1, 0, 0);
+        let b = s.next_2d();
+        assert_ne!(a, b);
+    }
+
+    #[test]
     fn samplers_are_deterministic() {
-        for kind in [SamplerKind::Independent, SamplerKind::Stratified] {
+        for kind in [SamplerKind::Independent, SamplerKind::Stratified, SamplerKind::Sobol] {
             let draw = || {
                 let mut s = Sampler::new(kind, 11, 16);
                 s.start(3, 4, 5);
