@@ -3,6 +3,7 @@
 
 pub mod builtin;
 pub mod image_io;
+pub mod mesh;
 
 use pathtrace::Scene;
 
