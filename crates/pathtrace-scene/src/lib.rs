@@ -1,8 +1,10 @@
 //! Scene formats for pathtrace: every way a scene arrives (today: the built-in scenes) becomes a
-//! [`pathtrace::Scene`] through the engine's `SceneBuilder`; plus image reading and writing.
+//! [`pathtrace::Scene`] through the engine's `SceneBuilder`; plus mesh files ([`mesh`]: OBJ, PLY) and
+//! image reading and writing.
 
 pub mod builtin;
 pub mod image_io;
+pub mod mesh;
 
 use pathtrace::Scene;
 

@@ -1,7 +1,8 @@
-//! Indexed triangle meshes: shared vertex positions (and optional normals) with index triples.
+//! Indexed triangle meshes: shared vertex positions (and optional normals and texture
+//! coordinates) with index triples.
 //! The scene builder expands a mesh into triangle primitives.
 
-use crate::math::Vec3;
+use crate::math::{Vec2, Vec3};
 
 /// What can be wrong with a mesh.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -10,8 +11,12 @@ pub enum MeshError {
     IndexOutOfRange { triangle: usize, index: u32, count: usize },
     #[error("the mesh has {positions} positions but {normals} normals")]
     NormalCountMismatch { positions: usize, normals: usize },
+    #[error("the mesh has {positions} positions but {uvs} texture coordinates")]
+    UvCountMismatch { positions: usize, uvs: usize },
     #[error("vertex {0} has a non-finite coordinate")]
     NonFinite(usize),
+    #[error("vertex {0} has a non-finite normal or texture coordinate")]
+    NonFiniteAttribute(usize),
 }
 
 /// An indexed triangle mesh.
@@ -21,10 +26,12 @@ pub struct TriangleMesh {
     pub indices: Vec<[u32; 3]>,
     /// Per-vertex shading normals, if the mesh has them.
     pub normals: Option<Vec<Vec3>>,
+    /// Per-vertex texture coordinates, if the mesh has them.
+    pub uvs: Option<Vec<Vec2>>,
 }
 
 impl TriangleMesh {
-    /// Checks indices, normal count and finiteness.
+    /// Checks indices, normal and texture-coordinate counts and finiteness.
     pub fn validate(&self) -> Result<(), MeshError> {
         if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
             return Err(MeshError::NonFinite(i));
@@ -32,6 +39,17 @@ impl TriangleMesh {
         if let Some(n) = &self.normals {
             if n.len() != self.positions.len() {
                 return Err(MeshError::NormalCountMismatch { positions: self.positions.len(), normals: n.len() });
+            }
+            if let Some(i) = n.iter().position(|v| !v.is_finite()) {
+                return Err(MeshError::NonFiniteAttribute(i));
+            }
+        }
+        if let Some(uv) = &self.uvs {
+            if uv.len() != self.positions.len() {
+                return Err(MeshError::UvCountMismatch { positions: self.positions.len(), uvs: uv.len() });
+            }
+            if let Some(i) = uv.iter().position(|v| !v.is_finite()) {
+                return Err(MeshError::NonFiniteAttribute(i));
             }
         }
         let count = self.positions.len();
@@ -54,7 +72,23 @@ mod tests {
             positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
             indices: vec![[0, 1, 2], [0, 2, 3]],
             normals: None,
+            uvs: None,
         };
         assert_eq!(m.validate(), Err(MeshError::IndexOutOfRange { triangle: 1, index: 3, count: 3 }));
+    }
+
+    #[test]
+    fn uv_count_and_finiteness_are_checked() {
+        let mut m = TriangleMesh {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            indices: vec![[0, 1, 2]],
+            normals: None,
+            uvs: Some(vec![Vec2::ZERO; 2]),
+        };
+        assert_eq!(m.validate(), Err(MeshError::UvCountMismatch { positions: 3, uvs: 2 }));
+        m.uvs = Some(vec![Vec2::ZERO, Vec2::X, Vec2::new(f32::NAN, 0.0)]);
+        assert_eq!(m.validate(), Err(MeshError::NonFiniteAttribute(2)));
+        m.uvs = Some(vec![Vec2::ZERO, Vec2::X, Vec2::Y]);
+        assert_eq!(m.validate(), Ok(()));
     }
 }
