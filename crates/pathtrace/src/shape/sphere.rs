@@ -201,7 +201,7 @@ mod tests {
         let r2 = Ray::new(from, dir);
         let h2 = e.intersect(&r2, 0.0, f32::INFINITY).unwrap();
         let s = e.surface(&r2, &h2);
-        let expected = Vec3::new(0.353_553, 0.707_107, 0.0).normalize();
+        let expected = Vec3::new(0.353_553, std::f32::consts::FRAC_1_SQRT_2, 0.0).normalize();
         assert!((s.n_geometric - expected).length() < 1e-4, "{:?}", s.n_geometric);
     }
 }
