@@ -55,3 +55,15 @@ fn group_transforms_apply_after_object_transforms_innermost_first() {
     assert!((t - 8.0).abs() < 1e-3, "t = {t}");
     assert!(hit(Vec3::ZERO, Vec3::X).is_none());
 }
+
+#[test]
+fn the_documentation_example_loads_and_converts() {
+    let doc = include_str!("../../../docs/scene-format.md");
+    let start = doc.find("```toml\n").expect("a toml example") + "```toml\n".len();
+    let example = &doc[start..start + doc[start..].find("```").unwrap()];
+    let loaded = load_str(example, Format::Toml, "example.toml".as_ref()).unwrap();
+    assert_eq!((loaded.defaults.width, loaded.defaults.height, loaded.defaults.spp), (640, 480, 128));
+    let file = parse_str(example, Format::Toml, "example.toml".as_ref()).unwrap();
+    let json = to_string(&file, Format::Json).unwrap();
+    assert_eq!(parse_str(&json, Format::Json, "example.json".as_ref()).unwrap(), file);
+}

@@ -21,7 +21,7 @@ pub enum MaterialType {
 /// A material's scattering model and parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum MaterialKind {
-    /// Uniform hemisphere sampling of a Lambertian reflector (the teaching version).
+    /// The naive "uniform diffuse" model: scatters uniformly over the hemisphere (not Lambertian).
     Diffuse { albedo: Triple },
     /// Lambertian reflector with cosine-weighted sampling.
     Lambertian { albedo: Triple },
