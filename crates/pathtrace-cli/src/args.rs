@@ -60,17 +60,17 @@ pub struct QualityArgs {
     /// -1 = unlimited (Russian roulette ends paths) [default: the scene's]
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_depth)]
     pub max_depth: Option<i32>,
-    /// Direction sampling: mis (default; unbiased, least noise), bsdf, mixture, or light
-    /// (biased teaching mode: loses indirect light)
-    #[arg(long, default_value = "mis", value_parser = parse_from_str::<Strategy>)]
-    pub strategy: Strategy,
+    /// Direction sampling: mis (unbiased, least noise), bsdf, mixture, or light (biased
+    /// teaching mode: loses indirect light) [default: the scene's, else mis]
+    #[arg(long, value_parser = parse_from_str::<Strategy>)]
+    pub strategy: Option<Strategy>,
     /// Pixel sampler: independent (random supersampling), stratified (jittered strata) or sobol
-    /// (low-discrepancy: Owen-scrambled Sobol')
-    #[arg(long, default_value = "independent", value_parser = parse_from_str::<SamplerKind>)]
-    pub sampler: SamplerKind,
-    /// Random seed: the same seed, scene and settings give the same image
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// (low-discrepancy: Owen-scrambled Sobol') [default: the scene's, else independent]
+    #[arg(long, value_parser = parse_from_str::<SamplerKind>)]
+    pub sampler: Option<SamplerKind>,
+    /// Random seed: the same seed, scene and settings give the same image [default: the scene's, else 0]
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Worker threads [default: one per core]
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
@@ -78,7 +78,7 @@ pub struct QualityArgs {
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// A built-in scene name (cornell-box)
+    /// A scene file (.toml or .json, see docs/scene-format.md) or a built-in scene name (cornell-box)
     #[arg(default_value = "cornell-box")]
     pub scene: String,
     /// Samples per pixel [default: the scene's, 256 for cornell-box]
@@ -90,7 +90,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub quality: QualityArgs,
     /// Output file; the format follows the extension: .png (tone mapped, sRGB), .exr or .pfm
-    /// (linear radiance) [default: SCENE.png]
+    /// (linear radiance) [default: the scene's name or file stem + .png]
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// Exposure in stops applied before tone mapping (PNG only)

@@ -14,7 +14,8 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Duration;
 
-/// Render settings from the scene's defaults overridden by the command line.
+/// Render settings: each from the command line if given, else from the scene, else the
+/// engine's default.
 pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &RenderDefaults) -> RenderSettings {
     let (width, height) = q.size.unwrap_or((d.width, d.height));
     let mut s = RenderSettings {
@@ -22,12 +23,12 @@ pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &R
         height,
         spp: if time.is_some() { spp.unwrap_or(0) } else { spp.unwrap_or(d.spp) },
         time_limit: time.map(Duration::from_secs_f64),
-        sampler: q.sampler,
-        seed: q.seed,
+        sampler: q.sampler.or(d.sampler).unwrap_or_default(),
+        seed: q.seed.or(d.seed).unwrap_or(0),
         threads: q.threads.unwrap_or(0),
         ..RenderSettings::default()
     };
-    s.path.strategy = q.strategy;
+    s.path.strategy = q.strategy.or(d.strategy).unwrap_or_default();
     s.path.max_depth = q.max_depth.unwrap_or(d.max_depth);
     s
 }
@@ -48,7 +49,7 @@ fn check_output(path: &Path) -> Result<(), CliError> {
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let loaded = scene_arg::load(&a.scene)?;
     let settings = settings_from(&a.quality, a.spp, a.time, &loaded.defaults);
-    let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", a.scene)));
+    let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", scene_arg::stem(&a.scene))));
     check_output(&output)?;
     if !a.exposure.is_finite() {
         return Err(CliError::usage("--exposure must be a finite number of stops"));

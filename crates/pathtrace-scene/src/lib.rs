@@ -1,11 +1,14 @@
-//! Scene formats for pathtrace: every way a scene arrives (today: the built-in scenes) becomes a
-//! [`pathtrace::Scene`] through the engine's `SceneBuilder`; plus mesh files ([`mesh`]: OBJ, PLY) and
-//! image reading and writing.
+//! Scene formats for pathtrace: every way a scene arrives (native TOML/JSON files, the built-in
+//! scenes, which are embedded native files) becomes a [`pathtrace::Scene`] through the engine's
+//! `SceneBuilder`; plus mesh files ([`mesh`]: OBJ, PLY) and image reading and writing.
 
 pub mod builtin;
 pub mod image_io;
 pub mod mesh;
+pub mod native;
 
+use pathtrace::integrator::Strategy;
+use pathtrace::sampling::SamplerKind;
 use pathtrace::Scene;
 
 /// What a scene suggests for rendering it, before command-line overrides.
@@ -16,6 +19,12 @@ pub struct RenderDefaults {
     pub spp: u32,
     /// Maximum path segments; -1 is unlimited.
     pub max_depth: i32,
+    /// Direction sampling strategy, if the scene names one.
+    pub strategy: Option<Strategy>,
+    /// Pixel sampler, if the scene names one.
+    pub sampler: Option<SamplerKind>,
+    /// Random seed, if the scene gives one.
+    pub seed: Option<u64>,
 }
 
 /// A built scene with its suggested render settings.

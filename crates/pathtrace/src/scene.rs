@@ -337,7 +337,9 @@ fn shape_name(s: &Shape) -> &'static str {
     }
 }
 
-fn validate_material(m: &Material) -> Result<(), BuildError> {
+/// Checks a material's parameters (albedos in [0, 1], positive ior, …) as [`SceneBuilder::build`]
+/// does, so front ends can report a bad material where it is defined.
+pub fn validate_material(m: &Material) -> Result<(), BuildError> {
     let colour_ok = |c: crate::math::Rgb| c.is_finite() && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0;
     let err = |s: String| Err(BuildError::Material(s));
     match m {

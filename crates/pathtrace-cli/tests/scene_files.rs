@@ -1,0 +1,93 @@
+//! `pathtrace render FILE.toml|FILE.json`: scene files load, their settings apply unless the
+//! command line overrides them, and a bad file gives one `file:line:col` line and exit code 2.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("pathtrace-scenes-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_pathtrace")).current_dir(dir).args(args).output().unwrap()
+}
+
+const SMALL: &str = r#"[render]
+width = 24
+height = 16
+spp = 2
+seed = 3
+
+[camera]
+look_from = [0, 0, -4]
+look_at = [0, 0, 0]
+
+[materials.lamp]
+type = "emissive"
+radiance = 2
+
+[[objects]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+material = "lamp"
+"#;
+
+#[test]
+fn a_small_scene_file_renders_at_its_own_settings() {
+    let dir = temp_dir("small");
+    std::fs::write(dir.join("ball.toml"), SMALL).unwrap();
+    let o = run_in(&dir, &["render", "ball.toml", "--quiet", "--stats-json", "stats.json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // The default output is the file stem + .png, at the size the file asks for.
+    let img = pathtrace_scene::image_io::read_image(&dir.join("ball.png")).unwrap();
+    assert_eq!((img.width, img.height), (24, 16));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("stats.json")).unwrap()).unwrap();
+    assert_eq!((stats["spp"].as_u64(), stats["seed"].as_u64()), (Some(2), Some(3)));
+
+    // The command line wins over the file; JSON works too.
+    let json = dir.join("ball.json");
+    let file = pathtrace_scene::native::parse_str(SMALL, pathtrace_scene::native::Format::Toml, "x.toml".as_ref());
+    std::fs::write(
+        &json,
+        pathtrace_scene::native::to_string(&file.unwrap(), pathtrace_scene::native::Format::Json).unwrap(),
+    )
+    .unwrap();
+    let o =
+        run_in(&dir, &["render", "ball.json", "--quiet", "--size", "8x8", "--seed", "9", "--stats-json", "s2.json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = pathtrace_scene::image_io::read_image(&dir.join("ball.png")).unwrap();
+    assert_eq!((img.width, img.height), (8, 8));
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("s2.json")).unwrap()).unwrap();
+    assert_eq!((stats["spp"].as_u64(), stats["seed"].as_u64()), (Some(2), Some(9)));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_bad_scene_file_gives_its_location_exit_code_2_and_no_image() {
+    let dir = temp_dir("bad");
+    std::fs::write(dir.join("bad.toml"), SMALL.replace("material = \"lamp\"", "material = \"lmap\"")).unwrap();
+    let o = run_in(&dir, &["render", "bad.toml", "--quiet"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("bad.toml:19:12: unknown material `lmap`"), "{err}");
+    assert!(!dir.join("bad.png").exists());
+
+    std::fs::write(dir.join("syntax.json"), "{\"camera\": {\"look_from\": [0, 0, -4],\n \"look_at\": [0 0 0]}}")
+        .unwrap();
+    let o = run_in(&dir, &["render", "syntax.json", "--quiet"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("syntax.json:2:"), "{err}");
+
+    let o = run_in(&dir, &["render", "missing.toml", "--quiet"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("missing.toml:1:1: cannot read"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

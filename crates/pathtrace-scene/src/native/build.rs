@@ -1,0 +1,208 @@
+//! [`SceneFile`] → [`LoadedScene`] through the engine's `SceneBuilder`: materials by name, the
+//! scene graph flattened (an object's own transform first, then each enclosing group's, innermost
+//! first), meshes loaded relative to the scene file, and every failure reported at its item.
+
+use super::error::SceneError;
+use super::locate::ItemPath;
+use super::model::{CameraSection, GroupDef, MaterialDef, MaterialKind, ObjectDef, RenderSection, SceneFile, ShapeDef};
+use super::parse::Source;
+use super::transform::compose;
+use super::values::vec3;
+use crate::{LoadedScene, RenderDefaults};
+use pathtrace::light::Emission;
+use pathtrace::material::{Dielectric, Diffuse, Glossy, Lambertian, Material, Mirror};
+use pathtrace::math::{Transform, Vec3};
+use pathtrace::scene::{validate_material, BuildError};
+use pathtrace::shape::{Plane, Quad, Shape, Sphere, Triangle};
+use pathtrace::{Camera, CameraDesc, MaterialId, SceneBuilder};
+use std::collections::BTreeMap;
+
+/// Builds the scene a file describes; `src` locates errors and resolves relative mesh paths.
+pub fn build(file: &SceneFile, src: &Source) -> Result<LoadedScene, SceneError> {
+    let defaults = render_defaults(&file.render, &file.camera, src)?;
+    let mut ctx = Ctx { src, b: SceneBuilder::new(), ids: BTreeMap::new(), materials: &file.materials };
+    for (name, def) in &file.materials {
+        let id = ctx.add_material(name, def)?;
+        ctx.ids.insert(name.clone(), id);
+    }
+    let root = ItemPath::root();
+    for (i, o) in file.objects.iter().enumerate() {
+        ctx.add_object(o, &Transform::IDENTITY, &root.field("objects").index(i))?;
+    }
+    for (i, g) in file.groups.iter().enumerate() {
+        ctx.add_group(g, &Transform::IDENTITY, &root.field("groups").index(i))?;
+    }
+    let camera = camera_desc(&file.camera);
+    Camera::new(&camera, defaults.width, defaults.height)
+        .map_err(|e| src.error_at(&root.field("camera"), format!("invalid camera: {e}")))?;
+    ctx.b.camera(camera);
+    let scene = ctx.b.build().map_err(|e| match e {
+        BuildError::Empty => SceneError::whole_file(&src.path, "the scene has no objects (add an [[objects]] entry)"),
+        BuildError::NoLights => src.error_at(
+            &root.field("materials"),
+            "the scene has no lights: nothing would be visible (give an object an emissive material)",
+        ),
+        other => SceneError::whole_file(&src.path, other.to_string()),
+    })?;
+    Ok(LoadedScene { scene, defaults })
+}
+
+fn camera_desc(c: &CameraSection) -> CameraDesc {
+    CameraDesc {
+        look_from: vec3(&c.look_from),
+        look_at: vec3(&c.look_at),
+        up: c.up.as_ref().map_or(Vec3::Y, vec3),
+        vfov_degrees: c.vfov.map_or(CameraSection::DEFAULT_VFOV, |v| v.f32()),
+        focal_length: c.focal_length.map_or(CameraSection::DEFAULT_FOCAL_LENGTH, |v| v.f32()),
+    }
+}
+
+/// Render settings with defaults filled in. With `camera.aspect` (= width / height) and not both
+/// sizes given, the missing size is derived from the given (or default) one, rounded.
+fn render_defaults(r: &RenderSection, c: &CameraSection, src: &Source) -> Result<RenderDefaults, SceneError> {
+    let at = |field: &str| ItemPath::root().field("render").field(field);
+    let max = RenderSection::MAX_SIZE;
+    for (name, v) in [("width", r.width), ("height", r.height)] {
+        if v.is_some_and(|v| !(1..=max).contains(&v)) {
+            return Err(src.error_at(&at(name), format!("{name} must be from 1 to {max} pixels")));
+        }
+    }
+    if r.spp == Some(0) {
+        return Err(src.error_at(&at("spp"), "spp must be at least 1"));
+    }
+    if r.max_depth.is_some_and(|d| d < -1) {
+        return Err(src.error_at(&at("max_depth"), "max_depth must be ≥ 0, or -1 for unlimited"));
+    }
+    let (dw, dh) = (RenderSection::DEFAULT_WIDTH, RenderSection::DEFAULT_HEIGHT);
+    let (width, height) = match (r.width, r.height, c.aspect) {
+        (w, h, None) => (w.unwrap_or(dw), h.unwrap_or(dh)),
+        (_, _, Some(a)) if a.get() <= 0.0 => {
+            return Err(src.error_at(&ItemPath::root().field("camera").field("aspect"), "aspect must be positive"));
+        }
+        (Some(w), Some(h), Some(_)) => (w, h),
+        (w, h, Some(a)) => {
+            let derive = |x: f64| x.round().clamp(1.0, max as f64) as u32;
+            match h {
+                Some(h) => (derive(h as f64 * a.get()), h),
+                None => {
+                    let w = w.unwrap_or(dw);
+                    (w, derive(w as f64 / a.get()))
+                }
+            }
+        }
+    };
+    Ok(RenderDefaults {
+        width,
+        height,
+        spp: r.spp.unwrap_or(RenderSection::DEFAULT_SPP),
+        max_depth: r.max_depth.unwrap_or(RenderSection::DEFAULT_MAX_DEPTH),
+        strategy: r.strategy.map(|s| s.0),
+        sampler: r.sampler.map(|s| s.0),
+        seed: r.seed,
+    })
+}
+
+struct Ctx<'a> {
+    src: &'a Source,
+    b: SceneBuilder,
+    ids: BTreeMap<String, MaterialId>,
+    materials: &'a BTreeMap<String, MaterialDef>,
+}
+
+impl Ctx<'_> {
+    fn add_material(&mut self, name: &str, def: &MaterialDef) -> Result<MaterialId, SceneError> {
+        let at = ItemPath::root().field("materials").field(name);
+        let m = match def.kind {
+            MaterialKind::Diffuse { albedo } => Material::Diffuse(Diffuse { albedo: albedo.rgb() }),
+            MaterialKind::Lambertian { albedo } => Material::Lambertian(Lambertian { albedo: albedo.rgb() }),
+            MaterialKind::Mirror { reflectance } => Material::Mirror(Mirror { reflectance: reflectance.rgb() }),
+            MaterialKind::Glossy { albedo, exponent } => {
+                Material::Glossy(Glossy { albedo: albedo.rgb(), exponent: exponent.f32() })
+            }
+            MaterialKind::Dielectric { ior, tint } => {
+                Material::Dielectric(Dielectric { ior: ior.f32(), tint: tint.rgb() })
+            }
+            MaterialKind::Emissive => Material::Black,
+        };
+        validate_material(&m).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
+        Ok(match def.emission {
+            None => self.b.material(m),
+            Some(e) => {
+                let radiance = e.radiance.rgb();
+                if radiance.r < 0.0 || radiance.g < 0.0 || radiance.b < 0.0 {
+                    return Err(self.src.error_at(&at, format!("material `{name}`: emitted radiance must be ≥ 0")));
+                }
+                self.b.material_with_emission(m, Emission { radiance, two_sided: e.two_sided })
+            }
+        })
+    }
+
+    fn add_group(&mut self, g: &GroupDef, outer: &Transform, at: &ItemPath) -> Result<(), SceneError> {
+        let t = self.transform(&g.transform, at)?.then(outer);
+        for (i, o) in g.objects.iter().enumerate() {
+            self.add_object(o, &t, &at.field("objects").index(i))?;
+        }
+        for (i, inner) in g.groups.iter().enumerate() {
+            self.add_group(inner, &t, &at.field("groups").index(i))?;
+        }
+        Ok(())
+    }
+
+    fn transform(&self, steps: &[super::model::TransformStep], at: &ItemPath) -> Result<Transform, SceneError> {
+        compose(steps).map_err(|(i, e)| self.src.error_at(&at.field("transform").index(i), e))
+    }
+
+    fn add_object(&mut self, o: &ObjectDef, outer: &Transform, at: &ItemPath) -> Result<(), SceneError> {
+        let t = self.transform(&o.transform, at)?.then(outer);
+        let Some(&id) = self.ids.get(&o.material) else {
+            let known: Vec<&str> = self.ids.keys().map(String::as_str).collect();
+            let known = if known.is_empty() { "none are defined".to_string() } else { known.join(", ") };
+            let msg = format!("unknown material `{}` (materials: {known})", o.material);
+            return Err(self.src.error_at(&at.field("material"), msg));
+        };
+        let emits = self.materials[&o.material].emission.is_some_and(|e| !e.radiance.rgb().is_black());
+        let err = |e: &dyn std::fmt::Display| self.src.error_at(at, e.to_string());
+        let degenerate = |what: &str| self.src.error_at(at, format!("degenerate {what}"));
+        let shape = match &o.shape {
+            ShapeDef::Sphere { center, radius } => {
+                if emits && t.uniform_scale().is_none() {
+                    return Err(err(&BuildError::EmissiveEllipsoid));
+                }
+                let sphere = Sphere::new(vec3(center), radius.f32());
+                Shape::Sphere(sphere.ok_or_else(|| degenerate("sphere: the radius must be positive"))?)
+            }
+            ShapeDef::Plane { point, normal } => {
+                if emits {
+                    return Err(err(&BuildError::EmissivePlane));
+                }
+                Shape::Plane(Plane::new(vec3(point), vec3(normal)).ok_or_else(|| degenerate("plane: zero normal"))?)
+            }
+            ShapeDef::Quad { q, u, v } => Shape::Quad(
+                Quad::new(vec3(q), vec3(u), vec3(v)).ok_or_else(|| degenerate("quad: u and v must span an area"))?,
+            ),
+            ShapeDef::Triangle { a, b, c } => Shape::Triangle(
+                Triangle::new(vec3(a), vec3(b), vec3(c), Triangle::FLAT)
+                    .ok_or_else(|| degenerate("triangle: its corners are on one line"))?,
+            ),
+            ShapeDef::Box { min, max } => {
+                return self.b.add_box(vec3(min), vec3(max), id, &t).map_err(|_| {
+                    degenerate("box: `max` must exceed `min` on every axis and the transform keep it solid")
+                });
+            }
+            ShapeDef::Mesh { file } => return self.add_mesh(file, id, &t, &at.field("file")),
+        };
+        self.b.shape(shape, id, &t).map_err(|e| err(&e))
+    }
+
+    fn add_mesh(&mut self, file: &str, id: MaterialId, t: &Transform, at: &ItemPath) -> Result<(), SceneError> {
+        let dir = self.src.path.parent().unwrap_or(std::path::Path::new(""));
+        let path = dir.join(file);
+        // The mesh error already names its file (and line or byte offset there).
+        let meshes =
+            crate::mesh::load_mesh(&path).map_err(|e| self.src.error_at(at, format!("cannot load mesh: {e}")))?;
+        for (_, mesh) in &meshes {
+            self.b.mesh(mesh, id, t).map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
+        }
+        Ok(())
+    }
+}

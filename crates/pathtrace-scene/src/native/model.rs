@@ -1,0 +1,99 @@
+//! The native scene model, [`SceneFile`]: what a `.toml` or `.json` scene says, before any
+//! geometry is built. One serde model serves both formats; unknown fields are errors everywhere.
+//! The field-by-field reference with defaults is docs/scene-format.md.
+
+pub use super::material::{EmissionDef, MaterialDef, MaterialKind, MaterialType};
+pub use super::object::{GroupDef, ObjectDef, ShapeDef, ShapeType};
+pub use super::transform::{LookAtDef, TransformStep};
+pub use super::values::{Num, Num3, SamplerName, StrategyName, Triple};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// A whole scene file.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Suggested render settings (command-line options override them).
+    #[serde(default)]
+    pub render: RenderSection,
+    /// The camera (required).
+    pub camera: CameraSection,
+    /// Materials by name.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialDef>,
+    /// Top-level objects.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub objects: Vec<ObjectDef>,
+    /// Groups of objects sharing a transform.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub groups: Vec<GroupDef>,
+}
+
+/// `[render]`: every field optional; the defaults are the `DEFAULT_*` constants.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RenderSection {
+    /// Image width in pixels (1 to 32768; default 512).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub width: Option<u32>,
+    /// Image height in pixels (1 to 32768; default 512, or derived from `camera.aspect`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub height: Option<u32>,
+    /// Samples per pixel (at least 1; default 64).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spp: Option<u32>,
+    /// Maximum path segments; -1 (the default) is unlimited.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_depth: Option<i32>,
+    /// Direction sampling strategy (default `mis`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub strategy: Option<StrategyName>,
+    /// Pixel sampler (default `independent`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sampler: Option<SamplerName>,
+    /// Random seed (default 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+}
+
+impl RenderSection {
+    /// Default image width.
+    pub const DEFAULT_WIDTH: u32 = 512;
+    /// Default image height.
+    pub const DEFAULT_HEIGHT: u32 = 512;
+    /// Default samples per pixel.
+    pub const DEFAULT_SPP: u32 = 64;
+    /// Default maximum depth (unlimited).
+    pub const DEFAULT_MAX_DEPTH: i32 = -1;
+    /// Largest accepted width or height.
+    pub const MAX_SIZE: u32 = 32768;
+}
+
+/// `[camera]`: a pinhole camera.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSection {
+    /// Eye position.
+    pub look_from: Num3,
+    /// Point looked at (centre of the image).
+    pub look_at: Num3,
+    /// Up direction (default `[0, 1, 0]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub up: Option<Num3>,
+    /// Vertical field of view in degrees, in (0, 180) (default 40).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vfov: Option<Num>,
+    /// Distance to the viewport (default 1; it does not change a pinhole image).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub focal_length: Option<Num>,
+    /// Width / height; used only when `render.width` and `render.height` are not both given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aspect: Option<Num>,
+}
+
+impl CameraSection {
+    /// Default vertical field of view in degrees.
+    pub const DEFAULT_VFOV: f32 = 40.0;
+    /// Default focal length.
+    pub const DEFAULT_FOCAL_LENGTH: f32 = 1.0;
+}
