@@ -67,3 +67,17 @@ fn the_documentation_example_loads_and_converts() {
     let json = to_string(&file, Format::Json).unwrap();
     assert_eq!(parse_str(&json, Format::Json, "example.json".as_ref()).unwrap(), file);
 }
+
+#[test]
+fn every_gallery_scene_loads() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/gallery");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            pathtrace_scene::native::load_file(&path).unwrap_or_else(|e| panic!("{e}"));
+            count += 1;
+        }
+    }
+    assert!(count >= 7, "found only {count} gallery scenes");
+}
