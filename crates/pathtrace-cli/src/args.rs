@@ -31,6 +31,57 @@ pub enum Command {
     /// Both may be PNG, EXR or PFM. PSNR on 8-bit values uses MAX = 255 on the displayed (clamped,
     /// sRGB) images; linear PSNR uses the reference's peak value.
     Compare(CompareArgs),
+    /// Measure convergence: error against a reference at 1, 2, 4, … spp for each strategy ×
+    /// sampler; writes a CSV, log–log SVG plots (error vs spp and vs time) and a table of the
+    /// time each method needs to reach a target error.
+    Converge(ConvergeArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ConvergeArgs {
+    /// A scene file (.toml, .json) or built-in scene name
+    #[arg(default_value = "cornell-box")]
+    pub scene: String,
+    /// Comma-separated strategies to compare
+    #[arg(long, default_value = "bsdf,mis")]
+    pub strategies: String,
+    /// Comma-separated samplers to compare
+    #[arg(long, default_value = "independent,sobol")]
+    pub samplers: String,
+    /// Highest sample count (a power of two); levels are 1, 2, 4, … up to it
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub max_spp: u32,
+    /// Reference image (EXR/PFM) of the same size; by default one is rendered with mis + sobol
+    #[arg(long, value_name = "FILE")]
+    pub reference: Option<PathBuf>,
+    /// Samples per pixel of the rendered reference
+    #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(1..))]
+    pub reference_spp: u32,
+    /// The relative MSE whose time-to-reach is tabulated
+    #[arg(long, default_value_t = 1e-2, value_parser = parse_positive)]
+    pub target_error: f64,
+    /// Image size [default: the scene's, at most 256x256]
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+    /// Maximum path length in segments (-1 unlimited) [default: the scene's]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_depth)]
+    pub max_depth: Option<i32>,
+    /// Worker threads [default: one per core]
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Base random seed
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Output folder [default: converge-SCENE]
+    #[arg(short, long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+}
+
+fn parse_positive(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
+        _ => Err(format!("'{s}' is not a positive number")),
+    }
 }
 
 #[derive(Debug, Args)]

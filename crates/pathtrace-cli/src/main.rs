@@ -3,11 +3,13 @@
 mod args;
 mod bench;
 mod compare;
+mod converge;
 mod interrupt;
 mod progress;
 mod render;
 mod scene_arg;
 mod stats_json;
+mod svg_plot;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -24,6 +26,7 @@ fn main() -> ExitCode {
         args::Command::Render(a) => render::run(a),
         args::Command::Bench(a) => bench::run(a),
         args::Command::Compare(a) => compare::run(a),
+        args::Command::Converge(a) => converge::run(a),
     };
     match result {
         Ok(code) => code,

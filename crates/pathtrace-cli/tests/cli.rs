@@ -209,3 +209,38 @@ fn compare_reports_metrics_writes_a_diff_and_rejects_mismatched_sizes() {
     assert!(err.contains("differ in size") && err.trim_end().lines().count() == 1, "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn converge_writes_csv_plots_and_a_table() {
+    let dir = temp_dir("converge");
+    let o = run(&[
+        "converge",
+        "--size",
+        "16x16",
+        "--max-spp",
+        "4",
+        "--reference-spp",
+        "64",
+        "--strategies",
+        "bsdf,mis",
+        "--samplers",
+        "independent,sobol",
+        "--max-depth",
+        "4",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(dir.join("convergence.csv")).unwrap();
+    // Header + 2 strategies × 2 samplers × 3 levels (1, 2, 4 spp).
+    assert_eq!(csv.lines().count(), 1 + 12, "{csv}");
+    for name in ["error-vs-spp.svg", "error-vs-time.svg"] {
+        let svg = std::fs::read_to_string(dir.join(name)).unwrap();
+        assert_eq!(svg.matches("<polyline").count(), 4);
+    }
+    let table = std::fs::read_to_string(dir.join("table.md")).unwrap();
+    assert!(table.contains("mis + sobol") && table.contains("bsdf + independent"));
+    let o = run(&["converge", "--max-spp", "3"]);
+    assert_eq!(o.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&dir);
+}
