@@ -13,7 +13,7 @@
 //!   (0, k, 2)-net in every 2D dimension pair, and the hashed scrambles decorrelate pixels,
 //!   which gives the error a blue-noise-like spread across the image.
 
-use super::hash::{hash_words, permutation_element};
+use super::hash::{hash_words, mix64, permutation_element};
 use super::pcg::Pcg32;
 use super::sobol;
 use crate::math::Vec2;
@@ -66,6 +66,8 @@ pub struct Sampler {
     seed: u64,
     strata_count: u32,
     pixel_hash: u64,
+    /// Hash of (pixel, round), from which each dimension's hash is one mix away.
+    round_hash: u64,
     index: u32,
     index_in_round: u32,
     round: u32,
@@ -82,6 +84,7 @@ impl Sampler {
             seed,
             strata_count: strata_count.max(1),
             pixel_hash: 0,
+            round_hash: 0,
             index: 0,
             index_in_round: 0,
             round: 0,
@@ -101,6 +104,7 @@ impl Sampler {
         self.index = index;
         self.index_in_round = index % self.strata_count;
         self.round = index / self.strata_count;
+        self.round_hash = hash_words(&[self.pixel_hash, self.round as u64]);
         self.dimension = 0;
         let stream = hash_words(&[self.pixel_hash, index as u64]);
         self.rng = Pcg32::new(stream, stream >> 1);
@@ -109,7 +113,8 @@ impl Sampler {
     fn next_dimension_hash(&mut self) -> u64 {
         let d = self.dimension;
         self.dimension += 1;
-        hash_words(&[self.pixel_hash, d as u64, self.round as u64])
+        // One SplitMix64 step per dimension: the golden-ratio increment decorrelates dimensions.
+        mix64(self.round_hash.wrapping_add((d as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15)))
     }
 
     /// One uniform number in `[0, 1)`.
@@ -161,7 +166,7 @@ impl Sampler {
                 let h = self.next_dimension_hash();
                 let j = sobol::shuffle(self.index, h as u32);
                 let sx = (h >> 32) as u32;
-                let sy = hash_words(&[h]) as u32;
+                let sy = mix64(h) as u32;
                 Vec2::new(
                     sobol::to_unit(sobol::owen_scramble(sobol::sobol_dim0(j), sx)),
                     sobol::to_unit(sobol::owen_scramble(sobol::sobol_dim1(j), sy)),

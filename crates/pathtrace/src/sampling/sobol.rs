@@ -38,20 +38,54 @@ pub fn sobol_dim0(i: u32) -> u32 {
     i.reverse_bits()
 }
 
+/// Generator columns of Sobol' dimension 1: c₀ = 2³¹, cᵢ = cᵢ₋₁ ⊕ (cᵢ₋₁ ≫ 1).
+const fn columns() -> [u32; 32] {
+    let mut c = [0u32; 32];
+    let mut v = 1u32 << 31;
+    let mut i = 0;
+    while i < 32 {
+        c[i] = v;
+        v ^= v >> 1;
+        i += 1;
+    }
+    c
+}
+
+/// The XOR of the columns selected by each possible byte of the index, for each of its four
+/// bytes: four table lookups instead of a loop over 32 bits.
+const fn byte_tables() -> [[u32; 256]; 4] {
+    let c = columns();
+    let mut t = [[0u32; 256]; 4];
+    let mut k = 0;
+    while k < 4 {
+        let mut b = 0;
+        while b < 256 {
+            let mut v = 0u32;
+            let mut bit = 0;
+            while bit < 8 {
+                if b & (1 << bit) != 0 {
+                    v ^= c[8 * k + bit];
+                }
+                bit += 1;
+            }
+            t[k][b] = v;
+            b += 1;
+        }
+        k += 1;
+    }
+    t
+}
+
+static DIM1_TABLES: [[u32; 256]; 4] = byte_tables();
+
 /// Sobol' dimension 1 of point `i`, as a 32-bit fraction.
 #[inline]
 pub fn sobol_dim1(i: u32) -> u32 {
-    let mut column = 1u32 << 31;
-    let mut v = 0u32;
-    let mut bits = i;
-    while bits != 0 {
-        if bits & 1 != 0 {
-            v ^= column;
-        }
-        bits >>= 1;
-        column ^= column >> 1;
-    }
-    v
+    let [b0, b1, b2, b3] = i.to_le_bytes();
+    DIM1_TABLES[0][b0 as usize]
+        ^ DIM1_TABLES[1][b1 as usize]
+        ^ DIM1_TABLES[2][b2 as usize]
+        ^ DIM1_TABLES[3][b3 as usize]
 }
 
 /// A 32-bit fraction as a float in `[0, 1)` (the top 24 bits, exactly representable).
@@ -76,6 +110,15 @@ mod tests {
             }
             cells.iter().all(|&c| c == 1)
         })
+    }
+
+    #[test]
+    fn table_lookup_matches_the_bitwise_definition() {
+        let c = columns();
+        for i in [0u32, 1, 2, 3, 255, 256, 12345, 0xdead_beef, u32::MAX] {
+            let direct = (0..32).filter(|b| i & (1 << b) != 0).fold(0, |v, b| v ^ c[b]);
+            assert_eq!(sobol_dim1(i), direct, "i = {i}");
+        }
     }
 
     #[test]
