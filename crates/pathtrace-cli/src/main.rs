@@ -3,6 +3,7 @@
 mod args;
 mod bench;
 mod compare;
+mod convert;
 mod interrupt;
 mod progress;
 mod render;
@@ -24,6 +25,7 @@ fn main() -> ExitCode {
         args::Command::Render(a) => render::run(a),
         args::Command::Bench(a) => bench::run(a),
         args::Command::Compare(a) => compare::run(a),
+        args::Command::Convert(a) => convert::run(a),
     };
     match result {
         Ok(code) => code,
