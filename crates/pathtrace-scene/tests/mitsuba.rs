@@ -156,6 +156,15 @@ fn arbitrary_input_never_panics() {
             let _ = convert_str(&base[..cut], Path::new("t.xml"), &[]);
         }
     }
+    // Single-character mutations of a full scene (the Cornell box in XML).
+    let full = cornell_xml();
+    for (i, _) in full.char_indices().step_by(5) {
+        for c in ["<", "\"", "$", "0", "-", ""] {
+            let end = full[i..].chars().next().map_or(i, |ch| i + ch.len_utf8());
+            let mutated = format!("{}{c}{}", &full[..i], &full[end..]);
+            let _ = convert_str(&mutated, Path::new("t.xml"), &[]);
+        }
+    }
     for junk in ["", "<", "<scene/>", "<scene><default/></scene>", "<scene><sensor/></scene>"] {
         let _ = convert_str(junk, Path::new("t.xml"), &[("a", "$a")]);
     }
@@ -284,4 +293,18 @@ fn public_scenes_load() {
             Err(e) => panic!("{s}: {e}"),
         }
     }
+}
+
+#[test]
+fn reference_cycles_are_errors() {
+    let e =
+        err(&scene(r#"<bsdf type="twosided" id="a"><ref id="a"/></bsdf><shape type="sphere"><ref id="a"/></shape>"#));
+    assert!(e.contains("nested too deeply"), "{e}");
+}
+
+#[test]
+fn deep_nesting_is_an_error() {
+    let deep = format!("<scene>{}{}</scene>", "<a>".repeat(10_000), "</a>".repeat(10_000));
+    let e = err(&deep);
+    assert!(e.starts_with("t.xml:1:"), "{e}");
 }

@@ -487,6 +487,13 @@ impl<'a> Conv<'a, '_> {
 
     /// The scattering part of a `<bsdf>` (after `<ref>`), unwrapping `twosided`.
     fn bsdf_kind(&mut self, e: &'a Element) -> R<MaterialKind> {
+        self.bsdf_kind_at(e, 0)
+    }
+
+    fn bsdf_kind_at(&mut self, e: &'a Element, depth: usize) -> R<MaterialKind> {
+        if depth > 8 {
+            return Err(self.src.error(e.offset, "BSDFs are nested too deeply (a <ref> cycle?)"));
+        }
         let ty = self.req_attr(e, "type")?;
         let grey = MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) };
         Ok(match ty {
@@ -499,7 +506,7 @@ impl<'a> Conv<'a, '_> {
                 match inner {
                     Some(i) => {
                         let i = self.deref(i)?;
-                        self.bsdf_kind(i)?
+                        self.bsdf_kind_at(i, depth + 1)?
                     }
                     None => MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) },
                 }

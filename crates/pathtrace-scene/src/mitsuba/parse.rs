@@ -55,23 +55,35 @@ impl Element {
     }
 }
 
-fn convert(node: roxmltree::Node) -> Element {
+/// Deepest element nesting accepted (real scenes use fewer than 10 levels).
+const MAX_DEPTH: usize = 64;
+
+fn convert(node: roxmltree::Node, depth: usize) -> Result<Element, usize> {
+    if depth > MAX_DEPTH {
+        return Err(node.range().start);
+    }
     let attrs = node
         .attributes()
         .map(|a| Attr { name: a.name().to_string(), value: a.value().to_string(), offset: a.range_value().start })
         .collect();
-    let children = node.children().filter(|c| c.is_element()).map(convert).collect();
-    Element { tag: node.tag_name().name().to_string(), attrs, children, offset: node.range().start }
+    let children =
+        node.children().filter(|c| c.is_element()).map(|c| convert(c, depth + 1)).collect::<Result<_, _>>()?;
+    Ok(Element { tag: node.tag_name().name().to_string(), attrs, children, offset: node.range().start })
 }
 
 /// Parses the text into the root `<scene>` element, substituting parameters: `<default>` values,
 /// overridden by `defines` (a define without a matching `<default>` gives a warning).
 pub fn parse(src: &XmlSource, defines: &[(&str, &str)], warnings: &mut Vec<String>) -> Result<Element, SceneError> {
+    // The XML parser recurses per nesting level: refuse absurd nesting before it runs.
+    if let Some(at) = too_deep(&src.text) {
+        return Err(src.error(at, format!("elements are nested more than {MAX_DEPTH} deep")));
+    }
     let doc = roxmltree::Document::parse(&src.text).map_err(|e| {
         let pos = e.pos();
         SceneError::at_line(&src.path, &src.text, pos.row as usize, pos.col as usize, format!("malformed XML: {e}"))
     })?;
-    let mut root = convert(doc.root_element());
+    let mut root = convert(doc.root_element(), 0)
+        .map_err(|at| src.error(at, format!("elements are nested more than {MAX_DEPTH} deep")))?;
     if root.tag != "scene" {
         return Err(src.error(root.offset, format!("the root element must be <scene>, not <{}>", root.tag)));
     }
@@ -93,6 +105,52 @@ pub fn parse(src: &XmlSource, defines: &[(&str, &str)], warnings: &mut Vec<Strin
     }
     substitute(&mut root, &params);
     Ok(root)
+}
+
+/// The offset of the first start tag nested deeper than [`MAX_DEPTH`], by a quick scan that
+/// skips comments, CDATA, declarations and quoted attribute values.
+fn too_deep(text: &str) -> Option<usize> {
+    let b = text.as_bytes();
+    let find = |from: usize, pat: &str| text.get(from..).and_then(|t| t.find(pat)).map(|i| from + i + pat.len());
+    let (mut i, mut depth) = (0usize, 0usize);
+    while i < b.len() {
+        if b[i] != b'<' {
+            i += 1;
+            continue;
+        }
+        let rest = &text[i..];
+        let skip = if rest.starts_with("<!--") {
+            find(i, "-->")
+        } else if rest.starts_with("<![CDATA[") {
+            find(i, "]]>")
+        } else if rest.starts_with("<?") {
+            find(i, "?>")
+        } else if rest.starts_with("<!") || rest.starts_with("</") {
+            depth = depth.saturating_sub(usize::from(rest.starts_with("</")));
+            find(i, ">")
+        } else {
+            // A start tag: find its end outside quotes.
+            let (mut j, mut quote) = (i + 1, None);
+            while j < b.len() {
+                match (quote, b[j]) {
+                    (None, q @ (b'"' | b'\'')) => quote = Some(q),
+                    (Some(q), c) if c == q => quote = None,
+                    (None, b'>') => break,
+                    _ => {}
+                }
+                j += 1;
+            }
+            if j < b.len() && b[j - 1] != b'/' {
+                depth += 1;
+                if depth > MAX_DEPTH {
+                    return Some(i);
+                }
+            }
+            Some(j + 1)
+        };
+        i = skip.unwrap_or(b.len());
+    }
+    None
 }
 
 fn substitute(e: &mut Element, params: &BTreeMap<String, String>) {
