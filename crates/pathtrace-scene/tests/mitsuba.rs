@@ -282,6 +282,8 @@ fn public_scenes_load() {
         "cornell-box-bitterli/scene_v3.xml",
         "teapot-simple/simple.xml",
         "cbox-classic/docs/scenes/integrator_depth_inf.xml",
+        "veach-mis/docs/scenes/integrator_direct_both.xml",
+        "veach-mis-bitterli/scene_v3.xml",
     ];
     for s in scenes {
         let path = dir.join(s);
@@ -307,4 +309,35 @@ fn deep_nesting_is_an_error() {
     let deep = format!("<scene>{}{}</scene>", "<a>".repeat(10_000), "</a>".repeat(10_000));
     let e = err(&deep);
     assert!(e.starts_with("t.xml:1:"), "{e}");
+}
+
+#[test]
+fn includes_splice_their_elements_and_locate_their_errors() {
+    let dir = std::env::temp_dir().join(format!("pathtrace-mitsuba-include-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("inc")).unwrap();
+    std::fs::write(
+        dir.join("inc/part.xml"),
+        format!("<scene version=\"3.0.0\">\n{LIGHT}\n<shape type=\"disk\"/></scene>"),
+    )
+    .unwrap();
+    let main = dir.join("main.xml");
+    std::fs::write(&main, scene(r#"<include filename="inc/part.xml"/>"#)).unwrap();
+    let (loaded, w) = load_mitsuba(&main, &[]).unwrap();
+    assert!(loaded.scene.primitive_count() >= 1);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("part.xml:3:1: shape `disk`"), "{w:?}");
+    std::fs::write(
+        dir.join("inc/part.xml"),
+        "<scene version=\"3.0.0\">\n  <shape type=\"sphere\"><ref id=\"no\"/></shape></scene>",
+    )
+    .unwrap();
+    let e = load_mitsuba(&main, &[]).unwrap_err().to_string();
+    assert!(e.contains("part.xml:2:") && e.contains("unknown ref id `no`"), "{e}");
+    std::fs::write(dir.join("inc/part.xml"), "<scene><include filename=\"inc/part.xml\"/></scene>").unwrap();
+    let e = load_mitsuba(&main, &[]).unwrap_err().to_string();
+    assert!(e.contains("include cycle"), "{e}");
+    std::fs::write(&main, scene(r#"<include filename="inc/missing.xml"/>"#)).unwrap();
+    let e = load_mitsuba(&main, &[]).unwrap_err().to_string();
+    assert!(e.contains("main.xml:8:") && e.contains("cannot read included file"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

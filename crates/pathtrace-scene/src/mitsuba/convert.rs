@@ -57,7 +57,6 @@ pub fn convert(src: &XmlSource, root: &Element, warnings: &mut Vec<String>) -> R
             "bsdf" | "texture" | "spectrum" | "rgb" => {} // used through <ref>
             "shape" => c.shape(e)?,
             "emitter" => c.top_emitter(e)?,
-            "include" => c.warn(e, "<include> is not supported; the included file is skipped"),
             other => c.warn(e, &format!("<{other}> is not supported and is skipped")),
         }
     }
@@ -140,8 +139,8 @@ fn split_numbers(s: &str) -> impl Iterator<Item = &str> {
 
 impl<'a> Conv<'a, '_> {
     fn warn(&mut self, e: &Element, msg: &str) {
-        let (line, col) = crate::native::line_column(&self.src.text, e.offset);
-        self.warnings.push(format!("{}:{line}:{col}: {msg}", self.src.path.display()));
+        let at = self.src.location(e.offset);
+        self.warnings.push(format!("{at}: {msg}"));
     }
 
     fn req_attr<'e>(&self, e: &'e Element, name: &str) -> R<&'e str> {
@@ -690,11 +689,8 @@ impl<'a> Conv<'a, '_> {
         let d = (v(&camera.look_from) - v(&camera.look_at)).length();
         let r = (0.005 * d).max(1e-4);
         for (i, (pos, intensity, offset)) in lights.into_iter().enumerate() {
-            let (line, col) = crate::native::line_column(&self.src.text, offset);
-            self.warnings.push(format!(
-                "{}:{line}:{col}: point emitter approximated by an emissive sphere of radius {r}",
-                self.src.path.display()
-            ));
+            let at = self.src.location(offset);
+            self.warnings.push(format!("{at}: point emitter approximated by an emissive sphere of radius {r}"));
             let scale = 1.0 / (std::f64::consts::PI * (r as f64).powi(2));
             let radiance = match intensity {
                 Triple::Splat(n) => Triple::Splat(num(n.get() * scale)),

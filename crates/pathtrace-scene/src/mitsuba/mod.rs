@@ -31,9 +31,9 @@ use std::path::Path;
 /// Parses and converts Mitsuba XML text into the native model; `path` names the file in errors
 /// and anchors relative mesh paths. Returns the model and the warnings about substitutions.
 pub fn convert_str(text: &str, path: &Path, defines: &[(&str, &str)]) -> Result<(SceneFile, Vec<String>), SceneError> {
-    let src = XmlSource { path: path.to_path_buf(), text: text.to_string() };
+    let mut src = XmlSource::new(path.to_path_buf(), text.to_string());
     let mut warnings = Vec::new();
-    let root = parse::parse(&src, defines, &mut warnings)?;
+    let root = parse::parse(&mut src, defines, &mut warnings)?;
     let file = convert::convert(&src, &root, &mut warnings)?;
     Ok((file, warnings))
 }
@@ -44,12 +44,26 @@ pub fn convert_file(path: &Path, defines: &[(&str, &str)]) -> Result<(SceneFile,
     convert_str(&text, path, defines)
 }
 
+/// Builds a converted scene; `path` is the XML file (mesh paths are relative to its folder).
+/// Build errors have no XML element to point at; they are reported at the file.
+pub fn build_model(file: &SceneFile, path: &Path) -> Result<LoadedScene, SceneError> {
+    let source = Source { path: path.to_path_buf(), text: String::new(), format: Format::Toml };
+    build(file, &source).map_err(|mut e| {
+        if e.message.starts_with("the scene has no lights") {
+            e.message = "the scene has no supported lights (area emitters on shapes, point emitters): \
+                         nothing would be visible"
+                .into();
+        } else if e.message.starts_with("the scene has no objects") {
+            e.message = "the scene has no supported shapes".into();
+        }
+        e
+    })
+}
+
 /// Loads and builds a Mitsuba XML scene text (see [`convert_str`]).
 pub fn load_str(text: &str, path: &Path, defines: &[(&str, &str)]) -> Result<(LoadedScene, Vec<String>), SceneError> {
     let (file, warnings) = convert_str(text, path, defines)?;
-    // Build errors have no native item to point at; they are reported at the file.
-    let source = Source { path: path.to_path_buf(), text: String::new(), format: Format::Toml };
-    Ok((build(&file, &source)?, warnings))
+    Ok((build_model(&file, path)?, warnings))
 }
 
 /// Loads and builds a Mitsuba XML scene file, with `defines` overriding its `<default>`
