@@ -35,6 +35,10 @@ pub enum Command {
     /// sampler; writes a CSV, log–log SVG plots (error vs spp and vs time) and a table of the
     /// time each method needs to reach a target error.
     Converge(ConvergeArgs),
+    /// Convert a scene file (Mitsuba 3 .xml, .toml or .json) to the native .toml or .json format.
+    ///
+    /// Substitutions the native format cannot express are printed as warnings.
+    Convert(ConvertArgs),
 }
 
 #[derive(Debug, Args)]
@@ -85,6 +89,25 @@ fn parse_positive(s: &str) -> Result<f64, String> {
 }
 
 #[derive(Debug, Args)]
+pub struct ConvertArgs {
+    /// The scene to read (.xml, .toml or .json)
+    pub input: PathBuf,
+    /// The file to write (.toml or .json); mesh paths stay relative to the input's folder
+    pub output: PathBuf,
+    /// Set a Mitsuba parameter (overrides its <default>); repeatable
+    #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub defines: Vec<(String, String)>,
+}
+
+/// Parses `NAME=VALUE`.
+pub fn parse_define(s: &str) -> Result<(String, String), String> {
+    match s.split_once('=') {
+        Some((n, v)) if !n.is_empty() => Ok((n.to_string(), v.to_string())),
+        _ => Err(format!("expected NAME=VALUE, got '{s}'")),
+    }
+}
+
+#[derive(Debug, Args)]
 pub struct CompareArgs {
     /// The image to judge
     pub image: PathBuf,
@@ -129,9 +152,13 @@ pub struct QualityArgs {
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// A scene file (.toml or .json, see docs/scene-format.md) or a built-in scene name (cornell-box)
+    /// A scene file (.toml, .json or Mitsuba 3 .xml, see docs/scene-format.md) or a built-in scene
+    /// name (cornell-box)
     #[arg(default_value = "cornell-box")]
     pub scene: String,
+    /// Set a Mitsuba XML scene parameter (overrides its <default name=NAME>); repeatable
+    #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub defines: Vec<(String, String)>,
     /// Samples per pixel [default: the scene's, 256 for cornell-box]
     #[arg(long, value_name = "N", conflicts_with = "time", value_parser = clap::value_parser!(u32).range(1..))]
     pub spp: Option<u32>,

@@ -4,6 +4,7 @@ mod args;
 mod bench;
 mod compare;
 mod converge;
+mod convert;
 mod interrupt;
 mod progress;
 mod render;
@@ -27,6 +28,7 @@ fn main() -> ExitCode {
         args::Command::Bench(a) => bench::run(a),
         args::Command::Compare(a) => compare::run(a),
         args::Command::Converge(a) => converge::run(a),
+        args::Command::Convert(a) => convert::run(a),
     };
     match result {
         Ok(code) => code,

@@ -47,7 +47,7 @@ fn check_output(path: &Path) -> Result<(), CliError> {
 }
 
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
-    let loaded = scene_arg::load(&a.scene)?;
+    let loaded = scene_arg::load_with(&a.scene, &a.defines)?;
     let settings = settings_from(&a.quality, a.spp, a.time, &loaded.defaults);
     let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", scene_arg::stem(&a.scene))));
     check_output(&output)?;

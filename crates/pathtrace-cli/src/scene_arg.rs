@@ -1,19 +1,64 @@
-//! Turning the SCENE argument into a scene: a path ending in .toml or .json is a scene file,
-//! anything else a built-in scene name.
+//! Turning the SCENE argument into a scene: a path ending in .toml or .json is a scene file, one
+//! ending in .xml a Mitsuba 3 scene, anything else a built-in scene name.
 
 use crate::CliError;
+use pathtrace_scene::mitsuba;
 use pathtrace_scene::native::{self, Format};
 use pathtrace_scene::{builtin, LoadedScene};
 use std::path::Path;
 
 /// True if the argument names a scene file rather than a built-in scene.
 fn is_file(arg: &str) -> bool {
-    Format::from_path(Path::new(arg)).is_some()
+    Format::from_path(Path::new(arg)).is_some() || is_xml(Path::new(arg))
+}
+
+/// True for a `.xml` path (any case).
+pub fn is_xml(path: &Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+}
+
+/// Prints each import warning to stderr as `warning: ...`.
+pub fn print_warnings(warnings: &[String]) {
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+}
+
+/// The defines as the importer takes them.
+fn pairs(defines: &[(String, String)]) -> Vec<(&str, &str)> {
+    defines.iter().map(|(n, v)| (n.as_str(), v.as_str())).collect()
+}
+
+/// Reads any scene file into the native model (Mitsuba XML is converted, printing warnings).
+pub fn read_model(path: &Path, defines: &[(String, String)]) -> Result<native::SceneFile, CliError> {
+    if is_xml(path) {
+        let (file, warnings) =
+            mitsuba::convert_file(path, &pairs(defines)).map_err(|e| CliError::usage(e.to_string()))?;
+        print_warnings(&warnings);
+        return Ok(file);
+    }
+    if !defines.is_empty() {
+        return Err(CliError::usage("-D/--define applies only to Mitsuba .xml scenes"));
+    }
+    native::read_file(path).map(|(_, f)| f).map_err(|e| CliError::usage(e.to_string()))
 }
 
 /// Loads a scene file or a built-in scene; errors are one line (with file:line:col for files)
 /// and exit code 2.
 pub fn load(arg: &str) -> Result<LoadedScene, CliError> {
+    load_with(arg, &[])
+}
+
+/// [`load`] with Mitsuba parameter overrides (`-D NAME=VALUE`); import warnings go to stderr.
+pub fn load_with(arg: &str, defines: &[(String, String)]) -> Result<LoadedScene, CliError> {
+    if is_xml(Path::new(arg)) {
+        // Warnings first, so they are seen even when the scene then fails to build.
+        let file = read_model(Path::new(arg), defines)?;
+        return mitsuba::build_model(&file, Path::new(arg)).map_err(|e| CliError::usage(e.to_string()));
+    }
+    if !defines.is_empty() {
+        return Err(CliError::usage("-D/--define applies only to Mitsuba .xml scenes"));
+    }
     if is_file(arg) {
         return native::load_file(Path::new(arg)).map_err(|e| CliError::usage(e.to_string()));
     }
@@ -21,7 +66,7 @@ pub fn load(arg: &str) -> Result<LoadedScene, CliError> {
         Some(Ok(loaded)) => Ok(loaded),
         Some(Err(e)) => Err(CliError::usage(format!("built-in scene '{arg}' failed to build: {e}"))),
         None => Err(CliError::usage(format!(
-            "unknown scene '{arg}': give a .toml or .json scene file, or a built-in scene ({})",
+            "unknown scene '{arg}': give a .toml, .json or .xml scene file, or a built-in scene ({})",
             builtin::NAMES.join(", ")
         ))),
     }

@@ -91,3 +91,47 @@ fn a_bad_scene_file_gives_its_location_exit_code_2_and_no_image() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("missing.toml:1:1: cannot read"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+const XML: &str = r#"<scene version="3.0.0">
+    <default name="res" value="20"/>
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 0, -4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <sampler type="independent"><integer name="sample_count" value="2"/></sampler>
+        <film type="hdrfilm"><integer name="width" value="$res"/><integer name="height" value="10"/></film>
+    </sensor>
+    <shape type="sphere"><emitter type="area"><rgb name="radiance" value="2, 2, 2"/></emitter></shape>
+    <shape type="cylinder"/>
+</scene>
+"#;
+
+#[test]
+fn mitsuba_xml_renders_with_defines_and_warnings_and_converts() {
+    let dir = temp_dir("xml");
+    std::fs::write(dir.join("ball.xml"), XML).unwrap();
+    let o = run_in(&dir, &["render", "ball.xml", "--quiet", "-D", "res=12"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("warning: ball.xml:9:5: shape `cylinder` is not supported"), "{stderr}");
+    let img = pathtrace_scene::image_io::read_image(&dir.join("ball.png")).unwrap();
+    assert_eq!((img.width, img.height), (12, 10));
+
+    let o = run_in(&dir, &["convert", "ball.xml", "ball.toml", "--define", "res=14"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run_in(&dir, &["render", "ball.toml", "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = pathtrace_scene::image_io::read_image(&dir.join("ball.png")).unwrap();
+    assert_eq!((img.width, img.height), (14, 10));
+
+    std::fs::write(
+        dir.join("bad.xml"),
+        "<scene version=\"3\">\n  <shape type=\"sphere\"><ref id=\"x\"/></shape></scene>",
+    )
+    .unwrap();
+    let o = run_in(&dir, &["render", "bad.xml", "--quiet"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).starts_with("error: bad.xml:2:"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}

@@ -5,6 +5,7 @@
 pub mod builtin;
 pub mod image_io;
 pub mod mesh;
+pub mod mitsuba;
 pub mod native;
 
 use pathtrace::integrator::Strategy;

@@ -33,7 +33,7 @@ mod transform;
 mod values;
 
 pub use build::build;
-pub use error::SceneError;
+pub use error::{line_column, SceneError};
 pub use locate::{ItemPath, Key};
 pub use model::SceneFile;
 pub use parse::{parse_str, to_string, Format, Source};

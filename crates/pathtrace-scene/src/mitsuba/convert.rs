@@ -1,0 +1,741 @@
+//! The element tree → a native [`SceneFile`]. What the native model cannot express is replaced by
+//! the nearest thing it can, and each replacement is named in a warning.
+
+use super::parse::{Element, XmlSource};
+use crate::native::model::{
+    CameraSection, EmissionDef, LookAtDef, MaterialDef, MaterialKind, Num, Num3, ObjectDef, RenderSection, SamplerName,
+    SceneFile, ShapeDef, TransformStep, Triple,
+};
+use crate::native::SceneError;
+use pathtrace::math::{Transform, Vec3};
+use pathtrace::sampling::SamplerKind;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+type R<T> = Result<T, SceneError>;
+
+/// Converts a parsed `<scene>`; warnings are appended to `warnings`.
+pub fn convert(src: &XmlSource, root: &Element, warnings: &mut Vec<String>) -> R<SceneFile> {
+    let mut c = Conv {
+        src,
+        warnings,
+        ids: BTreeMap::new(),
+        search: Vec::new(),
+        materials: BTreeMap::new(),
+        bsdf_names: BTreeMap::new(),
+        objects: Vec::new(),
+        point_lights: Vec::new(),
+    };
+    collect_ids(root, &mut c.ids);
+    let dir = src.path.parent().map(Path::to_path_buf).unwrap_or_default();
+    c.search.push(dir.clone());
+    let mut render = RenderSection::default();
+    let mut camera = None;
+    let mut integrator_seen = false;
+    for e in &root.children {
+        match e.tag.as_str() {
+            "default" => {}
+            "path" => {
+                let v = c.req_attr(e, "value")?;
+                let p = dir.join(v);
+                if !p.is_dir() {
+                    return Err(src.error(e.offset_of("value"), format!("<path>: folder `{}` not found", p.display())));
+                }
+                c.search.push(p);
+            }
+            "integrator" => {
+                integrator_seen = true;
+                c.integrator(e, &mut render)?;
+            }
+            "sensor" => {
+                if camera.is_some() {
+                    c.warn(e, "only the first <sensor> is used");
+                } else {
+                    camera = Some(c.sensor(e, &mut render)?);
+                }
+            }
+            "bsdf" | "texture" | "spectrum" | "rgb" => {} // used through <ref>
+            "shape" => c.shape(e)?,
+            "emitter" => c.top_emitter(e)?,
+            other => c.warn(e, &format!("<{other}> is not supported and is skipped")),
+        }
+    }
+    if !integrator_seen {
+        render.max_depth = Some(-1);
+    }
+    let Some(camera) = camera else {
+        return Err(src.error(root.offset, "the scene has no <sensor>: a perspective sensor is required"));
+    };
+    c.add_point_lights(&camera)?;
+    Ok(SceneFile { render, camera, materials: c.materials, objects: c.objects, groups: Vec::new() })
+}
+
+fn collect_ids<'a>(e: &'a Element, ids: &mut BTreeMap<String, &'a Element>) {
+    if e.tag != "ref" {
+        if let Some(id) = e.attr("id") {
+            ids.entry(id.to_string()).or_insert(e);
+        }
+    }
+    for c in &e.children {
+        collect_ids(c, ids);
+    }
+}
+
+struct Conv<'a, 'w> {
+    src: &'a XmlSource,
+    warnings: &'w mut Vec<String>,
+    ids: BTreeMap<String, &'a Element>,
+    search: Vec<PathBuf>,
+    materials: BTreeMap<String, MaterialDef>,
+    /// Material names already made for `<bsdf id>` elements (by offset).
+    bsdf_names: BTreeMap<usize, String>,
+    objects: Vec<ObjectDef>,
+    /// Point lights: (position, intensity, where).
+    point_lights: Vec<(Vec3, Triple, usize)>,
+}
+
+fn num(x: f64) -> Num {
+    Num::new(x).unwrap_or(Num::from(0.0))
+}
+
+fn n3(v: Vec3) -> Num3 {
+    [num(v.x as f64), num(v.y as f64), num(v.z as f64)]
+}
+
+/// The IOR table Mitsuba accepts by name (a subset).
+fn named_ior(name: &str) -> Option<f64> {
+    Some(match name.to_ascii_lowercase().as_str() {
+        "vacuum" => 1.0,
+        "helium" => 1.00004,
+        "hydrogen" => 1.00013,
+        "air" => 1.000277,
+        "carbon dioxide" => 1.00045,
+        "water" => 1.333,
+        "acetone" => 1.36,
+        "ethanol" => 1.361,
+        "carbon tetrachloride" => 1.461,
+        "glycerol" => 1.4729,
+        "benzene" => 1.501,
+        "silicone oil" => 1.52045,
+        "bromine" => 1.661,
+        "water ice" => 1.31,
+        "fused quartz" => 1.458,
+        "pyrex" => 1.470,
+        "acrylic glass" => 1.49,
+        "polypropylene" => 1.49,
+        "bk7" => 1.5046,
+        "sodium chloride" => 1.544,
+        "amber" => 1.55,
+        "pet" => 1.575,
+        "diamond" => 2.419,
+        _ => return None,
+    })
+}
+
+/// Splits a list of numbers separated by commas and/or whitespace.
+fn split_numbers(s: &str) -> impl Iterator<Item = &str> {
+    s.split(|c: char| c == ',' || c.is_whitespace()).filter(|t| !t.is_empty())
+}
+
+impl<'a> Conv<'a, '_> {
+    fn warn(&mut self, e: &Element, msg: &str) {
+        let at = self.src.location(e.offset);
+        self.warnings.push(format!("{at}: {msg}"));
+    }
+
+    fn req_attr<'e>(&self, e: &'e Element, name: &str) -> R<&'e str> {
+        e.attr(name).ok_or_else(|| self.src.error(e.offset, format!("<{}> needs a `{name}` attribute", e.tag)))
+    }
+
+    fn number(&self, e: &Element, attr: &str, text: &str) -> R<f64> {
+        let x: f64 = text.trim().parse().map_err(|_| {
+            self.src.error(e.offset_of(attr), format!("`{text}` is not a number (in `{attr}` of <{}>)", e.tag))
+        })?;
+        Num::new(x).map(Num::get).ok_or_else(|| {
+            self.src
+                .error(e.offset_of(attr), format!("{text} is not allowed: numbers must be finite and within ±3.4e38"))
+        })
+    }
+
+    fn numbers(&self, e: &Element, attr: &str) -> R<Vec<f64>> {
+        let text = self.req_attr(e, attr)?;
+        split_numbers(text).map(|t| self.number(e, attr, t)).collect()
+    }
+
+    /// A 3-vector from `value="x y z"` / `value="x, y, z"` or `x`/`y`/`z` attributes (missing ones
+    /// are `default`).
+    fn vec3_of(&self, e: &Element, attr: &str, default: f64) -> R<Vec3> {
+        if e.attr(attr).is_some() {
+            let v = self.numbers(e, attr)?;
+            return match v.as_slice() {
+                [s] => Ok(Vec3::splat(*s as f32)),
+                [x, y, z] => Ok(Vec3::new(*x as f32, *y as f32, *z as f32)),
+                _ => Err(self.src.error(e.offset_of(attr), format!("`{attr}` needs one or three numbers"))),
+            };
+        }
+        let mut out = [default; 3];
+        for (i, axis) in ["x", "y", "z"].iter().enumerate() {
+            if let Some(t) = e.attr(axis) {
+                out[i] = self.number(e, axis, t)?;
+            }
+        }
+        Ok(Vec3::new(out[0] as f32, out[1] as f32, out[2] as f32))
+    }
+
+    /// Resolves `<ref id>` children to what they name.
+    fn deref(&self, e: &'a Element) -> R<&'a Element> {
+        if e.tag != "ref" {
+            return Ok(e);
+        }
+        let id = self.req_attr(e, "id")?;
+        self.ids.get(id).copied().ok_or_else(|| self.src.error(e.offset_of("id"), format!("unknown ref id `{id}`")))
+    }
+
+    /// The child property named `name` (any tag).
+    fn prop(&self, e: &'a Element, name: &str) -> Option<&'a Element> {
+        e.children.iter().find(|c| c.attr("name") == Some(name) && c.tag != "ref")
+    }
+
+    fn float(&self, e: &'a Element, name: &str) -> R<Option<f64>> {
+        let Some(p) = self.prop(e, name) else { return Ok(None) };
+        match p.tag.as_str() {
+            "float" | "integer" => Ok(Some(self.number(p, "value", self.req_attr(p, "value")?)?)),
+            other => Err(self.src.error(p.offset, format!("`{name}` must be a <float> or <integer>, not <{other}>"))),
+        }
+    }
+
+    fn integer(&self, e: &'a Element, name: &str) -> R<Option<i64>> {
+        let Some(p) = self.prop(e, name) else { return Ok(None) };
+        let text = self.req_attr(p, "value")?;
+        text.trim()
+            .parse::<i64>()
+            .map(Some)
+            .map_err(|_| self.src.error(p.offset_of("value"), format!("`{text}` is not an integer (in `{name}`)")))
+    }
+
+    fn string(&self, e: &'a Element, name: &str) -> R<Option<&'a str>> {
+        match self.prop(e, name) {
+            None => Ok(None),
+            Some(p) => Ok(Some(self.req_attr(p, "value")?)),
+        }
+    }
+
+    fn boolean(&self, e: &'a Element, name: &str) -> R<Option<bool>> {
+        let Some(p) = self.prop(e, name) else { return Ok(None) };
+        match self.req_attr(p, "value")?.trim() {
+            "true" => Ok(Some(true)),
+            "false" => Ok(Some(false)),
+            other => Err(self.src.error(p.offset_of("value"), format!("`{other}` is not true or false"))),
+        }
+    }
+
+    /// A colour property: `<rgb>`, `<spectrum>` (approximated when given per wavelength),
+    /// `<float>`; a texture or other value gives `None` with a warning.
+    fn color(&mut self, e: &'a Element, name: &str) -> R<Option<Triple>> {
+        let Some(p) = self.prop(e, name) else {
+            // A texture referenced by id: `<ref name="reflectance" id="..."/>`.
+            if e.children.iter().any(|c| c.tag == "ref" && c.attr("name") == Some(name)) {
+                self.warn(e, &format!("`{name}` is a texture reference: textures are not supported, using 0.5"));
+                return Ok(Some(Triple::Splat(num(0.5))));
+            }
+            return Ok(None);
+        };
+        match p.tag.as_str() {
+            "rgb" | "color" => {
+                let v = self.numbers(p, "value")?;
+                match v.as_slice() {
+                    [s] => Ok(Some(Triple::Splat(num(*s)))),
+                    [r, g, b] => Ok(Some(Triple::Each([num(*r), num(*g), num(*b)]))),
+                    _ => Err(self.src.error(p.offset_of("value"), "<rgb> needs three numbers (or one)")),
+                }
+            }
+            "float" | "integer" => Ok(Some(Triple::Splat(num(self.number(p, "value", self.req_attr(p, "value")?)?)))),
+            "spectrum" => self.spectrum(p).map(Some),
+            "texture" => {
+                self.warn(p, &format!("`{name}`: textures are not supported, using a constant 0.5"));
+                Ok(Some(Triple::Splat(num(0.5))))
+            }
+            other => Err(self.src.error(p.offset, format!("`{name}` must be a colour, not <{other}>"))),
+        }
+    }
+
+    /// `<spectrum value="0.5">` exactly; `value="400:0.1, 500:0.2, …"` averaged over 400–500,
+    /// 500–600 and 600–700 nm as blue, green and red (a rough approximation, with a warning).
+    fn spectrum(&mut self, p: &Element) -> R<Triple> {
+        let text = self.req_attr(p, "value")?;
+        if !text.contains(':') {
+            let v = self.numbers(p, "value")?;
+            return match v.as_slice() {
+                [s] => Ok(Triple::Splat(num(*s))),
+                _ => Err(self.src.error(p.offset_of("value"), "<spectrum> needs one number or wavelength:value pairs")),
+            };
+        }
+        let mut bins = [(0.0, 0usize); 3];
+        for pair in text.split(',').map(str::trim).filter(|t| !t.is_empty()) {
+            let Some((wl, v)) = pair.split_once(':') else {
+                return Err(self.src.error(p.offset_of("value"), format!("`{pair}` is not wavelength:value")));
+            };
+            let (wl, v) = (self.number(p, "value", wl)?, self.number(p, "value", v)?);
+            let bin = if wl >= 600.0 {
+                0
+            } else if wl >= 500.0 {
+                1
+            } else {
+                2
+            };
+            bins[bin].0 += v;
+            bins[bin].1 += 1;
+        }
+        let all: f64 = bins.iter().map(|b| b.0).sum::<f64>() / bins.iter().map(|b| b.1).sum::<usize>().max(1) as f64;
+        let avg = |b: (f64, usize)| if b.1 == 0 { all } else { b.0 / b.1 as f64 };
+        self.warn(p, "a per-wavelength <spectrum> is approximated by RGB band averages (600–700, 500–600, 400–500 nm)");
+        Ok(Triple::Each([num(avg(bins[0])), num(avg(bins[1])), num(avg(bins[2]))]))
+    }
+
+    // ---------------------------------------------------------------- transforms
+
+    /// The steps of a `<transform>` in document order (the first acts first).
+    fn transform(&self, t: &Element) -> R<Vec<TransformStep>> {
+        let mut steps = Vec::new();
+        for s in &t.children {
+            let step = match s.tag.as_str() {
+                "translate" => TransformStep::Translate(n3(self.vec3_of(s, "value", 0.0)?)),
+                "scale" => {
+                    let v = self.vec3_of(s, "value", 1.0)?;
+                    if v.x == v.y && v.y == v.z {
+                        TransformStep::Scale(Triple::Splat(num(v.x as f64)))
+                    } else {
+                        TransformStep::Scale(Triple::Each(n3(v)))
+                    }
+                }
+                "rotate" => {
+                    let axis = self.vec3_of(s, "value", 0.0)?;
+                    let angle = match s.attr("angle") {
+                        Some(a) => self.number(s, "angle", a)?,
+                        None => 0.0,
+                    };
+                    let a = num(angle);
+                    let Some(n) = axis.try_normalize() else {
+                        return Err(self.src.error(s.offset, "<rotate> needs a non-zero axis"));
+                    };
+                    if n == Vec3::X {
+                        TransformStep::RotateX(a)
+                    } else if n == Vec3::Y {
+                        TransformStep::RotateY(a)
+                    } else if n == Vec3::Z {
+                        TransformStep::RotateZ(a)
+                    } else {
+                        TransformStep::Matrix(rotation_matrix(n, angle))
+                    }
+                }
+                "matrix" => {
+                    let v = self.numbers(s, "value")?;
+                    let m: [f64; 16] = match v.len() {
+                        16 => std::array::from_fn(|i| v[i]),
+                        9 => std::array::from_fn(|i| {
+                            let (r, c) = (i / 4, i % 4);
+                            if r < 3 && c < 3 {
+                                v[r * 3 + c]
+                            } else if r == c {
+                                1.0
+                            } else {
+                                0.0
+                            }
+                        }),
+                        n => {
+                            return Err(self
+                                .src
+                                .error(s.offset_of("value"), format!("<matrix> needs 16 numbers, not {n}")))
+                        }
+                    };
+                    TransformStep::Matrix(m.map(num))
+                }
+                "lookat" => {
+                    let origin = self.vec3_of(s, "origin", 0.0)?;
+                    let target = self.vec3_of(s, "target", 0.0)?;
+                    let up = if s.attr("up").is_some() { Some(n3(self.vec3_of(s, "up", 0.0)?)) } else { None };
+                    TransformStep::LookAt(LookAtDef { from: n3(origin), to: n3(target), up })
+                }
+                other => return Err(self.src.error(s.offset, format!("unsupported transform step <{other}>"))),
+            };
+            step.to_transform().map_err(|e| self.src.error(s.offset, e))?;
+            steps.push(step);
+        }
+        Ok(steps)
+    }
+
+    fn to_world(&self, e: &'a Element) -> R<Vec<TransformStep>> {
+        match e.children.iter().find(|c| c.tag == "transform" && c.attr("name") == Some("to_world")) {
+            Some(t) => self.transform(t),
+            None => Ok(Vec::new()),
+        }
+    }
+
+    // ---------------------------------------------------------------- scene parts
+
+    fn integrator(&mut self, e: &'a Element, render: &mut RenderSection) -> R<()> {
+        let ty = self.req_attr(e, "type")?;
+        let depth = self.integer(e, "max_depth")?;
+        let depth = match depth {
+            Some(d) if d < -1 || d > i32::MAX as i64 => {
+                return Err(self.src.error(e.offset, "max_depth must be ≥ 0, or -1 for unlimited"));
+            }
+            d => d.map(|d| d as i32),
+        };
+        render.max_depth = Some(match ty {
+            "path" => depth.unwrap_or(-1),
+            "direct" => 2,
+            other => {
+                self.warn(e, &format!("integrator `{other}` is not supported: using a path tracer"));
+                depth.unwrap_or(-1)
+            }
+        });
+        Ok(())
+    }
+
+    fn sensor(&mut self, e: &'a Element, render: &mut RenderSection) -> R<CameraSection> {
+        let ty = self.req_attr(e, "type")?;
+        if ty != "perspective" {
+            self.warn(e, &format!("sensor `{ty}` is not supported: using a pinhole perspective camera"));
+        }
+        let (mut width, mut height) = (768u32, 576u32);
+        if let Some(film) = e.children.iter().find(|c| c.tag == "film") {
+            let film = self.deref(film)?;
+            for (name, slot) in [("width", &mut width), ("height", &mut height)] {
+                if let Some(v) = self.integer(film, name)? {
+                    *slot = u32::try_from(v)
+                        .ok()
+                        .filter(|v| (1..=RenderSection::MAX_SIZE).contains(v))
+                        .ok_or_else(|| self.src.error(film.offset, format!("film {name} must be from 1 to 32768")))?;
+                }
+            }
+            if let Some(f) = film.children.iter().find(|c| c.tag == "rfilter") {
+                if f.attr("type") != Some("box") {
+                    let t = f.attr("type").unwrap_or("?");
+                    self.warn(f, &format!("reconstruction filter `{t}` is not supported: using a box filter"));
+                }
+            }
+        }
+        render.width = Some(width);
+        render.height = Some(height);
+        let mut spp = 4u32;
+        if let Some(s) = e.children.iter().find(|c| c.tag == "sampler") {
+            let s = self.deref(s)?;
+            match s.attr("type").unwrap_or("independent") {
+                "independent" => {}
+                "stratified" => render.sampler = Some(SamplerName(SamplerKind::Stratified)),
+                other => self.warn(s, &format!("sampler `{other}` is not supported: using independent")),
+            }
+            if let Some(n) = self.integer(s, "sample_count")? {
+                spp = u32::try_from(n)
+                    .ok()
+                    .filter(|n| *n >= 1)
+                    .ok_or_else(|| self.src.error(s.offset, "sample_count must be at least 1"))?;
+            }
+        }
+        render.spp = Some(spp);
+        // Mitsuba's default is a 50 mm lens on a 36 mm wide film, measured along x.
+        let fov = self.float(e, "fov")?.unwrap_or(39.597_755);
+        if !(fov > 0.0 && fov < 180.0) {
+            return Err(self.src.error(e.offset, format!("fov must be in (0, 180) degrees, not {fov}")));
+        }
+        let axis = self.string(e, "fov_axis")?.unwrap_or("x");
+        let (w, h) = (width as f64, height as f64);
+        let half = (fov.to_radians() / 2.0).tan();
+        let vertical_half = match axis {
+            "x" => half * h / w,
+            "y" => half,
+            "smaller" if w < h => half * h / w,
+            "smaller" => half,
+            "larger" if w > h => half * h / w,
+            "larger" => half,
+            "diagonal" => half * h / (w * w + h * h).sqrt(),
+            other => {
+                let at = self.prop(e, "fov_axis").map_or(e.offset, |p| p.offset_of("value"));
+                return Err(self
+                    .src
+                    .error(at, format!("unknown fov_axis `{other}` (x, y, smaller, larger, diagonal)")));
+            }
+        };
+        let vfov = 2.0 * vertical_half.atan().to_degrees();
+        let steps = self.to_world(e)?;
+        let mut t = Transform::IDENTITY;
+        for s in &steps {
+            t = t.then(&s.to_transform().map_err(|m| self.src.error(e.offset, m))?);
+        }
+        // Mitsuba's camera looks along its local +z with +y up.
+        let from = t.point(Vec3::ZERO);
+        let at = t.point(Vec3::Z);
+        let up = t.vector(Vec3::Y);
+        Ok(CameraSection {
+            look_from: n3(from),
+            look_at: n3(at),
+            up: Some(n3(up)),
+            vfov: Some(num(vfov)),
+            focal_length: None,
+            aspect: None,
+        })
+    }
+
+    fn unique_name(&self, base: &str) -> String {
+        if !self.materials.contains_key(base) {
+            return base.to_string();
+        }
+        (2..).map(|i| format!("{base}-{i}")).find(|n| !self.materials.contains_key(n)).unwrap_or_default()
+    }
+
+    /// The scattering part of a `<bsdf>` (after `<ref>`), unwrapping `twosided`.
+    fn bsdf_kind(&mut self, e: &'a Element) -> R<MaterialKind> {
+        self.bsdf_kind_at(e, 0)
+    }
+
+    fn bsdf_kind_at(&mut self, e: &'a Element, depth: usize) -> R<MaterialKind> {
+        if depth > 8 {
+            return Err(self.src.error(e.offset, "BSDFs are nested too deeply (a <ref> cycle?)"));
+        }
+        let ty = self.req_attr(e, "type")?;
+        let grey = MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) };
+        Ok(match ty {
+            "diffuse" => {
+                let albedo = self.color(e, "reflectance")?.unwrap_or(Triple::Splat(num(0.5)));
+                MaterialKind::Lambertian { albedo }
+            }
+            "twosided" => {
+                let inner = e.children.iter().find(|c| c.tag == "bsdf" || c.tag == "ref");
+                match inner {
+                    Some(i) => {
+                        let i = self.deref(i)?;
+                        self.bsdf_kind_at(i, depth + 1)?
+                    }
+                    None => MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) },
+                }
+            }
+            "conductor" => {
+                let material = self.string(e, "material")?.unwrap_or("none");
+                if material != "none" || self.prop(e, "eta").is_some() || self.prop(e, "k").is_some() {
+                    self.warn(e, "conductor: the Fresnel tint is approximated by a perfect mirror");
+                }
+                let reflectance = self.color(e, "specular_reflectance")?.unwrap_or(Triple::Splat(num(1.0)));
+                MaterialKind::Mirror { reflectance }
+            }
+            "dielectric" => {
+                let int = self.ior(e, "int_ior", 1.5046)?;
+                let ext = self.ior(e, "ext_ior", 1.000277)?;
+                let tint = self.color(e, "specular_transmittance")?.unwrap_or(Triple::Splat(num(1.0)));
+                MaterialKind::Dielectric { ior: num(int / ext), tint }
+            }
+            other => {
+                self.warn(e, &format!("bsdf `{other}` is not supported: using a grey (0.5) lambertian"));
+                grey
+            }
+        })
+    }
+
+    fn ior(&mut self, e: &'a Element, name: &str, default: f64) -> R<f64> {
+        let Some(p) = self.prop(e, name) else { return Ok(default) };
+        let v = self.req_attr(p, "value")?;
+        let x = match p.tag.as_str() {
+            "string" => named_ior(v).ok_or_else(|| {
+                self.src.error(p.offset_of("value"), format!("unknown IOR name `{v}` (e.g. bk7, water, air, diamond)"))
+            })?,
+            _ => self.number(p, "value", v)?,
+        };
+        if x <= 0.0 {
+            return Err(self.src.error(p.offset_of("value"), format!("{name} must be positive")));
+        }
+        Ok(x)
+    }
+
+    /// The material name for a shape: its BSDF (default diffuse 0.5), plus its area emitter.
+    fn shape_material(&mut self, shape: &'a Element, label: &str) -> R<String> {
+        let mut bsdf = None;
+        let mut emitter = None;
+        for c in &shape.children {
+            if c.tag != "bsdf" && c.tag != "ref" && c.tag != "emitter" {
+                continue;
+            }
+            if c.tag == "ref" && c.attr("name").is_some_and(|n| n != "bsdf" && n != "emitter") {
+                continue;
+            }
+            let d = self.deref(c)?;
+            match d.tag.as_str() {
+                "bsdf" => bsdf = Some(d),
+                "emitter" => emitter = Some(d),
+                other => self.warn(c, &format!("a <ref> to <{other}> inside a shape is ignored")),
+            }
+        }
+        let mut emission = None;
+        if let Some(em) = emitter {
+            let ty = self.req_attr(em, "type")?;
+            if ty == "area" {
+                let radiance = self.color(em, "radiance")?.unwrap_or(Triple::Splat(num(1.0)));
+                emission = Some(EmissionDef { radiance, two_sided: false });
+            } else {
+                self.warn(em, &format!("emitter `{ty}` on a shape is not supported and is skipped"));
+            }
+        }
+        let shared = bsdf.filter(|b| emission.is_none() && b.attr("id").is_some());
+        if let Some(b) = shared {
+            if let Some(name) = self.bsdf_names.get(&b.offset) {
+                return Ok(name.clone());
+            }
+        }
+        let kind = match bsdf {
+            Some(b) => self.bsdf_kind(b)?,
+            None => MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) },
+        };
+        let base = match (shared, bsdf.and_then(|b| b.attr("id"))) {
+            (Some(b), _) => b.attr("id").unwrap_or("bsdf").to_string(),
+            (None, Some(id)) => format!("{label}-{id}"),
+            (None, None) => label.to_string(),
+        };
+        let name = self.unique_name(&base);
+        self.materials.insert(name.clone(), MaterialDef { kind, emission });
+        if let Some(b) = shared {
+            self.bsdf_names.insert(b.offset, name.clone());
+        }
+        Ok(name)
+    }
+
+    fn find_file(&self, e: &Element, file: &str) -> R<String> {
+        for dir in &self.search {
+            let p = dir.join(file);
+            if p.is_file() {
+                // Relative to the scene's folder, where the native builder looks.
+                let base = self.search.first().map(PathBuf::as_path).unwrap_or(Path::new(""));
+                let rel = p.strip_prefix(base).map(Path::to_path_buf).unwrap_or(p);
+                return Ok(rel.to_string_lossy().into_owned());
+            }
+        }
+        let at = self.prop(e, "filename").map_or(e.offset, |p| p.offset_of("value"));
+        Err(self.src.error(at, format!("mesh file `{file}` not found")))
+    }
+
+    fn shape(&mut self, e: &'a Element) -> R<()> {
+        let ty = self.req_attr(e, "type")?;
+        let label = e.attr("id").map_or_else(|| format!("{ty}{}", self.objects.len()), str::to_string);
+        let shape = match ty {
+            "obj" | "ply" => {
+                let Some(file) = self.string(e, "filename")? else {
+                    return Err(self.src.error(e.offset, format!("a {ty} shape needs a `filename` string")));
+                };
+                if self.boolean(e, "flip_normals")? == Some(true) {
+                    self.warn(e, "flip_normals is not supported and is ignored");
+                }
+                ShapeDef::Mesh { file: self.find_file(e, file)? }
+            }
+            "rectangle" => ShapeDef::Quad {
+                q: n3(Vec3::new(-1.0, -1.0, 0.0)),
+                u: n3(Vec3::new(2.0, 0.0, 0.0)),
+                v: n3(Vec3::new(0.0, 2.0, 0.0)),
+            },
+            "cube" => ShapeDef::Box { min: n3(Vec3::splat(-1.0)), max: n3(Vec3::splat(1.0)) },
+            "sphere" => {
+                let center = match self.prop(e, "center") {
+                    Some(p) => self.vec3_of(p, "value", 0.0)?,
+                    None => Vec3::ZERO,
+                };
+                let radius = self.float(e, "radius")?.unwrap_or(1.0);
+                if radius <= 0.0 {
+                    return Err(self.src.error(e.offset, "a sphere's radius must be positive"));
+                }
+                ShapeDef::Sphere { center: n3(center), radius: num(radius) }
+            }
+            other => {
+                self.warn(e, &format!("shape `{other}` is not supported and is skipped"));
+                return Ok(());
+            }
+        };
+        let transform = self.to_world(e)?;
+        let material = self.shape_material(e, &label)?;
+        self.objects.push(ObjectDef { shape, material, transform });
+        Ok(())
+    }
+
+    fn top_emitter(&mut self, e: &'a Element) -> R<()> {
+        let ty = self.req_attr(e, "type")?;
+        if ty == "point" {
+            let pos = match self.prop(e, "position") {
+                Some(p) => self.vec3_of(p, "value", 0.0)?,
+                None => {
+                    let steps = self.to_world(e)?;
+                    let mut t = Transform::IDENTITY;
+                    for s in &steps {
+                        t = t.then(&s.to_transform().map_err(|m| self.src.error(e.offset, m))?);
+                    }
+                    t.point(Vec3::ZERO)
+                }
+            };
+            let intensity = self.color(e, "intensity")?.unwrap_or(Triple::Splat(num(1.0)));
+            self.point_lights.push((pos, intensity, e.offset));
+            return Ok(());
+        }
+        if ty == "area" && e.attr("id").is_some() {
+            return Ok(()); // attached to shapes through <ref>
+        }
+        if ty == "area" {
+            self.warn(e, "an area emitter outside a shape emits nothing and is skipped");
+            return Ok(());
+        }
+        self.warn(e, &format!("emitter `{ty}` is not supported and is skipped"));
+        Ok(())
+    }
+
+    /// Point lights become small emissive spheres of the same intensity: radius 0.5% of the
+    /// camera's distance to its target, radiance I / (π r²).
+    fn add_point_lights(&mut self, camera: &CameraSection) -> R<()> {
+        let lights = std::mem::take(&mut self.point_lights);
+        let v = |a: &Num3| Vec3::new(a[0].f32(), a[1].f32(), a[2].f32());
+        let d = (v(&camera.look_from) - v(&camera.look_at)).length();
+        let r = (0.005 * d).max(1e-4);
+        for (i, (pos, intensity, offset)) in lights.into_iter().enumerate() {
+            let at = self.src.location(offset);
+            self.warnings.push(format!("{at}: point emitter approximated by an emissive sphere of radius {r}"));
+            let scale = 1.0 / (std::f64::consts::PI * (r as f64).powi(2));
+            let radiance = match intensity {
+                Triple::Splat(n) => Triple::Splat(num(n.get() * scale)),
+                Triple::Each(v) => Triple::Each(v.map(|n| num(n.get() * scale))),
+            };
+            let name = self.unique_name(&format!("point-light-{i}"));
+            self.materials.insert(
+                name.clone(),
+                MaterialDef {
+                    kind: MaterialKind::Emissive,
+                    emission: Some(EmissionDef { radiance, two_sided: false }),
+                },
+            );
+            self.objects.push(ObjectDef {
+                shape: ShapeDef::Sphere { center: n3(pos), radius: num(r as f64) },
+                material: name,
+                transform: Vec::new(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Rotation by `degrees` about the unit axis `n` (right-handed), as a row-major 4×4.
+fn rotation_matrix(n: Vec3, degrees: f64) -> [Num; 16] {
+    let (s, c) = degrees.to_radians().sin_cos();
+    let (x, y, z) = (n.x as f64, n.y as f64, n.z as f64);
+    let t = 1.0 - c;
+    [
+        t * x * x + c,
+        t * x * y - s * z,
+        t * x * z + s * y,
+        0.0,
+        t * x * y + s * z,
+        t * y * y + c,
+        t * y * z - s * x,
+        0.0,
+        t * x * z - s * y,
+        t * y * z + s * x,
+        t * z * z + c,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+    ]
+    .map(num)
+}

@@ -1,0 +1,343 @@
+//! Mitsuba 3 XML import: parameters, references, transforms, fov axes, errors with locations,
+//! the Cornell box rendered from XML against the built-in one, and the public test scenes.
+
+use pathtrace::film::{Film, RegionEstimate};
+use pathtrace::math::Vec3;
+use pathtrace::{render, RenderSettings, Scene};
+use pathtrace_scene::mitsuba::{convert_str, load_mitsuba, load_str};
+use pathtrace_scene::native::model::{MaterialKind, ShapeDef, TransformStep, Triple};
+use pathtrace_scene::native::{Format, SceneFile};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+const SENSOR: &str = r#"<sensor type="perspective">
+    <float name="fov" value="40"/>
+    <string name="fov_axis" value="y"/>
+    <transform name="to_world"><lookat origin="0, 0, -5" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="64"/><integer name="height" value="32"/></film>
+</sensor>"#;
+
+fn scene(body: &str) -> String {
+    format!("<scene version=\"3.0.0\">\n{SENSOR}\n{body}\n</scene>")
+}
+
+fn conv(xml: &str, defines: &[(&str, &str)]) -> (SceneFile, Vec<String>) {
+    convert_str(xml, Path::new("t.xml"), defines).unwrap()
+}
+
+fn err(xml: &str) -> String {
+    convert_str(xml, Path::new("t.xml"), &[]).unwrap_err().to_string()
+}
+
+const LIGHT: &str =
+    r#"<shape type="sphere" id="lamp"><emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>"#;
+
+#[test]
+fn defaults_and_overrides_substitute_into_attributes() {
+    let xml = format!(
+        r#"<scene version="3.0.0"><default name="spp" value="16"/><default name="d" value="5"/>
+        {}
+        <integrator type="path"><integer name="max_depth" value="$d"/></integrator>{LIGHT}</scene>"#,
+        SENSOR.replace(
+            "<film",
+            "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"$spp\"/></sampler><film"
+        )
+    );
+    let (f, w) = conv(&xml, &[]);
+    assert_eq!((f.render.spp, f.render.max_depth), (Some(16), Some(5)));
+    assert!(w.is_empty(), "{w:?}");
+    let (f, w) = conv(&xml, &[("spp", "3"), ("nothing", "1")]);
+    assert_eq!(f.render.spp, Some(3));
+    assert!(w.iter().any(|w| w.contains("nothing")), "{w:?}");
+}
+
+#[test]
+fn refs_share_a_material_and_twosided_unwraps() {
+    let xml = scene(&format!(
+        r#"<bsdf type="twosided" id="red"><bsdf type="diffuse"><rgb name="reflectance" value="0.5, 0.1, 0.1"/></bsdf></bsdf>
+        <shape type="rectangle"><ref id="red"/></shape>
+        <shape type="cube"><ref id="red"/></shape>
+        <shape type="sphere"/>{LIGHT}"#
+    ));
+    let (f, w) = conv(&xml, &[]);
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!(f.objects[0].material, "red");
+    assert_eq!(f.objects[1].material, "red");
+    let red = &f.materials["red"];
+    assert!(matches!(red.kind, MaterialKind::Lambertian { albedo: Triple::Each(_) }));
+    // No BSDF: Mitsuba's default diffuse 0.5.
+    let default = &f.materials[&f.objects[2].material];
+    assert_eq!(default.kind, MaterialKind::Lambertian { albedo: Triple::Splat(0.5f32.into()) });
+    let lamp = &f.materials[&f.objects[3].material];
+    assert!(lamp.emission.is_some());
+    assert!(matches!(f.objects[0].shape, ShapeDef::Quad { .. }));
+    assert!(matches!(f.objects[1].shape, ShapeDef::Box { .. }));
+}
+
+#[test]
+fn transforms_keep_document_order() {
+    let xml = scene(&format!(
+        r#"<shape type="sphere"><transform name="to_world">
+            <scale value="2"/><rotate y="1" angle="90"/><translate x="1" y="2" z="3"/>
+            <rotate value="1, 1, 0" angle="30"/><matrix value="1 0 0 1  0 1 0 0  0 0 1 0  0 0 0 1"/>
+        </transform></shape>{LIGHT}"#
+    ));
+    let (f, _) = conv(&xml, &[]);
+    let t = &f.objects[0].transform;
+    assert!(matches!(t[0], TransformStep::Scale(Triple::Splat(_))));
+    assert!(matches!(t[1], TransformStep::RotateY(_)));
+    assert!(matches!(t[2], TransformStep::Translate(_)));
+    assert!(matches!(t[3], TransformStep::Matrix(_)));
+    assert!(matches!(t[4], TransformStep::Matrix(_)));
+}
+
+#[test]
+fn fov_axis_becomes_a_vertical_fov() {
+    // 64×32 film: aspect 2.
+    let vfov = |axis: &str| {
+        let xml = scene(LIGHT).replace("value=\"y\"", &format!("value=\"{axis}\""));
+        conv(&xml, &[]).0.camera.vfov.unwrap().get()
+    };
+    let from_x = 2.0 * ((20f64).to_radians().tan() / 2.0).atan().to_degrees();
+    let diag = 2.0 * ((20f64).to_radians().tan() / 5f64.sqrt()).atan().to_degrees();
+    assert!((vfov("y") - 40.0).abs() < 1e-6);
+    assert!((vfov("smaller") - 40.0).abs() < 1e-6);
+    assert!((vfov("x") - from_x).abs() < 1e-6);
+    assert!((vfov("larger") - from_x).abs() < 1e-6);
+    assert!((vfov("diagonal") - diag).abs() < 1e-6);
+}
+
+#[test]
+fn unsupported_plugins_warn_and_fall_back() {
+    let xml = scene(&format!(
+        r#"<emitter type="constant"/><shape type="disk"/>
+        <shape type="sphere"><bsdf type="roughplastic"/></shape>{LIGHT}"#
+    ));
+    let (f, w) = conv(&xml, &[]);
+    assert!(w.iter().any(|w| w.contains("constant")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("disk")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("roughplastic") && w.starts_with("t.xml:")), "{w:?}");
+    assert_eq!(f.objects.len(), 2);
+}
+
+#[test]
+fn point_lights_become_small_spheres() {
+    let xml = scene(
+        r#"<emitter type="point"><point name="position" value="0, 3, 0"/><rgb name="intensity" value="10, 10, 10"/></emitter><shape type="cube"/>"#,
+    );
+    let (loaded, w) = load_str(&xml, Path::new("t.xml"), &[]).unwrap();
+    assert!(w.iter().any(|w| w.contains("point emitter")), "{w:?}");
+    assert!(loaded.scene.primitive_count() >= 7);
+}
+
+#[test]
+fn errors_carry_file_line_and_column() {
+    assert!(err("<scene><shape").starts_with("t.xml:1:"), "{}", err("<scene><shape"));
+    let bad_number = scene("<shape type=\"sphere\">\n<float name=\"radius\" value=\"abc\"/></shape>");
+    let e = err(&bad_number);
+    assert!(e.contains("`abc` is not a number"), "{e}");
+    assert!(e.starts_with("t.xml:9:29:"), "{e}");
+    let e = err(&scene("<shape type=\"sphere\">\n  <ref id=\"nope\"/></shape>"));
+    assert!(e.starts_with("t.xml:9:") && e.contains("unknown ref id `nope`"), "{e}");
+    let e = err(&scene("<shape type=\"obj\"><string name=\"filename\" value=\"missing.obj\"/></shape>"));
+    assert!(e.contains("not found") && e.starts_with("t.xml:8:"), "{e}");
+    let e = load_mitsuba(Path::new("/nonexistent/x.xml"), &[]).unwrap_err().to_string();
+    assert!(e.starts_with("/nonexistent/x.xml:1:1: cannot read"), "{e}");
+    assert!(err("<scene version=\"3\"></scene>").contains("no <sensor>"));
+    let e = err(&scene("<shape type=\"sphere\"><bsdf type=\"dielectric\"><string name=\"int_ior\" value=\"unobtainium\"/></bsdf></shape>"));
+    assert!(e.contains("unknown IOR"), "{e}");
+}
+
+#[test]
+fn arbitrary_input_never_panics() {
+    let base = scene(LIGHT);
+    for cut in (0..base.len()).step_by(7) {
+        if base.is_char_boundary(cut) {
+            let _ = convert_str(&base[..cut], Path::new("t.xml"), &[]);
+        }
+    }
+    // Single-character mutations of a full scene (the Cornell box in XML).
+    let full = cornell_xml();
+    for (i, _) in full.char_indices().step_by(5) {
+        for c in ["<", "\"", "$", "0", "-", ""] {
+            let end = full[i..].chars().next().map_or(i, |ch| i + ch.len_utf8());
+            let mutated = format!("{}{c}{}", &full[..i], &full[end..]);
+            let _ = convert_str(&mutated, Path::new("t.xml"), &[]);
+        }
+    }
+    for junk in ["", "<", "<scene/>", "<scene><default/></scene>", "<scene><sensor/></scene>"] {
+        let _ = convert_str(junk, Path::new("t.xml"), &[("a", "$a")]);
+    }
+}
+
+#[test]
+fn converted_scenes_serialise_as_native_files() {
+    let (f, _) = conv(&scene(LIGHT), &[]);
+    for format in [Format::Toml, Format::Json] {
+        let text = pathtrace_scene::native::to_string(&f, format).unwrap();
+        let back = pathtrace_scene::native::parse_str(&text, format, Path::new("x")).unwrap();
+        assert_eq!(back, f);
+    }
+}
+
+// ---------------------------------------------------------------- the Cornell box in XML
+
+/// pathtrace's built-in Cornell box written as Mitsuba XML (as benches/peers/cornell_mitsuba.py
+/// builds it): walls as rectangles, boxes as cubes.
+fn cornell_xml() -> String {
+    type Quad = ([f32; 3], [f32; 3], [f32; 3], &'static str);
+    let quads: [Quad; 6] = [
+        ([555.0, 0.0, 0.0], [0.0, 555.0, 0.0], [0.0, 0.0, 555.0], "green"),
+        ([0.0, 0.0, 0.0], [0.0, 555.0, 0.0], [0.0, 0.0, 555.0], "red"),
+        ([0.0, 0.0, 0.0], [555.0, 0.0, 0.0], [0.0, 0.0, 555.0], "white"),
+        ([555.0, 555.0, 555.0], [-555.0, 0.0, 0.0], [0.0, 0.0, -555.0], "white"),
+        ([0.0, 0.0, 555.0], [555.0, 0.0, 0.0], [0.0, 555.0, 0.0], "white"),
+        ([343.0, 554.0, 332.0], [-130.0, 0.0, 0.0], [0.0, 0.0, -105.0], "light"),
+    ];
+    let mut s = String::from(
+        r#"<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="8"/></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="278, 278, -800" target="278, 278, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="64"/><integer name="height" value="64"/><rfilter type="box"/></film>
+  </sensor>
+  <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.65, 0.05, 0.05"/></bsdf>
+  <bsdf type="twosided" id="white"><bsdf type="diffuse"><rgb name="reflectance" value="0.73, 0.73, 0.73"/></bsdf></bsdf>
+  <bsdf type="diffuse" id="green"><rgb name="reflectance" value="0.12, 0.45, 0.15"/></bsdf>
+  <bsdf type="diffuse" id="black"><rgb name="reflectance" value="0, 0, 0"/></bsdf>
+"#,
+    );
+    for (q, u, v, m) in quads {
+        let (q, u, v) = (Vec3::from(q), Vec3::from(u), Vec3::from(v));
+        let (a, b, n, c) = (u / 2.0, v / 2.0, u.cross(v).normalize(), q + (u + v) / 2.0);
+        let rows = format!(
+            "{} {} {} {}  {} {} {} {}  {} {} {} {}  0 0 0 1",
+            a.x, b.x, n.x, c.x, a.y, b.y, n.y, c.y, a.z, b.z, n.z, c.z
+        );
+        let inner = if m == "light" {
+            r#"<ref id="black"/><emitter type="area"><rgb name="radiance" value="15, 15, 15"/></emitter>"#.to_string()
+        } else {
+            format!(r#"<ref id="{m}"/>"#)
+        };
+        s += &format!(
+            "  <shape type=\"rectangle\"><transform name=\"to_world\"><matrix value=\"{rows}\"/></transform>{inner}</shape>\n"
+        );
+    }
+    for (size, angle, offset) in
+        [([165.0, 330.0, 165.0], 15.0, [265.0, 0.0, 295.0]), ([165.0; 3], -18.0, [130.0, 0.0, 65.0])]
+    {
+        let [x, y, z]: [f32; 3] = size;
+        s += &format!(
+            "  <shape type=\"cube\"><transform name=\"to_world\"><scale x=\"{}\" y=\"{}\" z=\"{}\"/><translate value=\"{} {} {}\"/>\
+             <rotate y=\"1\" angle=\"{angle}\"/><translate x=\"{}\" y=\"{}\" z=\"{}\"/></transform><ref id=\"white\"/></shape>\n",
+            x / 2.0, y / 2.0, z / 2.0, x / 2.0, y / 2.0, z / 2.0, offset[0], offset[1], offset[2]
+        );
+    }
+    s + "</scene>\n"
+}
+
+fn film(scene: Scene, seed: u64) -> Film {
+    let mut s = RenderSettings { width: 64, height: 64, spp: 64, seed, ..Default::default() };
+    s.path.max_depth = 8;
+    render(Arc::new(scene), s).unwrap().film
+}
+
+#[test]
+fn the_cornell_box_in_xml_renders_like_the_builtin_one() {
+    let (loaded, warnings) = load_str(&cornell_xml(), Path::new("cornell.xml"), &[]).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!((loaded.defaults.width, loaded.defaults.height, loaded.defaults.max_depth), (64, 64, 8));
+    let builtin = pathtrace_scene::builtin::load("cornell-box").unwrap().unwrap();
+    let (a, b) = (film(loaded.scene, 1), film(builtin.scene, 2));
+    // Whole image, left (green) wall, right (red) wall, floor, back wall, light.
+    let regions =
+        [(0, 0, 64, 64), (4, 19, 10, 38), (54, 19, 60, 38), (23, 56, 30, 62), (22, 16, 42, 25), (28, 9, 36, 10)];
+    for (x0, y0, x1, y1) in regions {
+        let (ra, rb): (RegionEstimate, RegionEstimate) =
+            (a.region_estimate(x0, y0, x1, y1), b.region_estimate(x0, y0, x1, y1));
+        let z = ra.max_z_score(&rb);
+        assert!(z < 4.5, "region {:?}: xml {:?} vs builtin {:?}, z = {z:.2}", (x0, y0, x1, y1), ra.mean, rb.mean);
+    }
+    // The orientation: the green wall is on the left.
+    let left = a.region_estimate(4, 19, 10, 38).mean;
+    assert!(left[1] > left[0], "left wall should be green: {left:?}");
+}
+
+// ---------------------------------------------------------------- public scenes
+
+fn shared_scenes() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
+    dir.is_dir().then_some(dir)
+}
+
+#[test]
+fn public_scenes_load() {
+    let Some(dir) = shared_scenes() else {
+        eprintln!("skipped: ../shared/scenes is absent");
+        return;
+    };
+    let scenes = [
+        "cbox/cbox.xml",
+        "cornell-box-bitterli/scene_v3.xml",
+        "teapot-simple/simple.xml",
+        "cbox-classic/docs/scenes/integrator_depth_inf.xml",
+        "veach-mis/docs/scenes/integrator_direct_both.xml",
+        "veach-mis-bitterli/scene_v3.xml",
+    ];
+    for s in scenes {
+        let path = dir.join(s);
+        match load_mitsuba(&path, &[]) {
+            Ok((loaded, w)) if w.is_empty() => {
+                eprintln!("{s}: loads without warnings ({} primitives)", loaded.scene.primitive_count())
+            }
+            Ok((_, w)) => eprintln!("{s}: loads with {} warning(s):\n  {}", w.len(), w.join("\n  ")),
+            Err(e) => panic!("{s}: {e}"),
+        }
+    }
+}
+
+#[test]
+fn reference_cycles_are_errors() {
+    let e =
+        err(&scene(r#"<bsdf type="twosided" id="a"><ref id="a"/></bsdf><shape type="sphere"><ref id="a"/></shape>"#));
+    assert!(e.contains("nested too deeply"), "{e}");
+}
+
+#[test]
+fn deep_nesting_is_an_error() {
+    let deep = format!("<scene>{}{}</scene>", "<a>".repeat(10_000), "</a>".repeat(10_000));
+    let e = err(&deep);
+    assert!(e.starts_with("t.xml:1:"), "{e}");
+}
+
+#[test]
+fn includes_splice_their_elements_and_locate_their_errors() {
+    let dir = std::env::temp_dir().join(format!("pathtrace-mitsuba-include-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("inc")).unwrap();
+    std::fs::write(
+        dir.join("inc/part.xml"),
+        format!("<scene version=\"3.0.0\">\n{LIGHT}\n<shape type=\"disk\"/></scene>"),
+    )
+    .unwrap();
+    let main = dir.join("main.xml");
+    std::fs::write(&main, scene(r#"<include filename="inc/part.xml"/>"#)).unwrap();
+    let (loaded, w) = load_mitsuba(&main, &[]).unwrap();
+    assert!(loaded.scene.primitive_count() >= 1);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("part.xml:3:1: shape `disk`"), "{w:?}");
+    std::fs::write(
+        dir.join("inc/part.xml"),
+        "<scene version=\"3.0.0\">\n  <shape type=\"sphere\"><ref id=\"no\"/></shape></scene>",
+    )
+    .unwrap();
+    let e = load_mitsuba(&main, &[]).unwrap_err().to_string();
+    assert!(e.contains("part.xml:2:") && e.contains("unknown ref id `no`"), "{e}");
+    std::fs::write(dir.join("inc/part.xml"), "<scene><include filename=\"inc/part.xml\"/></scene>").unwrap();
+    let e = load_mitsuba(&main, &[]).unwrap_err().to_string();
+    assert!(e.contains("include cycle"), "{e}");
+    std::fs::write(&main, scene(r#"<include filename="inc/missing.xml"/>"#)).unwrap();
+    let e = load_mitsuba(&main, &[]).unwrap_err().to_string();
+    assert!(e.contains("main.xml:8:") && e.contains("cannot read included file"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
