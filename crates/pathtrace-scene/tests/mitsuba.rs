@@ -341,3 +341,39 @@ fn includes_splice_their_elements_and_locate_their_errors() {
     assert!(e.contains("main.xml:8:") && e.contains("cannot read included file"), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn serialized_meshes_load_and_bad_ones_are_errors() {
+    let Some(dir) = shared_scenes() else {
+        eprintln!("skipped: ../shared/scenes is absent");
+        return;
+    };
+    let path = dir.join("matpreview/common/meshes/matpreview.serialized");
+    let parts = pathtrace_scene::mesh::load_mesh(&path).unwrap();
+    assert!(parts.len() >= 3, "{} parts", parts.len());
+    assert!(parts.iter().all(|(_, m)| !m.indices.is_empty()));
+    // Truncated and corrupted copies fail with an error, never a panic.
+    let bytes = std::fs::read(&path).unwrap();
+    for cut in [0, 3, 8, 100, bytes.len() / 2, bytes.len() - 1] {
+        assert!(pathtrace_scene::mesh::parse_mesh(&bytes[..cut], &path).is_err());
+    }
+    for at in (0..bytes.len()).step_by(bytes.len() / 50 + 1) {
+        let mut b = bytes.clone();
+        b[at] ^= 0x5a;
+        let _ = pathtrace_scene::mesh::parse_mesh(&b, &path);
+    }
+    // In a scene: shape_index picks the part.
+    let xml = scene(
+        r#"<shape type="serialized"><string name="filename" value="m.serialized"/><integer name="shape_index" value="1"/></shape>"#,
+    );
+    let tmp = std::env::temp_dir().join(format!("pathtrace-mitsuba-ser-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    std::fs::copy(&path, tmp.join("m.serialized")).unwrap();
+    let (f, w) = convert_str(&xml, &tmp.join("s.xml"), &[]).unwrap();
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!(f.objects[0].shape, ShapeDef::Mesh { file: "m.serialized".into(), part: Some(1) });
+    let bad = xml.replace("value=\"1\"", "value=\"99\"").replace("</scene>", &format!("{LIGHT}</scene>"));
+    let e = load_str(&bad, &tmp.join("s.xml"), &[]).unwrap_err().to_string();
+    assert!(e.contains("part 99 does not exist"), "{e}");
+    let _ = std::fs::remove_dir_all(&tmp);
+}

@@ -622,7 +622,16 @@ impl<'a> Conv<'a, '_> {
                 if self.boolean(e, "flip_normals")? == Some(true) {
                     self.warn(e, "flip_normals is not supported and is ignored");
                 }
-                ShapeDef::Mesh { file: self.find_file(e, file)? }
+                ShapeDef::Mesh { file: self.find_file(e, file)?, part: None }
+            }
+            "serialized" => {
+                let Some(file) = self.string(e, "filename")? else {
+                    return Err(self.src.error(e.offset, "a serialized shape needs a `filename` string"));
+                };
+                let index = self.integer(e, "shape_index")?.unwrap_or(0);
+                let part = u32::try_from(index)
+                    .map_err(|_| self.src.error(e.offset, format!("shape_index {index} must be ≥ 0")))?;
+                ShapeDef::Mesh { file: self.find_file(e, file)?, part: Some(part) }
             }
             "rectangle" => ShapeDef::Quad {
                 q: n3(Vec3::new(-1.0, -1.0, 0.0)),
