@@ -377,3 +377,33 @@ fn serialized_meshes_load_and_bad_ones_are_errors() {
     assert!(e.contains("part 99 does not exist"), "{e}");
     let _ = std::fs::remove_dir_all(&tmp);
 }
+
+#[test]
+fn a_point_light_gives_its_inverse_square_irradiance() {
+    let xml = r#"<scene version="3.0.0">
+        <integrator type="direct"/>
+        <sensor type="perspective">
+            <float name="fov" value="10"/>
+            <transform name="to_world"><lookat origin="0, 0, 10" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film>
+        </sensor>
+        <emitter type="point"><point name="position" value="0, 3, 4"/><rgb name="intensity" value="25"/></emitter>
+        <shape type="rectangle"><transform name="to_world"><scale value="10"/></transform>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></shape>
+    </scene>"#;
+    let (loaded, _) = load_str(xml, Path::new("p.xml"), &[]).unwrap();
+    let mut s = RenderSettings { width: 16, height: 16, spp: 256, seed: 1, ..Default::default() };
+    s.path.max_depth = loaded.defaults.max_depth;
+    let film = render(Arc::new(loaded.scene), s).unwrap().film;
+    // E = I cos θ / d² = 25 · 0.8 / 25 at the centre; the central pixels span ±0.2, where E
+    // varies by under 1% on average.
+    let expected = 0.5 / std::f64::consts::PI * 0.8;
+    let r = film.region_estimate(6, 6, 10, 10);
+    for c in 0..3 {
+        assert!(
+            (r.mean[c] - expected).abs() < 0.02 * expected + 4.0 * r.variance_of_mean[c].sqrt(),
+            "{:?} vs {expected}",
+            r
+        );
+    }
+}

@@ -690,14 +690,14 @@ impl<'a> Conv<'a, '_> {
         Ok(())
     }
 
-    /// Point lights become small emissive spheres of the same intensity: radius 0.5% of the
-    /// camera's distance to its target, radiance I / (π r²).
+    /// Point lights become small emissive spheres of the same intensity: radius 1% of the light's
+    /// distance to the camera (smaller spheres lose f32 precision in cone sampling), radiance
+    /// I / (π r²).
     fn add_point_lights(&mut self, camera: &CameraSection) -> R<()> {
         let lights = std::mem::take(&mut self.point_lights);
-        let v = |a: &Num3| Vec3::new(a[0].f32(), a[1].f32(), a[2].f32());
-        let d = (v(&camera.look_from) - v(&camera.look_at)).length();
-        let r = (0.005 * d).max(1e-4);
+        let eye = Vec3::new(camera.look_from[0].f32(), camera.look_from[1].f32(), camera.look_from[2].f32());
         for (i, (pos, intensity, offset)) in lights.into_iter().enumerate() {
+            let r = (0.01 * (pos - eye).length()).max(1e-3);
             let at = self.src.location(offset);
             self.warnings.push(format!("{at}: point emitter approximated by an emissive sphere of radius {r}"));
             let scale = 1.0 / (std::f64::consts::PI * (r as f64).powi(2));
