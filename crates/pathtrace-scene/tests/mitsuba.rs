@@ -407,3 +407,16 @@ fn a_point_light_gives_its_inverse_square_irradiance() {
         );
     }
 }
+
+#[test]
+fn without_fov_a_50mm_lens_on_35mm_film_is_assumed() {
+    // Mitsuba 3 renders the teapot tutorial scene (square film, no fov) with x_fov = 34.022°.
+    let xml = scene(LIGHT).replace(r#"<float name="fov" value="40"/>"#, "").replace("value=\"32\"", "value=\"64\"");
+    let vfov = conv(&xml, &[]).0.camera.vfov.unwrap().get();
+    assert!((vfov - 34.022).abs() < 0.01, "{vfov}");
+    let xml = xml.replace(
+        "<sensor type=\"perspective\">",
+        "<sensor type=\"perspective\"><string name=\"focal_length\" value=\"abcmm\"/>",
+    );
+    assert!(err(&xml).contains("`abc` is not a number"));
+}

@@ -434,12 +434,24 @@ impl<'a> Conv<'a, '_> {
             }
         }
         render.spp = Some(spp);
-        // Mitsuba's default is a 50 mm lens on a 36 mm wide film, measured along x.
-        let fov = self.float(e, "fov")?.unwrap_or(39.597_755);
+        // Without `fov`, Mitsuba reads `focal_length` (default "50mm") as a lens on a 35 mm film
+        // (36 × 24 mm), measured along the film's diagonal.
+        let (fov, axis) = match self.float(e, "fov")? {
+            Some(f) => (f, self.string(e, "fov_axis")?.unwrap_or("x")),
+            None => {
+                let text = self.string(e, "focal_length")?.unwrap_or("50mm");
+                let mm = text.trim().trim_end_matches("mm");
+                let at = self.prop(e, "focal_length").unwrap_or(e);
+                let f = self.number(at, "value", mm)?;
+                if f <= 0.0 {
+                    return Err(self.src.error(at.offset_of("value"), "focal_length must be positive"));
+                }
+                (2.0 * (36f64.hypot(24.0) / (2.0 * f)).atan().to_degrees(), "diagonal")
+            }
+        };
         if !(fov > 0.0 && fov < 180.0) {
             return Err(self.src.error(e.offset, format!("fov must be in (0, 180) degrees, not {fov}")));
         }
-        let axis = self.string(e, "fov_axis")?.unwrap_or("x");
         let (w, h) = (width as f64, height as f64);
         let half = (fov.to_radians() / 2.0).tan();
         let vertical_half = match axis {
