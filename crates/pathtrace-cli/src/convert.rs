@@ -32,7 +32,7 @@ fn folder(p: &Path) -> Option<PathBuf> {
 /// Makes relative mesh paths absolute against `dir`.
 fn rebase(objects: &mut [ObjectDef], groups: &mut [GroupDef], dir: &Path) {
     for o in objects {
-        if let ShapeDef::Mesh { file } = &mut o.shape {
+        if let ShapeDef::Mesh { file, .. } = &mut o.shape {
             if Path::new(file.as_str()).is_relative() {
                 *file = dir.join(file.as_str()).to_string_lossy().into_owned();
             }

@@ -341,3 +341,82 @@ fn includes_splice_their_elements_and_locate_their_errors() {
     assert!(e.contains("main.xml:8:") && e.contains("cannot read included file"), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn serialized_meshes_load_and_bad_ones_are_errors() {
+    let Some(dir) = shared_scenes() else {
+        eprintln!("skipped: ../shared/scenes is absent");
+        return;
+    };
+    let path = dir.join("matpreview/common/meshes/matpreview.serialized");
+    let parts = pathtrace_scene::mesh::load_mesh(&path).unwrap();
+    assert!(parts.len() >= 3, "{} parts", parts.len());
+    assert!(parts.iter().all(|(_, m)| !m.indices.is_empty()));
+    // Truncated and corrupted copies fail with an error, never a panic.
+    let bytes = std::fs::read(&path).unwrap();
+    for cut in [0, 3, 8, 100, bytes.len() / 2, bytes.len() - 1] {
+        assert!(pathtrace_scene::mesh::parse_mesh(&bytes[..cut], &path).is_err());
+    }
+    for at in (0..bytes.len()).step_by(bytes.len() / 50 + 1) {
+        let mut b = bytes.clone();
+        b[at] ^= 0x5a;
+        let _ = pathtrace_scene::mesh::parse_mesh(&b, &path);
+    }
+    // In a scene: shape_index picks the part.
+    let xml = scene(
+        r#"<shape type="serialized"><string name="filename" value="m.serialized"/><integer name="shape_index" value="1"/></shape>"#,
+    );
+    let tmp = std::env::temp_dir().join(format!("pathtrace-mitsuba-ser-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    std::fs::copy(&path, tmp.join("m.serialized")).unwrap();
+    let (f, w) = convert_str(&xml, &tmp.join("s.xml"), &[]).unwrap();
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!(f.objects[0].shape, ShapeDef::Mesh { file: "m.serialized".into(), part: Some(1) });
+    let bad = xml.replace("value=\"1\"", "value=\"99\"").replace("</scene>", &format!("{LIGHT}</scene>"));
+    let e = load_str(&bad, &tmp.join("s.xml"), &[]).unwrap_err().to_string();
+    assert!(e.contains("part 99 does not exist"), "{e}");
+    let _ = std::fs::remove_dir_all(&tmp);
+}
+
+#[test]
+fn a_point_light_gives_its_inverse_square_irradiance() {
+    let xml = r#"<scene version="3.0.0">
+        <integrator type="direct"/>
+        <sensor type="perspective">
+            <float name="fov" value="10"/>
+            <transform name="to_world"><lookat origin="0, 0, 10" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film>
+        </sensor>
+        <emitter type="point"><point name="position" value="0, 3, 4"/><rgb name="intensity" value="25"/></emitter>
+        <shape type="rectangle"><transform name="to_world"><scale value="10"/></transform>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></shape>
+    </scene>"#;
+    let (loaded, _) = load_str(xml, Path::new("p.xml"), &[]).unwrap();
+    let mut s = RenderSettings { width: 16, height: 16, spp: 256, seed: 1, ..Default::default() };
+    s.path.max_depth = loaded.defaults.max_depth;
+    let film = render(Arc::new(loaded.scene), s).unwrap().film;
+    // E = I cos θ / d² = 25 · 0.8 / 25 at the centre; the central pixels span ±0.2, where E
+    // varies by under 1% on average.
+    let expected = 0.5 / std::f64::consts::PI * 0.8;
+    let r = film.region_estimate(6, 6, 10, 10);
+    for c in 0..3 {
+        assert!(
+            (r.mean[c] - expected).abs() < 0.02 * expected + 4.0 * r.variance_of_mean[c].sqrt(),
+            "{:?} vs {expected}",
+            r
+        );
+    }
+}
+
+#[test]
+fn without_fov_a_50mm_lens_on_35mm_film_is_assumed() {
+    // Mitsuba 3 renders the teapot tutorial scene (square film, no fov) with x_fov = 34.022°.
+    let xml = scene(LIGHT).replace(r#"<float name="fov" value="40"/>"#, "").replace("value=\"32\"", "value=\"64\"");
+    let vfov = conv(&xml, &[]).0.camera.vfov.unwrap().get();
+    assert!((vfov - 34.022).abs() < 0.01, "{vfov}");
+    let xml = xml.replace(
+        "<sensor type=\"perspective\">",
+        "<sensor type=\"perspective\"><string name=\"focal_length\" value=\"abcmm\"/>",
+    );
+    assert!(err(&xml).contains("`abc` is not a number"));
+}

@@ -1,4 +1,4 @@
-//! Triangle meshes from files: Wavefront OBJ and Stanford PLY.
+//! Triangle meshes from files: Wavefront OBJ, Stanford PLY and Mitsuba `.serialized`.
 //!
 //! [`load_mesh`] reads a file and picks the parser by extension; [`parse_mesh`] does the same
 //! for bytes already in memory. Both return named parts: one per OBJ material (`usemtl`), or one
@@ -9,13 +9,14 @@ mod error;
 mod normals;
 mod obj;
 mod ply;
+mod serialized;
 
 pub use error::MeshLoadError;
 
 use pathtrace::shape::TriangleMesh;
 use std::path::Path;
 
-/// Loads an `.obj` or `.ply` file (extension case-insensitive) as named mesh parts.
+/// Loads an `.obj`, `.ply` or `.serialized` file (extension case-insensitive) as named mesh parts.
 pub fn load_mesh(path: &Path) -> Result<Vec<(String, TriangleMesh)>, MeshLoadError> {
     let bytes = std::fs::read(path)
         .map_err(|e| MeshLoadError::File { file: path.to_path_buf(), message: format!("cannot read the file: {e}") })?;
@@ -33,9 +34,10 @@ pub fn parse_mesh(bytes: &[u8], path: &Path) -> Result<Vec<(String, TriangleMesh
             let name = path.file_stem().map_or_else(|| "mesh".to_string(), |s| s.to_string_lossy().into_owned());
             Ok(vec![(name, mesh)])
         }
+        Some("serialized") => serialized::parse(bytes).map_err(|f| f.into_error(path)),
         _ => Err(MeshLoadError::File {
             file: path.to_path_buf(),
-            message: "unsupported mesh format: expected a .obj or .ply file".to_string(),
+            message: "unsupported mesh format: expected a .obj, .ply or .serialized file".to_string(),
         }),
     }
 }

@@ -434,12 +434,24 @@ impl<'a> Conv<'a, '_> {
             }
         }
         render.spp = Some(spp);
-        // Mitsuba's default is a 50 mm lens on a 36 mm wide film, measured along x.
-        let fov = self.float(e, "fov")?.unwrap_or(39.597_755);
+        // Without `fov`, Mitsuba reads `focal_length` (default "50mm") as a lens on a 35 mm film
+        // (36 × 24 mm), measured along the film's diagonal.
+        let (fov, axis) = match self.float(e, "fov")? {
+            Some(f) => (f, self.string(e, "fov_axis")?.unwrap_or("x")),
+            None => {
+                let text = self.string(e, "focal_length")?.unwrap_or("50mm");
+                let mm = text.trim().trim_end_matches("mm");
+                let at = self.prop(e, "focal_length").unwrap_or(e);
+                let f = self.number(at, "value", mm)?;
+                if f <= 0.0 {
+                    return Err(self.src.error(at.offset_of("value"), "focal_length must be positive"));
+                }
+                (2.0 * (36f64.hypot(24.0) / (2.0 * f)).atan().to_degrees(), "diagonal")
+            }
+        };
         if !(fov > 0.0 && fov < 180.0) {
             return Err(self.src.error(e.offset, format!("fov must be in (0, 180) degrees, not {fov}")));
         }
-        let axis = self.string(e, "fov_axis")?.unwrap_or("x");
         let (w, h) = (width as f64, height as f64);
         let half = (fov.to_radians() / 2.0).tan();
         let vertical_half = match axis {
@@ -622,7 +634,16 @@ impl<'a> Conv<'a, '_> {
                 if self.boolean(e, "flip_normals")? == Some(true) {
                     self.warn(e, "flip_normals is not supported and is ignored");
                 }
-                ShapeDef::Mesh { file: self.find_file(e, file)? }
+                ShapeDef::Mesh { file: self.find_file(e, file)?, part: None }
+            }
+            "serialized" => {
+                let Some(file) = self.string(e, "filename")? else {
+                    return Err(self.src.error(e.offset, "a serialized shape needs a `filename` string"));
+                };
+                let index = self.integer(e, "shape_index")?.unwrap_or(0);
+                let part = u32::try_from(index)
+                    .map_err(|_| self.src.error(e.offset, format!("shape_index {index} must be ≥ 0")))?;
+                ShapeDef::Mesh { file: self.find_file(e, file)?, part: Some(part) }
             }
             "rectangle" => ShapeDef::Quad {
                 q: n3(Vec3::new(-1.0, -1.0, 0.0)),
@@ -681,14 +702,14 @@ impl<'a> Conv<'a, '_> {
         Ok(())
     }
 
-    /// Point lights become small emissive spheres of the same intensity: radius 0.5% of the
-    /// camera's distance to its target, radiance I / (π r²).
+    /// Point lights become small emissive spheres of the same intensity: radius 1% of the light's
+    /// distance to the camera (smaller spheres lose f32 precision in cone sampling), radiance
+    /// I / (π r²).
     fn add_point_lights(&mut self, camera: &CameraSection) -> R<()> {
         let lights = std::mem::take(&mut self.point_lights);
-        let v = |a: &Num3| Vec3::new(a[0].f32(), a[1].f32(), a[2].f32());
-        let d = (v(&camera.look_from) - v(&camera.look_at)).length();
-        let r = (0.005 * d).max(1e-4);
+        let eye = Vec3::new(camera.look_from[0].f32(), camera.look_from[1].f32(), camera.look_from[2].f32());
         for (i, (pos, intensity, offset)) in lights.into_iter().enumerate() {
+            let r = (0.01 * (pos - eye).length()).max(1e-3);
             let at = self.src.location(offset);
             self.warnings.push(format!("{at}: point emitter approximated by an emissive sphere of radius {r}"));
             let scale = 1.0 / (std::f64::consts::PI * (r as f64).powi(2));

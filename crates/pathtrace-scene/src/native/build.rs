@@ -189,18 +189,33 @@ impl Ctx<'_> {
                     degenerate("box: `max` must exceed `min` on every axis and the transform keep it solid")
                 });
             }
-            ShapeDef::Mesh { file } => return self.add_mesh(file, id, &t, &at.field("file")),
+            ShapeDef::Mesh { file, part } => return self.add_mesh(file, *part, id, &t, at),
         };
         self.b.shape(shape, id, &t).map_err(|e| err(&e))
     }
 
-    fn add_mesh(&mut self, file: &str, id: MaterialId, t: &Transform, at: &ItemPath) -> Result<(), SceneError> {
+    fn add_mesh(
+        &mut self,
+        file: &str,
+        part: Option<u32>,
+        id: MaterialId,
+        t: &Transform,
+        object: &ItemPath,
+    ) -> Result<(), SceneError> {
+        let at = &object.field("file");
         let dir = self.src.path.parent().unwrap_or(std::path::Path::new(""));
         let path = dir.join(file);
         // The mesh error already names its file (and line or byte offset there).
         let meshes =
             crate::mesh::load_mesh(&path).map_err(|e| self.src.error_at(at, format!("cannot load mesh: {e}")))?;
-        for (_, mesh) in &meshes {
+        let n = meshes.len();
+        let chosen = match part {
+            None => &meshes[..],
+            Some(i) => meshes.get(i as usize..i as usize + 1).ok_or_else(|| {
+                self.src.error_at(&object.field("part"), format!("part {i} does not exist: `{file}` has {n} part(s)"))
+            })?,
+        };
+        for (_, mesh) in chosen {
             self.b.mesh(mesh, id, t).map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
         }
         Ok(())

@@ -33,8 +33,10 @@ pub enum ShapeDef {
     Box { min: Num3, max: Num3 },
     /// The triangle abc; its front faces along (b − a) × (c − a).
     Triangle { a: Num3, b: Num3, c: Num3 },
-    /// Triangles from an OBJ or PLY file; the path is relative to the scene file's folder.
-    Mesh { file: String },
+    /// Triangles from an OBJ, PLY or Mitsuba `.serialized` file; the path is relative to the scene
+    /// file's folder. `part` picks one part by index (an OBJ material group, a serialized shape);
+    /// without it, all parts are used.
+    Mesh { file: String, part: Option<u32> },
 }
 
 /// One object: a shape, the name of its material, and its transform list.
@@ -99,6 +101,8 @@ pub struct RawObject {
     c: Option<Num3>,
     #[serde(skip_serializing_if = "Option::is_none")]
     file: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    part: Option<u32>,
 }
 
 /// The geometric fields each shape takes.
@@ -109,7 +113,7 @@ fn fields_of(t: ShapeType) -> &'static [&'static str] {
         ShapeType::Quad => &["q", "u", "v"],
         ShapeType::Box => &["min", "max"],
         ShapeType::Triangle => &["a", "b", "c"],
-        ShapeType::Mesh => &["file"],
+        ShapeType::Mesh => &["file", "part"],
     }
 }
 
@@ -141,6 +145,7 @@ impl RawObject {
             ("b", v3(&self.b)),
             ("c", v3(&self.c)),
             ("file", self.file.is_some()),
+            ("part", self.part.is_some()),
         ];
         fields.iter().filter(|f| f.1).map(|f| f.0).collect()
     }
@@ -168,7 +173,7 @@ impl TryFrom<RawObject> for ObjectDef {
             ShapeType::Quad => ShapeDef::Quad { q: need(r.q, "q")?, u: need(r.u, "u")?, v: need(r.v, "v")? },
             ShapeType::Box => ShapeDef::Box { min: need(r.min, "min")?, max: need(r.max, "max")? },
             ShapeType::Triangle => ShapeDef::Triangle { a: need(r.a, "a")?, b: need(r.b, "b")?, c: need(r.c, "c")? },
-            ShapeType::Mesh => ShapeDef::Mesh { file: r.file.ok_or_else(|| missing("file"))? },
+            ShapeType::Mesh => ShapeDef::Mesh { file: r.file.ok_or_else(|| missing("file"))?, part: r.part },
         };
         let material =
             r.material.ok_or_else(|| format!("a {name} needs a `material` (the name of a [materials.NAME])"))?;
@@ -200,8 +205,8 @@ impl From<ObjectDef> for RawObject {
                 (r.a, r.b, r.c) = (Some(a), Some(b), Some(c));
                 ShapeType::Triangle
             }
-            ShapeDef::Mesh { file } => {
-                r.file = Some(file);
+            ShapeDef::Mesh { file, part } => {
+                (r.file, r.part) = (Some(file), part);
                 ShapeType::Mesh
             }
         });
