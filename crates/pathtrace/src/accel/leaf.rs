@@ -1,7 +1,7 @@
 //! BVH leaves: their quads and triangles packed four to a SIMD packet (lanes = primitives, as
 //! in Embree's "quad4"/"triangle4" leaves), other shapes kept as indices tested one by one.
 
-use super::lanes::RayX4;
+use super::lanes::{HitX4, RayX4};
 use super::quad4::Quad4;
 use super::tri4::Tri4;
 use super::Intersectable;
@@ -23,6 +23,48 @@ pub enum Packable {
 struct Packed<G> {
     geom: G,
     ids: [u32; 4],
+}
+
+/// A four-lane primitive packet (quads or triangles).
+trait Packet {
+    fn hits(&self, rx4: &RayX4, t_min: f32, t_max: f32) -> HitX4;
+}
+
+impl Packet for Quad4 {
+    #[inline(always)]
+    fn hits(&self, rx4: &RayX4, t_min: f32, t_max: f32) -> HitX4 {
+        self.intersect(rx4, t_min, t_max)
+    }
+}
+
+impl Packet for Tri4 {
+    #[inline(always)]
+    fn hits(&self, rx4: &RayX4, t_min: f32, t_max: f32) -> HitX4 {
+        self.intersect(rx4, t_min, t_max)
+    }
+}
+
+/// Closest hit among `packets`, shrinking `t_max` and updating `best` as it goes.
+#[inline(always)]
+fn closest_in<G: Packet>(
+    packets: &[Packed<G>],
+    rx4: &RayX4,
+    t_min: f32,
+    t_max: &mut f32,
+    best: &mut Option<(PrimHit, u32)>,
+) {
+    for p in packets {
+        if let Some((lane, hit)) = p.geom.hits(rx4, t_min, *t_max).closest() {
+            *t_max = hit.t;
+            *best = Some((hit, p.ids[lane]));
+        }
+    }
+}
+
+/// True if any lane of any packet is hit.
+#[inline(always)]
+fn any_in<G: Packet>(packets: &[Packed<G>], rx4: &RayX4, t_min: f32, t_max: f32) -> bool {
+    packets.iter().any(|p| p.geom.hits(rx4, t_min, t_max).mask.any())
 }
 
 /// One leaf: ranges in the packet and index arrays.
@@ -107,18 +149,8 @@ impl Leaves {
         best: &mut Option<(PrimHit, u32)>,
     ) {
         let leaf = &self.leaves[index as usize];
-        for p in part(&self.quads, leaf.quads, leaf.n_quads) {
-            if let Some((lane, hit)) = p.geom.intersect(rx4, t_min, *t_max).closest() {
-                *t_max = hit.t;
-                *best = Some((hit, p.ids[lane]));
-            }
-        }
-        for p in part(&self.tris, leaf.tris, leaf.n_tris) {
-            if let Some((lane, hit)) = p.geom.intersect(rx4, t_min, *t_max).closest() {
-                *t_max = hit.t;
-                *best = Some((hit, p.ids[lane]));
-            }
-        }
+        closest_in(part(&self.quads, leaf.quads, leaf.n_quads), rx4, t_min, t_max, best);
+        closest_in(part(&self.tris, leaf.tris, leaf.n_tris), rx4, t_min, t_max, best);
         for &i in part(&self.scalar, leaf.scalar, leaf.n_scalar) {
             if let Some(hit) = prims[i as usize].intersect(ray, t_min, *t_max) {
                 *t_max = hit.t;
@@ -139,8 +171,8 @@ impl Leaves {
         t_max: f32,
     ) -> bool {
         let leaf = &self.leaves[index as usize];
-        part(&self.quads, leaf.quads, leaf.n_quads).iter().any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
-            || part(&self.tris, leaf.tris, leaf.n_tris).iter().any(|p| p.geom.intersect(rx4, t_min, t_max).mask.any())
+        any_in(part(&self.quads, leaf.quads, leaf.n_quads), rx4, t_min, t_max)
+            || any_in(part(&self.tris, leaf.tris, leaf.n_tris), rx4, t_min, t_max)
             || part(&self.scalar, leaf.scalar, leaf.n_scalar)
                 .iter()
                 .any(|&i| prims[i as usize].intersect(ray, t_min, t_max).is_some())

@@ -183,21 +183,28 @@ const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 mod tests {
     use super::*;
 
+    /// How many of samples `0..n` of pixel `(px, py)` fall in each cell of an `nx × ny` grid,
+    /// in the 2D dimension pair after skipping `skip` pairs.
+    fn cell_counts(s: &mut Sampler, (px, py): (u32, u32), n: u32, skip: usize, (nx, ny): (usize, usize)) -> Vec<u32> {
+        let mut cells = vec![0; nx * ny];
+        for i in 0..n {
+            s.start(px, py, i);
+            for _ in 0..skip {
+                s.next_2d();
+            }
+            let p = s.next_2d();
+            cells[(p.y * ny as f32) as usize * nx + (p.x * nx as f32) as usize] += 1;
+        }
+        cells
+    }
+
     #[test]
     fn stratified_2d_puts_one_sample_in_each_stratum() {
         for n in [16u32, 64] {
             let mut s = Sampler::new(SamplerKind::Stratified, 3, n);
             let k = (n as f32).sqrt() as usize;
             for dim in 0..3 {
-                let mut cells = vec![0; n as usize];
-                for i in 0..n {
-                    s.start(5, 9, i);
-                    for _ in 0..dim {
-                        s.next_2d();
-                    }
-                    let p = s.next_2d();
-                    cells[(p.y * k as f32) as usize * k + (p.x * k as f32) as usize] += 1;
-                }
+                let cells = cell_counts(&mut s, (5, 9), n, dim, (k, k));
                 assert!(cells.iter().all(|&c| c == 1), "n={n} dim={dim}: {cells:?}");
             }
         }
@@ -237,15 +244,7 @@ mod tests {
             let mut s = Sampler::new(SamplerKind::Sobol, 3, n);
             for dim in 0..4 {
                 for (nx, ny) in [(8usize, 8usize), (64, 1), (1, 64), (16, 4), (2, 32)] {
-                    let mut cells = vec![0; 64];
-                    for i in 0..n {
-                        s.start(px, py, i);
-                        for _ in 0..dim {
-                            s.next_2d();
-                        }
-                        let p = s.next_2d();
-                        cells[(p.y * ny as f32) as usize * nx + (p.x * nx as f32) as usize] += 1;
-                    }
+                    let cells = cell_counts(&mut s, (px, py), n, dim, (nx, ny));
                     assert!(cells.iter().all(|&c| c == 1), "pixel ({px},{py}) dim {dim} grid {nx}x{ny}");
                 }
             }
