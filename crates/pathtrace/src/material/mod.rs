@@ -4,19 +4,22 @@
 //! from the surface; `wo` towards the viewer, `wi` towards the light. `eval` returns
 //! `f(wo, wi)·|cos θi|`, so models whose BRDF is singular at grazing angles stay finite.
 //! Reflective models are two-sided: the integrator flips the frame so that `wo.z > 0`. The
-//! dielectric sees both sides (z > 0 is outside, where the geometric normal points).
+//! dielectric sees both sides (z > 0 is outside, where the geometric normal points); the thin
+//! dielectric is symmetric, so it is two-sided too.
 
 mod dielectric;
 mod diffuse;
 mod glossy;
 mod lambertian;
 mod mirror;
+mod thin_dielectric;
 
 pub use dielectric::{fresnel_dielectric, Dielectric};
 pub use diffuse::Diffuse;
 pub use glossy::Glossy;
 pub use lambertian::Lambertian;
 pub use mirror::Mirror;
+pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Rgb, Vec2, Vec3};
 
@@ -45,6 +48,7 @@ pub enum Material {
     Mirror(Mirror),
     Glossy(Glossy),
     Dielectric(Dielectric),
+    ThinDielectric(ThinDielectric),
 }
 
 impl Material {
@@ -58,6 +62,7 @@ impl Material {
             Material::Mirror(m) => m.sample(wo),
             Material::Glossy(m) => m.sample(wo, u),
             Material::Dielectric(m) => m.sample(wo, u_lobe),
+            Material::ThinDielectric(m) => m.sample(wo, u_lobe),
         }
     }
 
@@ -68,7 +73,7 @@ impl Material {
             Material::Diffuse(m) => m.eval(wo, wi),
             Material::Lambertian(m) => m.eval(wo, wi),
             Material::Glossy(m) => m.eval(wo, wi),
-            Material::Black | Material::Mirror(_) | Material::Dielectric(_) => Rgb::BLACK,
+            Material::Black | Material::Mirror(_) | Material::Dielectric(_) | Material::ThinDielectric(_) => Rgb::BLACK,
         }
     }
 
@@ -79,13 +84,13 @@ impl Material {
             Material::Diffuse(m) => m.pdf(wo, wi),
             Material::Lambertian(m) => m.pdf(wo, wi),
             Material::Glossy(m) => m.pdf(wo, wi),
-            Material::Black | Material::Mirror(_) | Material::Dielectric(_) => 0.0,
+            Material::Black | Material::Mirror(_) | Material::Dielectric(_) | Material::ThinDielectric(_) => 0.0,
         }
     }
 
     /// True if the model only scatters into discrete directions, so light sampling is skipped.
     pub fn is_delta(&self) -> bool {
-        matches!(self, Material::Mirror(_) | Material::Dielectric(_))
+        matches!(self, Material::Mirror(_) | Material::Dielectric(_) | Material::ThinDielectric(_))
     }
 
     /// True if the model treats both sides of a surface alike.
@@ -107,6 +112,7 @@ impl Material {
             Material::Mirror(_) => "mirror",
             Material::Glossy(_) => "glossy",
             Material::Dielectric(_) => "dielectric",
+            Material::ThinDielectric(_) => "thindielectric",
         }
     }
 }

@@ -8,7 +8,7 @@
 //! result is bit-identical whatever the number of threads.
 
 use super::settings::RenderSettings;
-use super::tile::{render_tile, tiles, TileResult};
+use super::tile::{render_tile, tiles, TileJob, TileResult};
 use crate::camera::{Camera, CameraError};
 use crate::film::{Film, Image};
 use crate::integrator::PathStats;
@@ -210,6 +210,7 @@ fn run_waves(scene: &Scene, camera: &Camera, settings: &RenderSettings, shared: 
     let tile_list = tiles(settings.width, settings.height, settings.tile_size);
     let deadline = settings.time_limit.map(|t| shared.start + t);
     let out_of_time = || deadline.is_some_and(|d| Instant::now() >= d);
+    let job = TileJob { scene, camera, path: &settings.path, filter: &settings.filter };
     let mut first = 0u32;
     for count in settings.waves() {
         if shared.cancel.load(Ordering::Relaxed) || out_of_time() {
@@ -221,7 +222,7 @@ fn run_waves(scene: &Scene, camera: &Camera, settings: &RenderSettings, shared: 
                 if shared.cancel.load(Ordering::Relaxed) || out_of_time() {
                     return;
                 }
-                let result = render_tile(scene, camera, &settings.path, sampler, tile, first, count);
+                let result = render_tile(&job, sampler, tile, first, count);
                 shared.record(&result);
             },
         );

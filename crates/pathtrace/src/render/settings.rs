@@ -1,5 +1,6 @@
 //! What to render and how long for.
 
+use crate::film::PixelFilter;
 use crate::integrator::PathSettings;
 use crate::sampling::SamplerKind;
 use std::time::Duration;
@@ -15,6 +16,8 @@ pub struct RenderSettings {
     pub time_limit: Option<Duration>,
     pub path: PathSettings,
     pub sampler: SamplerKind,
+    /// Pixel reconstruction filter, sampled by importance (default: the pixel's own square).
+    pub filter: PixelFilter,
     pub seed: u64,
     /// Worker threads; 0 means one per core.
     pub threads: usize,
@@ -33,6 +36,7 @@ impl Default for RenderSettings {
             time_limit: None,
             path: PathSettings::default(),
             sampler: SamplerKind::default(),
+            filter: PixelFilter::default(),
             seed: 0,
             threads: 0,
             tile_size: 16,
