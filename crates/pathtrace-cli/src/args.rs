@@ -1,7 +1,7 @@
 //! Command-line arguments.
 
 use clap::{Args, Parser, Subcommand};
-use pathtrace::film::ToneMap;
+use pathtrace::film::{PixelFilter, ToneMap};
 use pathtrace::integrator::Strategy;
 use pathtrace::sampling::SamplerKind;
 use std::path::PathBuf;
@@ -142,6 +142,10 @@ pub struct QualityArgs {
     /// (low-discrepancy: Owen-scrambled Sobol') [default: the scene's, else independent]
     #[arg(long, value_parser = parse_from_str::<SamplerKind>)]
     pub sampler: Option<SamplerKind>,
+    /// Pixel reconstruction filter, sampled by importance: box (the pixel itself), tent (radius 1)
+    /// or gaussian (stddev 0.5, as Mitsuba) [default: the scene's, else box]
+    #[arg(long, value_parser = PixelFilter::by_name)]
+    pub filter: Option<PixelFilter>,
     /// Random seed: the same seed, scene and settings give the same image [default: the scene's, else 0]
     #[arg(long)]
     pub seed: Option<u64>,

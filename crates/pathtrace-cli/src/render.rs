@@ -24,6 +24,7 @@ pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &R
         spp: if time.is_some() { spp.unwrap_or(0) } else { spp.unwrap_or(d.spp) },
         time_limit: time.map(Duration::from_secs_f64),
         sampler: q.sampler.or(d.sampler).unwrap_or_default(),
+        filter: q.filter.clone().or_else(|| d.filter.clone()).unwrap_or_default(),
         seed: q.seed.or(d.seed).unwrap_or(0),
         threads: q.threads.unwrap_or(0),
         ..RenderSettings::default()

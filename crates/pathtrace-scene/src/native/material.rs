@@ -15,6 +15,7 @@ pub enum MaterialType {
     Mirror,
     Glossy,
     Dielectric,
+    ThinDielectric,
     Emissive,
 }
 
@@ -31,6 +32,8 @@ pub enum MaterialKind {
     Glossy { albedo: Triple, exponent: Num },
     /// Smooth glass; `ior` defaults to 1.5, `tint` to 1.
     Dielectric { ior: Num, tint: Triple },
+    /// A thin glass sheet (Mitsuba's `thindielectric`); `ior` defaults to 1.5, `tint` to 1.
+    ThinDielectric { ior: Num, tint: Triple },
     /// A black surface that emits `radiance` (set on the [`MaterialDef`]'s emission).
     Emissive,
 }
@@ -84,7 +87,7 @@ fn allowed(t: MaterialType) -> &'static [&'static str] {
         MaterialType::Diffuse | MaterialType::Lambertian => &["albedo"],
         MaterialType::Mirror => &["reflectance"],
         MaterialType::Glossy => &["albedo", "exponent"],
-        MaterialType::Dielectric => &["ior", "tint"],
+        MaterialType::Dielectric | MaterialType::ThinDielectric => &["ior", "tint"],
         MaterialType::Emissive => &["radiance"],
     }
 }
@@ -111,8 +114,9 @@ impl TryFrom<RawMaterial> for MaterialDef {
     type Error = String;
 
     fn try_from(r: RawMaterial) -> Result<Self, String> {
-        let t =
-            r.kind.ok_or("a material needs a `type` (diffuse, lambertian, mirror, glossy, dielectric, emissive)")?;
+        let t = r.kind.ok_or(
+            "a material needs a `type` (diffuse, lambertian, mirror, glossy, dielectric, thindielectric, emissive)",
+        )?;
         let name = serde_json::to_value(t).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
         if let Some(extra) = r.present().into_iter().find(|f| !allowed(t).contains(f)) {
             let ok = allowed(t).iter().map(|f| format!("`{f}`")).collect::<Vec<_>>().join(", ");
@@ -129,6 +133,9 @@ impl TryFrom<RawMaterial> for MaterialDef {
             },
             MaterialType::Dielectric => {
                 MaterialKind::Dielectric { ior: r.ior.unwrap_or(Num::from(1.5)), tint: r.tint.unwrap_or(one) }
+            }
+            MaterialType::ThinDielectric => {
+                MaterialKind::ThinDielectric { ior: r.ior.unwrap_or(Num::from(1.5)), tint: r.tint.unwrap_or(one) }
             }
             MaterialType::Emissive => MaterialKind::Emissive,
         };
@@ -164,6 +171,9 @@ impl From<MaterialDef> for RawMaterial {
             }
             MaterialKind::Dielectric { ior, tint } => {
                 (r.kind, r.ior, r.tint) = (Some(MaterialType::Dielectric), Some(ior), Some(tint))
+            }
+            MaterialKind::ThinDielectric { ior, tint } => {
+                (r.kind, r.ior, r.tint) = (Some(MaterialType::ThinDielectric), Some(ior), Some(tint))
             }
             MaterialKind::Emissive => r.kind = Some(MaterialType::Emissive),
         }

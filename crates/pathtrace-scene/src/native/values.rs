@@ -195,6 +195,15 @@ named_choice!(
     "a sampler name (independent, stratified or sobol)"
 );
 
+/// The pixel filters by name: `box`, `tent` or `gaussian`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FilterName {
+    Box,
+    Tent,
+    Gaussian,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
