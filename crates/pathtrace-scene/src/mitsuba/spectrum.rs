@@ -6,10 +6,11 @@
 //! - the list is read as a piecewise-linear function of wavelength, zero outside its range;
 //! - it is integrated against the CIE 1931 colour-matching functions with 1000 evenly spaced
 //!   samples over 360–830 nm: XYZ = Σ x̄ȳz̄(λ) · v(λ) · w(λ) · Δλ, Δλ = 470/1000 nm;
-//! - a reflectance is weighted by the D65 illuminant normalised to unit luminance
-//!   (w = D65(λ)/∫ȳ·D65), so a flat spectrum 1 gives white (1, 1, 1); an emitter is weighted by
-//!   1/∫ȳ (w = `CIE_Y_NORMALIZATION`), so a flat spectrum 1 gives Y = 1 (and, in sRGB, a
-//!   slightly purple (1.20, 0.95, 0.91), as in Mitsuba);
+//! - every value is scaled by 1/∫ȳ (`CIE_Y_NORMALIZATION`); a reflectance is further weighted by
+//!   the D65 illuminant (scaled by `CIE_D65_NORMALIZATION` so that ∫ȳ·D65 ≈ ∫ȳ), so a flat
+//!   reflectance 1 gives white (1, 1, 1) under sRGB's D65 white point; an emitter is not, so a
+//!   flat emission spectrum 1 gives Y = 1 but, in sRGB, a slightly purple (1.20, 0.95, 0.91), as
+//!   in Mitsuba;
 //! - XYZ → linear sRGB with the sRGB/Rec. 709 matrix (IEC 61966-2-1);
 //! - reflectances are clamped to [0, 1], emitters to ≥ 0.
 //!
@@ -79,7 +80,7 @@ pub fn spectrum_to_rgb(samples: &[(f64, f64)], usage: SpectrumUse) -> Converted 
         let v = if w1 > w0 { v0 + (v1 - v0) * (lambda - w0) / (w1 - w0) } else { v0 };
         let cie = cie_at(lambda);
         let weight = match usage {
-            SpectrumUse::Reflectance => cie[3] * CIE_D65_NORMALIZATION,
+            SpectrumUse::Reflectance => cie[3] * CIE_D65_NORMALIZATION * CIE_Y_NORMALIZATION,
             SpectrumUse::Emission => CIE_Y_NORMALIZATION,
         };
         for c in 0..3 {
