@@ -6,6 +6,7 @@ use crate::progress::{format_rate, Bar};
 use crate::stats_json::RenderStats;
 use crate::{scene_arg, CliError};
 use pathtrace::film::ToneMapSettings;
+use pathtrace::integrator::Strategy;
 use pathtrace::{RenderSession, RenderSettings};
 use pathtrace_scene::image_io::{write_image, ImageFormat};
 use pathtrace_scene::RenderDefaults;
@@ -50,6 +51,13 @@ fn check_output(path: &Path) -> Result<(), CliError> {
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let loaded = scene_arg::load_with(&a.scene, &a.defines)?;
     let settings = settings_from(&a.quality, a.spp, a.time, &loaded.defaults);
+    if !loaded.scene.lights.points().is_empty() && settings.path.strategy != Strategy::Mis {
+        eprintln!(
+            "warning: the scene has point lights, which only the mis strategy can see (next-event \
+             estimation); with --strategy {} they render black",
+            settings.path.strategy
+        );
+    }
     let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", scene_arg::stem(&a.scene))));
     check_output(&output)?;
     if !a.exposure.is_finite() {

@@ -137,7 +137,7 @@ mod tests {
     #[test]
     fn reflectances_match_mitsuba() {
         // Mitsuba 3.9.1 scalar_rgb loads this diffuse reflectance as (0.726577, 0.424956, 0.17397)
-        // (/tmp probe recorded in benches/peers/README.md).
+        // (read with mi.traverse, recorded in benches/peers/README.md).
         let c = spectrum_to_rgb(&LIST, SpectrumUse::Reflectance);
         assert!(close(c.rgb, [0.726577, 0.424956, 0.17397], 2e-5), "{:?}", c.rgb);
         assert!(!c.clamped);
