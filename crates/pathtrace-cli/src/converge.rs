@@ -1,11 +1,11 @@
 //! `pathtrace converge`: how fast each strategy × sampler approaches a reference. Renders at
 //! 1, 2, 4, … spp (a fresh seed per level, so levels are independent), measures relative MSE
-//! against the reference, and writes a CSV, log–log SVG plots of error against samples and
+//! against the reference, and writes a CSV, log–log plots (SVG and PNG) of error against samples and
 //! against time, and the time each method needs to reach a target error.
 
 use crate::args::ConvergeArgs;
+use crate::plot::{LinePlot, Series};
 use crate::progress::format_rate;
-use crate::svg_plot::{log_log, Series};
 use crate::{scene_arg, CliError};
 use indicatif::{ProgressBar, ProgressStyle};
 use pathtrace::film::Image;
@@ -135,14 +135,14 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
             .collect()
     };
     let title = format!("{} {width}×{height}", a.scene);
-    write(
-        &out_dir.join("error-vs-spp.svg"),
-        &log_log(&title, "samples per pixel", "relative MSE", &series(|p| p.spp as f64)),
-    )?;
-    write(
-        &out_dir.join("error-vs-time.svg"),
-        &log_log(&title, "render time (s)", "relative MSE", &series(|p| p.seconds)),
-    )?;
+    for (name, x_label, x) in [
+        ("error-vs-spp", "samples per pixel", (|p: &Point| p.spp as f64) as fn(&Point) -> f64),
+        ("error-vs-time", "render time (s)", |p: &Point| p.seconds),
+    ] {
+        let plot = LinePlot { series: series(x), ..LinePlot::log_log(&title, x_label, "relative MSE") };
+        plot.write_svg(&out_dir.join(format!("{name}.svg"))).map_err(|e| CliError::runtime(e.to_string()))?;
+        plot.write_png(&out_dir.join(format!("{name}.png"))).map_err(|e| CliError::runtime(e.to_string()))?;
+    }
 
     // Time to reach the target error: log–log interpolation between the two levels around it.
     let mut table = format!(
@@ -171,7 +171,7 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
     let total: f64 = points.iter().map(|p| p.seconds).sum();
     let samples: f64 = points.iter().map(|p| p.spp as f64 * (width * height) as f64).sum();
     eprintln!(
-        "wrote {}/convergence.csv, error-vs-spp.svg, error-vs-time.svg, table.md ({:.1} s rendering, {})",
+        "wrote {}/convergence.csv, error-vs-{{spp,time}}.{{svg,png}}, table.md ({:.1} s rendering, {})",
         out_dir.display(),
         total,
         format_rate(samples / total.max(1e-9), "samples/s")
