@@ -27,6 +27,30 @@ pub(super) fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     out
 }
 
+/// Which samples of each pixel a wave renders.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum WaveSamples<'a> {
+    /// Samples `first .. first + count` of every pixel.
+    Uniform { first: u32, count: u32 },
+    /// Pixel `i` (row-major over an image `width` wide) takes samples
+    /// `first[i] .. first[i] + count[i]` (adaptive sampling).
+    PerPixel { width: u32, first: &'a [u32], count: &'a [u32] },
+}
+
+impl WaveSamples<'_> {
+    /// The first sample index and the number of samples of pixel `(x, y)`.
+    #[inline(always)]
+    fn range(&self, x: u32, y: u32) -> (u32, u32) {
+        match *self {
+            WaveSamples::Uniform { first, count } => (first, count),
+            WaveSamples::PerPixel { width, first, count } => {
+                let i = (y * width + x) as usize;
+                (first[i], count[i])
+            }
+        }
+    }
+}
+
 /// The samples of one tile for one wave.
 pub(super) struct TileResult {
     pub tile: Tile,
@@ -35,7 +59,7 @@ pub(super) struct TileResult {
     pub dropped: u64,
 }
 
-/// Renders samples `first .. first + count` of every pixel in `tile`. Each pixel sample's
+/// Renders the wave's samples (`samples`) of every pixel in `tile`. Each pixel sample's
 /// random numbers depend only on (seed, pixel, sample index), never on the thread.
 ///
 /// On x86-64 CPUs with AVX2 the same code runs compiled for AVX2 (chosen at run time, so the
@@ -49,16 +73,15 @@ pub(super) fn render_tile(
     path: &PathSettings,
     sampler: &mut Sampler,
     tile: Tile,
-    first: u32,
-    count: u32,
+    samples: WaveSamples,
 ) -> TileResult {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") && std::env::var_os("PATHTRACE_NO_AVX2").is_none() {
         // SAFETY: `render_tile_avx2` only requires AVX2, which the CPU was just checked to have.
         #[allow(unsafe_code)]
-        return unsafe { render_tile_avx2(scene, camera, path, sampler, tile, first, count) };
+        return unsafe { render_tile_avx2(scene, camera, path, sampler, tile, samples) };
     }
-    render_tile_body(scene, camera, path, sampler, tile, first, count)
+    render_tile_body(scene, camera, path, sampler, tile, samples)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -69,10 +92,9 @@ fn render_tile_avx2(
     path: &PathSettings,
     sampler: &mut Sampler,
     tile: Tile,
-    first: u32,
-    count: u32,
+    samples: WaveSamples,
 ) -> TileResult {
-    render_tile_body(scene, camera, path, sampler, tile, first, count)
+    render_tile_body(scene, camera, path, sampler, tile, samples)
 }
 
 #[inline(always)]
@@ -82,8 +104,7 @@ fn render_tile_body(
     path: &PathSettings,
     sampler: &mut Sampler,
     tile: Tile,
-    first: u32,
-    count: u32,
+    samples: WaveSamples,
 ) -> TileResult {
     let mut pixels = vec![PixelStats::default(); (tile.w * tile.h) as usize];
     let mut stats = PathStats::default();
@@ -92,6 +113,7 @@ fn render_tile_body(
         for tx in 0..tile.w {
             let (x, y) = (tile.x0 + tx, tile.y0 + ty);
             let acc = &mut pixels[(ty * tile.w + tx) as usize];
+            let (first, count) = samples.range(x, y);
             for s in first..first + count {
                 sampler.start(x, y, s);
                 let jitter = sampler.next_2d();
