@@ -52,6 +52,13 @@ pub struct ConvergeArgs {
     /// Comma-separated samplers to compare
     #[arg(long, default_value = "independent,sobol")]
     pub samplers: String,
+    /// Comma-separated sample placement: uniform (every pixel the same spp) and/or adaptive
+    /// (each level's spp on average, sent where the estimated error is largest)
+    #[arg(long, default_value = "uniform")]
+    pub sampling: String,
+    /// Uniform samples per pixel before adaptive sampling starts
+    #[arg(long, value_name = "N", default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..))]
+    pub min_spp: u32,
     /// Highest sample count (a power of two); levels are 1, 2, 4, … up to it
     #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536))]
     pub max_spp: u32,
@@ -150,6 +157,22 @@ pub struct QualityArgs {
     pub threads: Option<usize>,
 }
 
+/// Adaptive sampling options of `render`.
+#[derive(Debug, Clone, Args)]
+pub struct AdaptiveArgs {
+    /// Adaptive sampling: after --min-spp uniform samples, send each wave's samples to the pixels
+    /// with the largest estimated relative error (--spp becomes the average per pixel)
+    #[arg(long)]
+    pub adaptive: bool,
+    /// Stop when the estimated relative RMS error of the image reaches E (e.g. 0.05 for 5%);
+    /// implies --adaptive; --spp is then a cap (average per pixel), unlimited if not given
+    #[arg(long, value_name = "E", value_parser = parse_positive)]
+    pub target_error: Option<f64>,
+    /// Uniform samples per pixel before adaptive sampling starts
+    #[arg(long, value_name = "N", default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..))]
+    pub min_spp: u32,
+}
+
 #[derive(Debug, Args)]
 pub struct RenderArgs {
     /// A scene file (.toml, .json or Mitsuba 3 .xml, see docs/scene-format.md) or a built-in scene
@@ -167,6 +190,8 @@ pub struct RenderArgs {
     pub time: Option<f64>,
     #[command(flatten)]
     pub quality: QualityArgs,
+    #[command(flatten)]
+    pub adaptive: AdaptiveArgs,
     /// Output file; the format follows the extension: .png (tone mapped, sRGB), .exr or .pfm
     /// (linear radiance) [default: the scene's name or file stem + .png]
     #[arg(short, long, value_name = "FILE")]
