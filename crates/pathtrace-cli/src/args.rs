@@ -141,7 +141,7 @@ pub struct QualityArgs {
     /// -1 = unlimited (Russian roulette ends paths) [default: the scene's]
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_depth)]
     pub max_depth: Option<i32>,
-    /// Direction sampling: mis (unbiased, least noise), bsdf, mixture, or light (biased
+    /// Direction sampling: mis (unbiased, least noise), mis-balance, bsdf, mixture, or light (biased
     /// teaching mode: loses indirect light) [default: the scene's, else mis]
     #[arg(long, value_parser = parse_from_str::<Strategy>)]
     pub strategy: Option<Strategy>,

@@ -7,7 +7,7 @@
 use super::Strategy;
 use crate::material::Material;
 use crate::math::{offset_ray_origin, Frame, Ray, Rgb, Vec3};
-use crate::sampling::{power_heuristic, Sampler};
+use crate::sampling::Sampler;
 use crate::scene::{Primitive, Scene};
 
 /// Settings of the path loop.
@@ -93,9 +93,9 @@ pub fn radiance(
             if let Some(light) = lights.get(it.light) {
                 let le = light.emitted(it.surface.n_geometric, wo_world);
                 if !le.is_black() {
-                    let weight = if strategy == Strategy::Mis && !prev.specular {
+                    let weight = if strategy.is_mis() && !prev.specular {
                         let pdf_light = lights.pdf_hit(it.light, prev.p, p, it.surface.n_geometric);
-                        power_heuristic(prev.pdf, pdf_light)
+                        strategy.mis_weight(prev.pdf, pdf_light)
                     } else {
                         1.0
                     };
@@ -121,7 +121,7 @@ pub fn radiance(
         let can_sample_lights = !delta && !lights.is_empty();
 
         // ---- Light sampling (next-event estimation, MIS only) ----------------------------
-        if strategy == Strategy::Mis && can_sample_lights {
+        if strategy.is_mis() && can_sample_lights {
             let u_select = sampler.next_1d();
             let u_light = sampler.next_2d();
             if let Some(ls) = lights.sample(p, u_select, u_light) {
@@ -134,7 +134,7 @@ pub fn radiance(
                     stats.shadow_rays += 1;
                     let shadow = Ray::new(origin, to_light / dist);
                     if !scene.occluded(&shadow, dist * (1.0 - SHADOW_EPSILON)) {
-                        let w = power_heuristic(ls.pdf, material.pdf(wo, wi));
+                        let w = strategy.mis_weight(ls.pdf, material.pdf(wo, wi));
                         l += beta * f * ls.radiance * (w / ls.pdf);
                     }
                 }
