@@ -15,7 +15,8 @@ use pathtrace::integrator::Strategy;
 use pathtrace::metrics;
 use pathtrace::sampling::SamplerKind;
 use pathtrace::{AdaptiveSettings, RenderSettings, Scene};
-use pathtrace_scene::image_io::read_image;
+use pathtrace::film::ToneMapSettings;
+use pathtrace_scene::image_io::{read_image, write_image};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -103,7 +104,11 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
         None => {
             eprintln!("rendering the reference: mis + sobol, {} spp at {width}×{height}…", a.reference_spp);
             let method = Method { strategy: Strategy::Mis, sampler: SamplerKind::Sobol, adaptive: false };
-            render(&scene, &base, method, a.min_spp, a.reference_spp, a.seed ^ 0x5eed)?.0
+            let image = render(&scene, &base, method, a.min_spp, a.reference_spp, a.seed ^ 0x5eed)?.0;
+            // Kept so that further runs (other methods, more levels) can pass it as --reference.
+            let path = out_dir.join("reference.exr");
+            write_image(&path, &image, &ToneMapSettings::default()).map_err(|e| CliError::runtime(e.to_string()))?;
+            image
         }
     };
     if (reference.width, reference.height) != (width, height) {
@@ -211,8 +216,9 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
     let total: f64 = points.iter().map(|p| p.seconds).sum();
     let samples: f64 = points.iter().map(|p| p.spp as f64 * (width * height) as f64).sum();
     eprintln!(
-        "wrote {}/convergence.csv, error-vs-{{spp,time}}.{{svg,png}}, table.md ({:.1} s rendering, {})",
+        "wrote {}/convergence.csv, error-vs-{{spp,time}}.{{svg,png}}, table.md{} ({:.1} s rendering, {})",
         out_dir.display(),
+        if a.reference.is_none() { ", reference.exr" } else { "" },
         total,
         format_rate(samples / total.max(1e-9), "samples/s")
     );
