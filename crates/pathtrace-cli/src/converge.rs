@@ -11,11 +11,11 @@ use crate::progress::format_rate;
 use crate::{scene_arg, CliError};
 use indicatif::{ProgressBar, ProgressStyle};
 use pathtrace::film::Image;
+use pathtrace::film::ToneMapSettings;
 use pathtrace::integrator::Strategy;
 use pathtrace::metrics;
 use pathtrace::sampling::SamplerKind;
 use pathtrace::{AdaptiveSettings, RenderSettings, Scene};
-use pathtrace::film::ToneMapSettings;
 use pathtrace_scene::image_io::{read_image, write_image};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -133,8 +133,10 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
         bar.set_style(style.progress_chars("=> "));
     }
     let mut points = Vec::new();
-    for &method in &methods {
-        for &spp in &levels {
+    // Levels outside, methods inside: every method renders each level under the same machine load,
+    // which keeps the equal-time comparison fair on a shared machine.
+    for &spp in &levels {
+        for &method in &methods {
             bar.set_message(format!("{method} at {spp} spp"));
             let (image, seconds) = render(&scene, &base, method, a.min_spp, spp, a.seed.wrapping_add(spp as u64))?;
             let m = metrics::compare(&image, &reference).map_err(|e| CliError::runtime(e.to_string()))?;
