@@ -81,3 +81,17 @@ fn every_gallery_scene_loads() {
     }
     assert!(count >= 7, "found only {count} gallery scenes");
 }
+
+#[test]
+fn the_convergence_study_scenes_load() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/converge");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            pathtrace_scene::native::load_file(&path).unwrap_or_else(|e| panic!("{e}"));
+            count += 1;
+        }
+    }
+    assert!(count >= 1, "found no scene in {}", dir.display());
+}
