@@ -32,8 +32,9 @@ pub enum Command {
     /// sRGB) images; linear PSNR uses the reference's peak value.
     Compare(CompareArgs),
     /// Measure convergence: error against a reference at 1, 2, 4, … spp for each strategy ×
-    /// sampler; writes a CSV, log–log SVG plots (error vs spp and vs time) and a table of the
-    /// time each method needs to reach a target error.
+    /// sampler × sampling (uniform, adaptive); writes a CSV, log–log plots as SVG and PNG (error
+    /// vs spp and vs time) and a table of each method's error at equal time and the time it needs
+    /// to reach a target error.
     Converge(ConvergeArgs),
     /// Convert a scene file (Mitsuba 3 .xml, .toml or .json) to the native .toml or .json format.
     ///
