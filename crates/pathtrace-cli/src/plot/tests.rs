@@ -15,7 +15,7 @@ fn svg_has_every_series_label_and_escapes_text() {
     assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"), "{}", &svg[..60]);
     assert!(svg.contains("bsdf &amp; independent"));
     assert!(svg.contains("Convergence &lt;test&gt;"));
-    assert!(svg.contains(">mis\n"));
+    assert!(svg.contains("\nmis\n"));
     assert!(svg.contains("samples per pixel") && svg.contains("relative MSE"));
     assert!(svg.matches("<polyline").count() >= 2);
 }
