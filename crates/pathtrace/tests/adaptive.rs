@@ -1,33 +1,17 @@
 //! Adaptive sampling: it converges to the same image as uniform sampling (no visible bias),
 //! puts samples where the noise is, and stops at a target error.
 
-use pathtrace::light::Emission;
-use pathtrace::material::{Dielectric, Lambertian, Material};
-use pathtrace::math::{Rgb, Transform, Vec3};
+mod common;
+
 use pathtrace::metrics::relative_mse;
 use pathtrace::sampling::SamplerKind;
-use pathtrace::shape::{Quad, Shape, Sphere};
-use pathtrace::{render, AdaptiveSettings, CameraDesc, RenderSettings, Scene, SceneBuilder};
+use pathtrace::{render, AdaptiveSettings, RenderSettings, Scene};
 use std::sync::Arc;
 
 /// Uneven noise: a glass sphere (caustic, refracted light) on a diffuse floor under a small
 /// bright lamp, next to plain floor and empty sky.
 fn scene() -> Arc<Scene> {
-    let mut b = SceneBuilder::new();
-    let white = b.material(Material::Lambertian(Lambertian { albedo: Rgb::splat(0.7) }));
-    let glass = b.material(Material::Dielectric(Dielectric { ior: 1.5, tint: Rgb::WHITE }));
-    let light = b.emissive(Emission { radiance: Rgb::splat(40.0), two_sided: false });
-    let floor = Quad::new(Vec3::new(-5.0, 0.0, -5.0), Vec3::new(0.0, 0.0, 10.0), Vec3::new(10.0, 0.0, 0.0)).unwrap();
-    b.shape(Shape::Quad(floor), white, &Transform::IDENTITY).unwrap();
-    b.shape(Shape::Sphere(Sphere::new(Vec3::new(0.0, 1.0, 0.0), 1.0).unwrap()), glass, &Transform::IDENTITY).unwrap();
-    let lamp = Quad::new(Vec3::new(-0.5, 4.0, -0.5), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)).unwrap();
-    b.shape(Shape::Quad(lamp), light, &Transform::IDENTITY).unwrap();
-    b.camera(CameraDesc {
-        look_from: Vec3::new(0.0, 2.0, -6.0),
-        look_at: Vec3::new(0.0, 1.0, 0.0),
-        ..Default::default()
-    });
-    Arc::new(b.build().unwrap())
+    common::glass_sphere_under_lamp(1.0, 40.0)
 }
 
 fn settings(spp: u32, seed: u64, adaptive: bool) -> RenderSettings {
