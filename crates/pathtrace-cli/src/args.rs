@@ -172,6 +172,10 @@ pub struct AdaptiveArgs {
     /// Uniform samples per pixel before adaptive sampling starts
     #[arg(long, value_name = "N", default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..))]
     pub min_spp: u32,
+    /// Also write each pixel's sample count as a grey image (white = the most samples), to see
+    /// where adaptive sampling sent them
+    #[arg(long, value_name = "FILE")]
+    pub spp_image: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]

@@ -5,7 +5,8 @@ use crate::interrupt::Interrupt;
 use crate::progress::{format_rate, Bar};
 use crate::stats_json::RenderStats;
 use crate::{scene_arg, CliError};
-use pathtrace::film::ToneMapSettings;
+use pathtrace::film::{Film, Image, ToneMapSettings};
+use pathtrace::math::Rgb;
 use pathtrace::{AdaptiveSettings, RenderSession, RenderSettings};
 use pathtrace_scene::image_io::{write_image, ImageFormat};
 use pathtrace_scene::RenderDefaults;
@@ -58,12 +59,22 @@ fn with_adaptive(mut s: RenderSettings, a: &AdaptiveArgs, spp_given: bool) -> Re
     s
 }
 
+/// Each pixel's sample count over the largest count, as grey (linear; sRGB-encoded in a PNG).
+fn spp_image(film: &Film, spp_max: u32) -> Image {
+    let scale = 1.0 / spp_max.max(1) as f32;
+    let pixels = film.pixels().iter().map(|p| Rgb::splat(p.count as f32 * scale)).collect();
+    Image { width: film.width(), height: film.height(), pixels }
+}
+
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let loaded = scene_arg::load_with(&a.scene, &a.defines)?;
     let settings =
         with_adaptive(settings_from(&a.quality, a.spp, a.time, &loaded.defaults), &a.adaptive, a.spp.is_some());
     let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", scene_arg::stem(&a.scene))));
     check_output(&output)?;
+    if let Some(path) = &a.adaptive.spp_image {
+        check_output(path)?;
+    }
     if !a.exposure.is_finite() {
         return Err(CliError::usage("--exposure must be a finite number of stops"));
     }
@@ -89,6 +100,10 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     write_image(&output, &image, &tone).map_err(|e| CliError::runtime(e.to_string()))?;
 
     let (spp_min, spp_max) = outcome.film.spp_range();
+    if let Some(path) = &a.adaptive.spp_image {
+        write_image(path, &spp_image(&outcome.film, spp_max), &ToneMapSettings::default())
+            .map_err(|e| CliError::runtime(e.to_string()))?;
+    }
     let noise = outcome.film.relative_rms_error_estimate();
     let p = &outcome.progress;
     if !a.quiet {

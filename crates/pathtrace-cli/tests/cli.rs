@@ -289,14 +289,21 @@ fn render_stops_at_a_target_error_and_reports_it() {
     let summary = String::from_utf8_lossy(&o.stderr);
     assert!(summary.contains("estimated error") && summary.contains("target 20.00%"), "{summary}");
     // --adaptive with --spp spends that many samples per pixel on average.
+    let counts = dir.join("spp.pfm");
     let o = run(&["render", "--size", "16x16", "--max-depth", "3", "--spp", "8", "--adaptive", "--min-spp", "4"]
         .iter()
         .copied()
         .chain(["-o", out.to_str().unwrap(), "--stats-json", stats.to_str().unwrap()])
+        .chain(["--spp-image", counts.to_str().unwrap()])
         .collect::<Vec<_>>());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
     assert_eq!(json["samples"], 16 * 16 * 8);
+    // The sample-count image: the busiest pixel is 1, the others at least min_spp / max.
+    let spp = pathtrace_scene::image_io::read_image(&counts).unwrap();
+    let max = spp.pixels.iter().map(|p| p.g).fold(0.0f32, f32::max);
+    let min = spp.pixels.iter().map(|p| p.g).fold(1.0f32, f32::min);
+    assert!(max == 1.0 && min > 0.0 && min < 1.0, "{min}..{max}");
     let o = run(&["render", "--target-error", "-1"]);
     assert_eq!(o.status.code(), Some(2));
     let _ = std::fs::remove_dir_all(&dir);
