@@ -35,4 +35,4 @@ copy_plots glass glass-adaptive
 "$bin" render scenes/gallery/07-cornell-glass.toml --size 128x128 --spp 64 --seed 1 \
     -o "$img/adaptive-glass-uniform.png"
 "$bin" render scenes/gallery/07-cornell-glass.toml --size 128x128 --spp 64 --seed 1 --adaptive \
-    -o "$img/adaptive-glass-adaptive.png"
+    -o "$img/adaptive-glass-adaptive.png" --spp-image "$img/adaptive-glass-spp.png"
