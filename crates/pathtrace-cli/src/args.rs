@@ -32,8 +32,9 @@ pub enum Command {
     /// sRGB) images; linear PSNR uses the reference's peak value.
     Compare(CompareArgs),
     /// Measure convergence: error against a reference at 1, 2, 4, … spp for each strategy ×
-    /// sampler; writes a CSV, log–log SVG plots (error vs spp and vs time) and a table of the
-    /// time each method needs to reach a target error.
+    /// sampler × sampling (uniform, adaptive); writes a CSV, log–log plots as SVG and PNG (error
+    /// vs spp and vs time) and a table of each method's error at equal time and the time it needs
+    /// to reach a target error.
     Converge(ConvergeArgs),
     /// Convert a scene file (Mitsuba 3 .xml, .toml or .json) to the native .toml or .json format.
     ///
@@ -52,6 +53,13 @@ pub struct ConvergeArgs {
     /// Comma-separated samplers to compare
     #[arg(long, default_value = "independent,sobol")]
     pub samplers: String,
+    /// Comma-separated sample placement: uniform (every pixel the same spp) and/or adaptive
+    /// (each level's spp on average, sent where the estimated error is largest)
+    #[arg(long, default_value = "uniform")]
+    pub sampling: String,
+    /// Uniform samples per pixel before adaptive sampling starts
+    #[arg(long, value_name = "N", default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..))]
+    pub min_spp: u32,
     /// Highest sample count (a power of two); levels are 1, 2, 4, … up to it
     #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536))]
     pub max_spp: u32,
@@ -134,7 +142,7 @@ pub struct QualityArgs {
     /// -1 = unlimited (Russian roulette ends paths) [default: the scene's]
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_depth)]
     pub max_depth: Option<i32>,
-    /// Direction sampling: mis (unbiased, least noise), bsdf, mixture, or light (biased
+    /// Direction sampling: mis (unbiased, least noise), mis-balance, bsdf, mixture, or light (biased
     /// teaching mode: loses indirect light) [default: the scene's, else mis]
     #[arg(long, value_parser = parse_from_str::<Strategy>)]
     pub strategy: Option<Strategy>,
@@ -154,6 +162,26 @@ pub struct QualityArgs {
     pub threads: Option<usize>,
 }
 
+/// Adaptive sampling options of `render`.
+#[derive(Debug, Clone, Args)]
+pub struct AdaptiveArgs {
+    /// Adaptive sampling: after --min-spp uniform samples, send each wave's samples to the pixels
+    /// with the largest estimated relative error (--spp becomes the average per pixel)
+    #[arg(long)]
+    pub adaptive: bool,
+    /// Stop when the estimated relative RMS error of the image reaches E (e.g. 0.05 for 5%);
+    /// implies --adaptive; --spp is then a cap (average per pixel), unlimited if not given
+    #[arg(long, value_name = "E", value_parser = parse_positive)]
+    pub target_error: Option<f64>,
+    /// Uniform samples per pixel before adaptive sampling starts
+    #[arg(long, value_name = "N", default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..))]
+    pub min_spp: u32,
+    /// Also write each pixel's sample count as a grey image (white = the most samples), to see
+    /// where adaptive sampling sent them
+    #[arg(long, value_name = "FILE")]
+    pub spp_image: Option<PathBuf>,
+}
+
 #[derive(Debug, Args)]
 pub struct RenderArgs {
     /// A scene file (.toml, .json or Mitsuba 3 .xml, see docs/scene-format.md) or a built-in scene
@@ -171,6 +199,8 @@ pub struct RenderArgs {
     pub time: Option<f64>,
     #[command(flatten)]
     pub quality: QualityArgs,
+    #[command(flatten)]
+    pub adaptive: AdaptiveArgs,
     /// Output file; the format follows the extension: .png (tone mapped, sRGB), .exr or .pfm
     /// (linear radiance) [default: the scene's name or file stem + .png]
     #[arg(short, long, value_name = "FILE")]

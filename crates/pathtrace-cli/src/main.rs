@@ -6,11 +6,11 @@ mod compare;
 mod converge;
 mod convert;
 mod interrupt;
+mod plot;
 mod progress;
 mod render;
 mod scene_arg;
 mod stats_json;
-mod svg_plot;
 
 use clap::Parser;
 use std::process::ExitCode;

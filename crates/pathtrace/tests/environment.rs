@@ -17,7 +17,7 @@ use pathtrace::shape::{Quad, Shape, Sphere};
 use pathtrace::{render, CameraDesc, RenderSettings, Scene, SceneBuilder};
 use std::sync::Arc;
 
-const ALL: [Strategy; 4] = [Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Mis];
+const ALL: [Strategy; 5] = [Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Mis, Strategy::MisBalance];
 
 fn settings(strategy: Strategy, spp: u32) -> RenderSettings {
     let mut s = RenderSettings { width: 16, height: 16, spp, seed: 7, ..Default::default() };
@@ -92,7 +92,7 @@ fn a_point_light_over_a_lambertian_plane_follows_the_inverse_square_law() {
     for strategy in ALL {
         let est = render(scene.clone(), settings(strategy, 4)).unwrap().film.region_estimate(0, 0, 16, 16);
         for (c, e) in est.mean.iter().zip(expected) {
-            if strategy == Strategy::Mis {
+            if strategy.is_mis() {
                 assert!((c / e as f64 - 1.0).abs() < 3e-3, "{strategy}: {:?} vs {expected:?}", est.mean);
             } else {
                 assert_eq!(*c, 0.0, "{strategy} cannot see a point light");

@@ -47,7 +47,7 @@ fn check(material: Material, albedo: f32, strategies: &[Strategy]) {
     }
 }
 
-const UNBIASED: [Strategy; 3] = [Strategy::Bsdf, Strategy::Mixture, Strategy::Mis];
+const UNBIASED: [Strategy; 4] = [Strategy::Bsdf, Strategy::Mixture, Strategy::Mis, Strategy::MisBalance];
 
 #[test]
 fn lambertian_furnace_holds_for_every_unbiased_strategy() {

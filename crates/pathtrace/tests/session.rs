@@ -5,7 +5,7 @@ use pathtrace::material::{Lambertian, Material};
 use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::render::RenderError;
 use pathtrace::shape::{Shape, Sphere};
-use pathtrace::{CameraDesc, RenderSession, RenderSettings, Scene, SceneBuilder};
+use pathtrace::{AdaptiveSettings, CameraDesc, RenderSession, RenderSettings, Scene, SceneBuilder};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -29,6 +29,10 @@ fn a_finished_render_holds_exactly_the_requested_samples() {
     assert_eq!(out.progress.samples, 20 * 10 * 37);
     assert!(out.progress.finished && !out.progress.cancelled);
     assert_eq!(out.progress.rays.camera_rays, 20 * 10 * 37);
+    // Progress reports the film's noise estimate after each whole wave; no target without one.
+    assert_eq!(out.progress.error_estimate, out.film.relative_rms_error_estimate());
+    assert!(out.progress.error_estimate.is_some_and(|e| e > 0.0));
+    assert_eq!(out.progress.target_error, None);
 }
 
 #[test]
@@ -46,6 +50,15 @@ fn cancel_keeps_what_was_rendered() {
     // What was kept is a valid estimate: L = E/(1-a) = 2 in this furnace.
     let est = out.film.region_estimate(0, 0, 64, 64);
     assert!((est.mean[1] - 2.0).abs() < 0.2, "{:?}", est.mean);
+}
+
+#[test]
+fn an_open_ended_render_needs_a_budget_and_a_target_error_is_one() {
+    let s = RenderSettings { width: 8, height: 8, spp: 0, ..Default::default() };
+    assert!(matches!(RenderSession::start(scene(), s.clone()), Err(RenderError::NoBudget)));
+    let adaptive = AdaptiveSettings { min_spp: 4, target_error: Some(0.2), ..Default::default() };
+    let out = RenderSession::start(scene(), RenderSettings { adaptive: Some(adaptive), ..s }).unwrap().wait();
+    assert!(out.progress.finished && out.progress.error_estimate.is_some_and(|e| e <= 0.2));
 }
 
 #[test]

@@ -183,10 +183,10 @@ macro_rules! named_choice {
 }
 
 named_choice!(
-    /// A path-sampling strategy by name: `mis`, `bsdf`, `mixture` or `light`.
+    /// A path-sampling strategy by name: `mis`, `mis-balance`, `bsdf`, `mixture` or `light`.
     StrategyName,
     Strategy,
-    "a strategy name (mis, bsdf, mixture or light)"
+    "a strategy name (mis, mis-balance, bsdf, mixture or light)"
 );
 named_choice!(
     /// A pixel sampler by name: `independent`, `stratified` or `sobol`.

@@ -7,7 +7,7 @@
 use super::Strategy;
 use crate::material::Material;
 use crate::math::{offset_ray_origin, Frame, Ray, Rgb, Vec3};
-use crate::sampling::{power_heuristic, Sampler};
+use crate::sampling::Sampler;
 use crate::scene::{Primitive, Scene};
 
 /// Settings of the path loop.
@@ -86,8 +86,8 @@ pub fn radiance(
         // ---- Escape: the environment (if any) is seen, then the path ends ------------------
         let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
             if let Some(env) = lights.environment() {
-                let weight = if strategy == Strategy::Mis && !prev.specular {
-                    power_heuristic(prev.pdf, lights.pdf_environment(ray.dir))
+                let weight = if strategy.is_mis() && !prev.specular {
+                    strategy.mis_weight(prev.pdf, lights.pdf_environment(ray.dir))
                 } else {
                     1.0
                 };
@@ -104,9 +104,9 @@ pub fn radiance(
             if let Some(light) = lights.get(it.light) {
                 let le = light.emitted(it.surface.n_geometric, wo_world);
                 if !le.is_black() {
-                    let weight = if strategy == Strategy::Mis && !prev.specular {
+                    let weight = if strategy.is_mis() && !prev.specular {
                         let pdf_light = lights.pdf_hit(it.light, prev.p, p, it.surface.n_geometric);
-                        power_heuristic(prev.pdf, pdf_light)
+                        strategy.mis_weight(prev.pdf, pdf_light)
                     } else {
                         1.0
                     };
@@ -135,7 +135,7 @@ pub fn radiance(
         let can_follow_lights = !delta && lights.has_continuous();
 
         // ---- Light sampling (next-event estimation, MIS only) ----------------------------
-        if strategy == Strategy::Mis && can_sample_lights {
+        if strategy.is_mis() && can_sample_lights {
             let u_select = sampler.next_1d();
             let u_light = sampler.next_2d();
             if let Some(ls) = lights.sample(p, u_select, u_light) {
@@ -154,7 +154,7 @@ pub fn radiance(
                     stats.shadow_rays += 1;
                     if !scene.occluded(&shadow, t_max) {
                         // A point light cannot be found by bsdf sampling: its sample counts in full.
-                        let w = if ls.delta { 1.0 } else { power_heuristic(ls.pdf, material.pdf(wo, wi)) };
+                        let w = if ls.delta { 1.0 } else { strategy.mis_weight(ls.pdf, material.pdf(wo, wi)) };
                         l += beta * f * ls.radiance * (w / ls.pdf);
                     }
                 }

@@ -1,5 +1,6 @@
 //! What to render and how long for.
 
+use super::adaptive::AdaptiveSettings;
 use crate::film::PixelFilter;
 use crate::integrator::PathSettings;
 use crate::sampling::SamplerKind;
@@ -10,7 +11,8 @@ use std::time::Duration;
 pub struct RenderSettings {
     pub width: u32,
     pub height: u32,
-    /// Samples per pixel to reach; 0 means "until the time limit or cancel".
+    /// Samples per pixel to reach (with adaptive sampling: on average over the image); 0 means
+    /// "until the time limit, the target error or cancel".
     pub spp: u32,
     /// Stop after this much wall-clock time (completed tiles are kept).
     pub time_limit: Option<Duration>,
@@ -25,6 +27,8 @@ pub struct RenderSettings {
     pub tile_size: u32,
     /// Waves double from 1 spp up to this many samples per pixel each.
     pub max_wave_spp: u32,
+    /// Adaptive sampling (`None`, the default: every pixel gets `spp` samples).
+    pub adaptive: Option<AdaptiveSettings>,
 }
 
 impl Default for RenderSettings {
@@ -41,6 +45,7 @@ impl Default for RenderSettings {
             threads: 0,
             tile_size: 16,
             max_wave_spp: 16,
+            adaptive: None,
         }
     }
 }

@@ -36,6 +36,30 @@ pub(super) struct TileJob<'a> {
     pub filter: &'a PixelFilter,
 }
 
+/// Which samples of each pixel a wave renders.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum WaveSamples<'a> {
+    /// Samples `first .. first + count` of every pixel.
+    Uniform { first: u32, count: u32 },
+    /// Pixel `i` (row-major over an image `width` wide) takes samples
+    /// `first[i] .. first[i] + count[i]` (adaptive sampling).
+    PerPixel { width: u32, first: &'a [u32], count: &'a [u32] },
+}
+
+impl WaveSamples<'_> {
+    /// The first sample index and the number of samples of pixel `(x, y)`.
+    #[inline(always)]
+    fn range(&self, x: u32, y: u32) -> (u32, u32) {
+        match *self {
+            WaveSamples::Uniform { first, count } => (first, count),
+            WaveSamples::PerPixel { width, first, count } => {
+                let i = (y * width + x) as usize;
+                (first[i], count[i])
+            }
+        }
+    }
+}
+
 /// The samples of one tile for one wave.
 pub(super) struct TileResult {
     pub tile: Tile,
@@ -44,7 +68,7 @@ pub(super) struct TileResult {
     pub dropped: u64,
 }
 
-/// Renders samples `first .. first + count` of every pixel in `tile`, filtered by `filter`. Each pixel sample's
+/// Renders the wave's samples (`samples`) of every pixel in `tile`, filtered by the job's pixel filter. Each pixel sample's
 /// random numbers depend only on (seed, pixel, sample index), never on the thread.
 ///
 /// On x86-64 CPUs with AVX2 the same code runs compiled for AVX2 (chosen at run time, so the
@@ -52,24 +76,24 @@ pub(super) struct TileResult {
 /// bit-identical images; the AVX2 build is about 6% faster (3-operand VEX encoding; measured in
 /// docs/benchmarks.md). Setting the environment variable `PATHTRACE_NO_AVX2` forces the portable
 /// build, for that measurement.
-pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, first: u32, count: u32) -> TileResult {
+pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") && std::env::var_os("PATHTRACE_NO_AVX2").is_none() {
         // SAFETY: `render_tile_avx2` only requires AVX2, which the CPU was just checked to have.
         #[allow(unsafe_code)]
-        return unsafe { render_tile_avx2(job, sampler, tile, first, count) };
+        return unsafe { render_tile_avx2(job, sampler, tile, samples) };
     }
-    render_tile_body(job, sampler, tile, first, count)
+    render_tile_body(job, sampler, tile, samples)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, first: u32, count: u32) -> TileResult {
-    render_tile_body(job, sampler, tile, first, count)
+fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
+    render_tile_body(job, sampler, tile, samples)
 }
 
 #[inline(always)]
-fn render_tile_body(job: &TileJob, sampler: &mut Sampler, tile: Tile, first: u32, count: u32) -> TileResult {
+fn render_tile_body(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     let TileJob { scene, camera, path, filter } = *job;
     let mut pixels = vec![PixelStats::default(); (tile.w * tile.h) as usize];
     let mut stats = PathStats::default();
@@ -78,6 +102,7 @@ fn render_tile_body(job: &TileJob, sampler: &mut Sampler, tile: Tile, first: u32
         for tx in 0..tile.w {
             let (x, y) = (tile.x0 + tx, tile.y0 + ty);
             let acc = &mut pixels[(ty * tile.w + tx) as usize];
+            let (first, count) = samples.range(x, y);
             for s in first..first + count {
                 sampler.start(x, y, s);
                 // The filter picks where in (or around) the pixel the ray goes and weights the
