@@ -73,7 +73,7 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
         with_adaptive(settings_from(&a.quality, a.spp, a.time, &loaded.defaults), &a.adaptive, a.spp.is_some());
     if !loaded.scene.lights.points().is_empty() && !settings.path.strategy.is_mis() {
         eprintln!(
-            "warning: the scene has point lights, which only the mis strategies can see (next-event \
+            "warning: the scene has point lights, which only the mis strategy (or mis-balance) can see (next-event \
              estimation); with --strategy {} they render black",
             settings.path.strategy
         );
