@@ -23,7 +23,12 @@ pub fn run(a: ViewArgs) -> Result<ExitCode, CliError> {
         return Err(CliError::usage(ViewerError::NoDisplay("no display".into()).to_string()));
     }
     let loaded = scene_arg::load_with(&a.scene, &a.defines)?;
-    let settings = settings_from(&a.quality, a.spp, None, &loaded.defaults);
+    let mut settings = settings_from(&a.quality, a.spp, None, &loaded.defaults);
+    if settings.spp == 0 {
+        // --spp 0: render until the window closes, as an open-ended (time-limited) session whose
+        // limit, about 136 years, no window outlives.
+        settings.time_limit = Some(std::time::Duration::from_secs(u64::from(u32::MAX)));
+    }
     let reference = match &a.reference {
         Some(path) => {
             let img = read_image(path).map_err(|e| CliError::usage(e.to_string()))?;

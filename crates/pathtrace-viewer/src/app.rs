@@ -16,6 +16,7 @@ use pathtrace::integrator::{first_hit_aovs, FirstHitAovs};
 use pathtrace::metrics;
 use pathtrace::CameraDesc;
 use pathtrace_scene::image_io::write_image;
+use pathtrace_scene::native::model::Num;
 use pathtrace_scene::native::{self, Format};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -250,11 +251,13 @@ impl ViewerApp {
         };
         let mut model = model.clone();
         let c = self.state.key.camera;
-        let num3 = |v: pathtrace::math::Vec3| [v.x.into(), v.y.into(), v.z.into()];
+        // Through the f32's shortest decimal form, so the file says 315.98416, not 315.9841613769531.
+        let num = |x: f32| x.to_string().parse::<f64>().ok().and_then(Num::new).unwrap_or_else(|| x.into());
+        let num3 = |v: pathtrace::math::Vec3| [num(v.x), num(v.y), num(v.z)];
         model.camera.look_from = num3(c.look_from);
         model.camera.look_at = num3(c.look_at);
         model.camera.up = Some(num3(c.up));
-        model.camera.vfov = Some(c.vfov_degrees.into());
+        model.camera.vfov = Some(num(c.vfov_degrees));
         model.render.max_depth = Some(self.state.key.max_depth);
         let result = native::to_string(&model, Format::Toml)
             .map_err(|e| e.to_string())
