@@ -40,6 +40,48 @@ pub enum Command {
     ///
     /// Substitutions the native format cannot express are printed as warnings.
     Convert(ConvertArgs),
+    /// Watch a scene render live in an OpenGL window; move the camera and change settings while it
+    /// converges (F1 in the window lists the shortcuts; see docs/viewer.md).
+    ///
+    /// Needs a display; without one, use `pathtrace render`.
+    View(ViewArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// A scene file (.toml, .json or Mitsuba 3 .xml) or a built-in scene name (cornell-box)
+    #[arg(default_value = "cornell-box")]
+    pub scene: String,
+    /// Set a Mitsuba XML scene parameter (overrides its <default name=NAME>); repeatable
+    #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub defines: Vec<(String, String)>,
+    /// Samples per pixel to stop at; 0 renders until the window is closed [default: the scene's]
+    #[arg(long, value_name = "N")]
+    pub spp: Option<u32>,
+    #[command(flatten)]
+    pub quality: QualityArgs,
+    /// Starting exposure in stops (keys - and = change it)
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Starting tone map: clamp or aces (key T toggles)
+    #[arg(long, default_value = "clamp", value_parser = parse_from_str::<ToneMap>)]
+    pub tonemap: ToneMap,
+    /// Reference image (EXR, PFM or PNG) of the same size: shows live PSNR and relative MSE, and
+    /// enables the difference view
+    #[arg(long, value_name = "FILE")]
+    pub reference: Option<PathBuf>,
+    /// When the render is done, capture the window's picture area to this PNG
+    #[arg(long, value_name = "FILE")]
+    pub screenshot: Option<PathBuf>,
+    /// Take the screenshot as soon as this many samples per pixel are shown (mid-render)
+    #[arg(long, value_name = "N", requires = "screenshot")]
+    pub screenshot_at_spp: Option<u32>,
+    /// Capture the whole window, status bar included, instead of the picture area
+    #[arg(long, requires = "screenshot")]
+    pub screenshot_window: bool,
+    /// Close the window when the render is done (after the screenshot)
+    #[arg(long)]
+    pub exit_when_done: bool,
 }
 
 #[derive(Debug, Args)]

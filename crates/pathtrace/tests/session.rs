@@ -92,3 +92,29 @@ fn a_render_needs_a_budget_and_a_valid_camera() {
     let s = RenderSettings { width: 0, ..Default::default() };
     assert!(matches!(RenderSession::start(scene(), s), Err(RenderError::Camera(_))));
 }
+
+/// An emissive ball off to the side, so where the camera looks changes the image.
+fn ball_scene(camera: CameraDesc) -> Arc<Scene> {
+    let mut b = SceneBuilder::new();
+    let lamp = b.emissive(Emission { radiance: Rgb::splat(1.0), two_sided: true });
+    b.shape(Shape::Sphere(Sphere::new(Vec3::new(1.0, 0.0, 0.0), 0.5).unwrap()), lamp, &Transform::IDENTITY).unwrap();
+    b.camera(camera);
+    Arc::new(b.build().unwrap())
+}
+
+#[test]
+fn a_camera_override_renders_as_if_the_scene_had_that_camera() {
+    let a = CameraDesc { look_from: Vec3::new(0.0, 0.0, 5.0), look_at: Vec3::ZERO, ..Default::default() };
+    let b = CameraDesc { look_at: Vec3::new(2.0, 0.5, 0.0), ..a };
+    let s = RenderSettings { width: 24, height: 16, spp: 4, ..Default::default() };
+    let render = |scene: Arc<Scene>, camera: Option<&CameraDesc>| {
+        let session = match camera {
+            Some(c) => RenderSession::start_with_camera(scene, c, s.clone()),
+            None => RenderSession::start(scene, s.clone()),
+        };
+        session.unwrap().wait().film.image()
+    };
+    let overridden = render(ball_scene(a), Some(&b));
+    assert_eq!(overridden, render(ball_scene(b), None));
+    assert_ne!(overridden, render(ball_scene(a), None));
+}

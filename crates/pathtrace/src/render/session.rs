@@ -12,7 +12,7 @@
 use super::adaptive::{allocate, AdaptiveSettings};
 use super::settings::RenderSettings;
 use super::tile::{render_tile, tiles, Tile, TileJob, TileResult, WaveSamples};
-use crate::camera::{Camera, CameraError};
+use crate::camera::{Camera, CameraDesc, CameraError};
 use crate::film::{Film, Image};
 use crate::integrator::PathStats;
 use crate::sampling::Sampler;
@@ -120,11 +120,22 @@ pub struct RenderSession {
 impl RenderSession {
     /// Starts rendering `scene` on background threads.
     pub fn start(scene: Arc<Scene>, settings: RenderSettings) -> Result<Self, RenderError> {
+        let camera = scene.camera;
+        Self::start_with_camera(scene, &camera, settings)
+    }
+
+    /// Starts rendering `scene` seen through `camera` instead of the scene's own camera, so an
+    /// interactive front end can move the view without rebuilding (or copying) the BVH.
+    pub fn start_with_camera(
+        scene: Arc<Scene>,
+        camera: &CameraDesc,
+        settings: RenderSettings,
+    ) -> Result<Self, RenderError> {
         let target_error = settings.adaptive.and_then(|a| a.target_error);
         if settings.spp == 0 && settings.time_limit.is_none() && target_error.is_none() {
             return Err(RenderError::NoBudget);
         }
-        let camera = Camera::new(&scene.camera, settings.width, settings.height)?;
+        let camera = Camera::new(camera, settings.width, settings.height)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(settings.threads)
             .thread_name(|i| format!("pathtrace-worker-{i}"))
