@@ -40,9 +40,10 @@ impl RayBox4 {
 }
 
 impl Node4 {
-    /// Lanes whose box overlaps the ray within `[t_min, t_max]`.
+    /// Lanes whose box overlaps the ray within `[t_min, t_max]`, and each lane's entry
+    /// distance (meaningful where the lane hits).
     #[inline(always)]
-    pub fn hit(&self, r: &RayBox4, t_min: f32, t_max: f32) -> BVec4A {
+    pub fn hit(&self, r: &RayBox4, t_min: f32, t_max: f32) -> (BVec4A, Vec4) {
         let mut near = Vec4::splat(t_min);
         let mut far = Vec4::splat(t_max);
         for axis in 0..3 {
@@ -51,7 +52,7 @@ impl Node4 {
             near = near.max(t0.min(t1));
             far = far.min(t0.max(t1));
         }
-        near.cmple(far)
+        (near.cmple(far), near)
     }
 }
 
@@ -103,4 +104,16 @@ fn collapse_node(nodes: &[Node], index: usize, out: &mut Vec<Node4>) -> u32 {
         node4(nodes, &kids, |k| if nodes[k].count > 0 { LEAF | nodes[k].offset } else { collapse_node(nodes, k, out) });
     out[me] = node;
     me as u32
+}
+
+/// Levels of four-wide nodes on the longest root-to-leaf path (0 for an empty tree).
+pub(super) fn wide_depth(nodes: &[Node4]) -> usize {
+    fn depth(nodes: &[Node4], i: u32) -> usize {
+        1 + nodes[i as usize].children.iter().filter(|&&c| c & LEAF == 0).map(|&c| depth(nodes, c)).max().unwrap_or(0)
+    }
+    if nodes.is_empty() {
+        0
+    } else {
+        depth(nodes, 0)
+    }
 }
