@@ -243,11 +243,15 @@ fn reference_hit(shapes: &[Shape], ray: &Ray, t_max: f32) -> Option<(PrimHit, u3
     best
 }
 
+/// A closest-hit query: (hit, original shape index).
+type ClosestFn = Box<dyn Fn(&Ray, f32) -> Option<(PrimHit, u32)>>;
+type OccludedFn = Box<dyn Fn(&Ray, f32) -> bool>;
+
 /// One accelerator under test: closest hit and occlusion in terms of original shape indices.
 struct Variant {
     name: &'static str,
-    closest: Box<dyn Fn(&Ray, f32) -> Option<(PrimHit, u32)>>,
-    occluded: Box<dyn Fn(&Ray, f32) -> bool>,
+    closest: ClosestFn,
+    occluded: OccludedFn,
 }
 
 fn bvh_variant(name: &'static str, shapes: &[Shape], opts: BuildOptions) -> Variant {
