@@ -120,9 +120,10 @@ mod tests {
 
     #[test]
     fn sizes_are_near_the_request() {
-        for n in [100, 1000, 10_000] {
+        // The pole caps make the sphere 2/s short of 4s² (80 for 100, 960 for 1000).
+        for (n, tolerance) in [(100, 0.25), (1000, 0.05), (10_000, 0.05)] {
             let s = sphere(n).len();
-            assert!((s as f64 / n as f64 - 1.0).abs() < 0.1, "sphere {n}: {s}");
+            assert!((s as f64 / n as f64 - 1.0).abs() < tolerance, "sphere {n}: {s}");
             assert_eq!(soup(n, 1).len(), n);
         }
         // A sphere's vertices lie on the unit sphere.

@@ -16,11 +16,11 @@ fn per_ray_us(mrays: Option<f64>) -> Option<f64> {
     mrays.filter(|&r| r > 0.0).map(|r| 1.0 / r)
 }
 
-/// Time per incoherent closest-hit ray (µs, all threads), for each accelerator.
+/// Time per incoherent closest-hit ray (µs, one thread), for each accelerator.
 const TRACE: [Curve; 3] = [
-    Curve { label: "brute force", value: |r| per_ray_us(r.get("brute_incoherent_closest_mt")) },
-    Curve { label: "median", value: |r| per_ray_us(r.get("median_incoherent_closest_mt")) },
-    Curve { label: "SAH", value: |r| per_ray_us(r.get("sah_incoherent_closest_mt")) },
+    Curve { label: "brute force", value: |r| per_ray_us(r.get("brute_incoherent_closest_1t")) },
+    Curve { label: "median", value: |r| per_ray_us(r.get("median_incoherent_closest_1t")) },
+    Curve { label: "SAH", value: |r| per_ray_us(r.get("sah_incoherent_closest_1t")) },
 ];
 
 const BUILD: [Curve; 3] = [
@@ -29,9 +29,10 @@ const BUILD: [Curve; 3] = [
     Curve { label: "median", value: |r| r.get("build_median_ms") },
 ];
 
-const RATE: [Curve; 2] = [
-    Curve { label: "SAH incoherent", value: |r| r.get("sah_incoherent_closest_mt") },
-    Curve { label: "SAH camera", value: |r| r.get("sah_coherent_closest_mt") },
+const RATE: [Curve; 3] = [
+    Curve { label: "SAH incoherent", value: |r| r.get("sah_incoherent_closest_1t") },
+    Curve { label: "SAH camera", value: |r| r.get("sah_coherent_closest_1t") },
+    Curve { label: "SAH shadow", value: |r| r.get("sah_incoherent_any_1t") },
 ];
 
 /// Scenes in first-seen order.
@@ -106,9 +107,9 @@ pub fn print_slopes(slopes: &[Slope]) {
 pub fn write_plots(dir: &Path, rows: &[Row]) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let plots: [(&str, &str, &str, &[Curve]); 3] = [
-        ("bvh-trace-time", "Time per incoherent ray (all threads)", "µs per ray", &TRACE),
+        ("bvh-trace-time", "Time per incoherent ray (one thread)", "µs per ray", &TRACE),
         ("bvh-build-time", "BVH build time", "build time (ms)", &BUILD),
-        ("bvh-rays-per-second", "Closest-hit rays per second (all threads)", "million rays/s", &RATE),
+        ("bvh-rays-per-second", "Rays per second (one thread; shadow = incoherent any hit)", "million rays/s", &RATE),
     ];
     let mut written = Vec::new();
     for (file, title, y_label, curves) in plots {

@@ -98,6 +98,9 @@ impl Tracer for BruteTracer<'_> {
     }
 }
 
+/// Shortest time a measurement runs for (seconds).
+pub const MIN_SECONDS: f64 = 0.2;
+
 /// Which query.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Query {
@@ -124,12 +127,15 @@ pub fn trace(
             Query::Any => tracer.occluded(ray, set.shadow_t_max[i]),
         }
     };
+    // Every set is traced for at least MIN_SECONDS (whole passes), so short sets are not
+    // dominated by clock resolution.
     let (hits, seconds) = if parallel {
         // Chunks of 256 rays: enough work per task to hide rayon's overhead, and contiguous
         // (coherent) rays stay together.
-        Clock::Wall.time(|| (0..count).into_par_iter().with_min_len(256).filter(|&i| one(i)).count())
+        Clock::Wall
+            .time_repeated(MIN_SECONDS, || (0..count).into_par_iter().with_min_len(256).filter(|&i| one(i)).count())
     } else {
-        clock.time(|| (0..count).filter(|&i| one(i)).count())
+        clock.time_repeated(MIN_SECONDS, || (0..count).filter(|&i| one(i)).count())
     };
     (count as f64 / seconds, std::hint::black_box(hits))
 }

@@ -41,6 +41,30 @@ impl Clock {
     }
 }
 
+impl Clock {
+    /// Calls `f` until at least `min_seconds` have passed on this clock (at least once), so
+    /// the CPU clock's 10 ms ticks stay a small error; returns the last result and the mean
+    /// seconds per call.
+    pub fn time_repeated<T>(self, min_seconds: f64, mut f: impl FnMut() -> T) -> (T, f64) {
+        let ((out, calls), seconds) = self.time(|| {
+            let start = Instant::now();
+            let cpu0 = thread_cpu_seconds();
+            let mut calls = 1;
+            let mut out = f();
+            let elapsed = |start: &Instant| match (self, cpu0, thread_cpu_seconds()) {
+                (Clock::ThreadCpu, Some(a), Some(b)) => b - a,
+                _ => start.elapsed().as_secs_f64(),
+            };
+            while elapsed(&start) < min_seconds {
+                out = f();
+                calls += 1;
+            }
+            (out, calls)
+        });
+        (out, seconds / calls as f64)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
