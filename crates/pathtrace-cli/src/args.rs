@@ -24,7 +24,8 @@ pub enum Command {
     ///
     /// Ctrl-C stops early and still writes what was rendered so far.
     Render(RenderArgs),
-    /// Measure rendering speed (samples/s, rays/s) on the built-in Cornell box.
+    /// Measure rendering speed (samples/s, rays/s) on the built-in Cornell box; `bench bvh`
+    /// measures the BVH alone (build time, memory, rays/s) on meshes of 10² to 10⁷ triangles.
     Bench(BenchArgs),
     /// Compare an image with a reference: MSE, RMSE, relative MSE, PSNR (8-bit and linear), SSIM.
     ///
@@ -262,7 +263,10 @@ pub struct RenderArgs {
 }
 
 #[derive(Debug, Args)]
+#[command(args_conflicts_with_subcommands = true)]
 pub struct BenchArgs {
+    #[command(subcommand)]
+    pub target: Option<BenchTarget>,
     /// Samples per pixel per run
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
     pub spp: u32,
@@ -274,6 +278,75 @@ pub struct BenchArgs {
     /// Print the results as JSON instead of a table
     #[arg(long)]
     pub json: bool,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum BenchTarget {
+    /// Benchmark the BVH on generated meshes (tessellated sphere, random triangle soup,
+    /// subdivided Stanford bunny): build time (SAH serial and parallel, median split), memory
+    /// per triangle, and million rays/s for camera and incoherent rays, closest and any hit,
+    /// on 1 and all threads, against median split and brute force (see docs/bvh.md).
+    Bvh(BvhBenchArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct BvhBenchArgs {
+    /// Comma-separated meshes: sphere, soup, bunny (the bunny needs ../shared/scenes/bunny;
+    /// its sizes are 69,451 × 4^k triangles)
+    #[arg(long, default_value = "sphere,soup,bunny")]
+    pub scenes: String,
+    /// Smallest triangle count (e.g. 100 or 1e2)
+    #[arg(long, default_value = "100", value_parser = parse_count)]
+    pub min_tris: usize,
+    /// Largest triangle count (at most 1e7)
+    #[arg(long, default_value = "1e6", value_parser = parse_count)]
+    pub max_tris: usize,
+    /// Sizes per decade (1: 100, 1000, …; 2 adds 316, 3162, …)
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=10))]
+    pub steps_per_decade: u32,
+    /// Rays per ray set (camera rays and incoherent rays)
+    #[arg(long, default_value = "2e5", value_parser = parse_count)]
+    pub rays: usize,
+    /// Timed repetitions of every measurement; the median is reported
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
+    pub runs: u32,
+    /// Brute force (O(n) per ray) only up to this many triangles
+    #[arg(long, default_value = "1e4", value_parser = parse_count)]
+    pub brute_max: usize,
+    /// SAH bins per axis
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..=32))]
+    pub bins: u32,
+    /// Largest SAH leaf, in triangles
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub max_leaf: u32,
+    /// Threads for the all-threads columns and the parallel build [default: one per core]
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Time one-thread work (serial builds, 1-thread rays) by the thread's CPU time instead of
+    /// the wall clock, so other processes on a shared machine do not count (Linux only)
+    #[arg(long)]
+    pub cpu_time: bool,
+    /// Also write the results as CSV to this file
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+    /// Write log–log SVG plots (time per ray, build time, rays/s against triangles) into this folder
+    #[arg(long, value_name = "DIR")]
+    pub plots: Option<PathBuf>,
+    /// Print the results as JSON instead of tables
+    #[arg(long)]
+    pub json: bool,
+    /// Instead of benchmarking, write the first mesh at --max-tris, its incoherent rays and our
+    /// closest hits to FILE for benches/peers/bvh_embree.py (prints our speed as JSON)
+    #[arg(long, value_name = "FILE")]
+    pub export: Option<PathBuf>,
+}
+
+/// A count such as `1000`, `1e6` or `2.5e5`, from 1 to 10⁷.
+fn parse_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (1.0..=1e7).contains(&v) && v.fract() == 0.0 => Ok(v as usize),
+        _ => Err(format!("'{s}' is not a whole number from 1 to 1e7")),
+    }
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {

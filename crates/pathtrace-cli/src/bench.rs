@@ -1,6 +1,7 @@
-//! `pathtrace bench`: renders the Cornell box several times and reports the median speed.
+//! `pathtrace bench`: renders the Cornell box several times and reports the median speed
+//! (`pathtrace bench bvh` benchmarks the BVH alone, see `bench_bvh.rs`).
 
-use crate::args::BenchArgs;
+use crate::args::{BenchArgs, BenchTarget};
 use crate::progress::format_rate;
 use crate::render::settings_from;
 use crate::stats_json::RenderStats;
@@ -22,6 +23,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 pub fn run(a: BenchArgs) -> Result<ExitCode, CliError> {
+    if let Some(BenchTarget::Bvh(b)) = a.target {
+        return crate::bench_bvh::run(b);
+    }
     let loaded = scene_arg::load(SCENE)?;
     let mut defaults = loaded.defaults;
     defaults.max_depth = 8;

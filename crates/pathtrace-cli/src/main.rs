@@ -2,9 +2,15 @@
 
 mod args;
 mod bench;
+mod bench_bvh;
+mod bvh_export;
+mod bvh_meshes;
+mod bvh_plots;
+mod bvh_rays;
 mod compare;
 mod converge;
 mod convert;
+mod cpu_clock;
 mod interrupt;
 mod plot;
 mod progress;

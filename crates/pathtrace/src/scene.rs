@@ -139,6 +139,15 @@ impl Scene {
         self.bvh.stats()
     }
 
+    /// Bytes held by the geometry: primitives, vertex normals and the BVH (from capacities;
+    /// materials, lights and the camera are not counted).
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        (self.prims.capacity() + self.unbounded.capacity()) * size_of::<Primitive>()
+            + self.vertex_normals.capacity() * size_of::<[Vec3; 3]>()
+            + self.bvh.memory_bytes()
+    }
+
     /// Number of primitives (bounded and unbounded).
     pub fn primitive_count(&self) -> usize {
         self.prims.len() + self.unbounded.len()

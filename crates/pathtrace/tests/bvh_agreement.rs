@@ -3,11 +3,12 @@
 //! mixing quads, triangles, spheres and planes, for random rays including rays that start on
 //! surfaces, graze edges and vertices, or miss everything.
 
+use pathtrace::accel::{BruteForce, BuildOptions, Bvh, Packable, SplitMethod};
 use pathtrace::material::Material;
-use pathtrace::math::{Ray, Transform, Vec3};
+use pathtrace::math::{Aabb, Ray, Transform, Vec3};
 use pathtrace::sampling::Pcg32;
-use pathtrace::scene::{Hit, PrimRef};
-use pathtrace::shape::{Plane, Quad, Shape, Sphere, Triangle};
+use pathtrace::scene::{Hit, PrimRef, Primitive};
+use pathtrace::shape::{Plane, PrimHit, Quad, Shape, Sphere, Triangle};
 use pathtrace::{Scene, SceneBuilder};
 
 fn uniform(rng: &mut Pcg32, lo: f32, hi: f32) -> f32 {
@@ -175,4 +176,185 @@ fn cornell_like_leaves_agree_with_brute_force() {
     // Single-primitive and two-primitive scenes exercise partial packets.
     check_scenes(3, 300, 1, 50);
     check_scenes(4, 300, 2, 50);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every build variant and the brute-force intersector, driven directly (not through a Scene).
+// ---------------------------------------------------------------------------------------------
+
+/// A small height field of triangles sharing edges and vertices (rays aimed at its edges
+/// graze two triangles at once).
+fn height_field(rng: &mut Pcg32, cells: usize) -> Vec<Shape> {
+    let origin = point(rng, 4.0);
+    let step = uniform(rng, 0.1, 0.6);
+    let heights: Vec<f32> = (0..(cells + 1) * (cells + 1)).map(|_| uniform(rng, -0.3, 0.3)).collect();
+    let vertex =
+        |i: usize, j: usize| origin + Vec3::new(i as f32 * step, heights[i * (cells + 1) + j], j as f32 * step);
+    let mut out = Vec::new();
+    for i in 0..cells {
+        for j in 0..cells {
+            let [a, b, c, d] = [vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)];
+            out.extend(Triangle::new(a, b, c, Triangle::FLAT).map(Shape::Triangle));
+            out.extend(Triangle::new(a, c, d, Triangle::FLAT).map(Shape::Triangle));
+        }
+    }
+    out
+}
+
+fn random_bounded_shapes(rng: &mut Pcg32, n: usize) -> Vec<Shape> {
+    let mut shapes = height_field(rng, 4);
+    while shapes.len() < n {
+        let kind = rng.next_u32() % 5;
+        shapes.extend(random_shape(rng, kind.min(2)));
+    }
+    shapes
+}
+
+fn accel_inputs(shapes: &[Shape]) -> (Vec<Aabb>, Vec<Packable>) {
+    let bounds = shapes.iter().map(|s| s.bounds().expect("bounded")).collect();
+    let kinds = shapes
+        .iter()
+        .map(|s| match s {
+            Shape::Quad(q) => Packable::Quad(*q),
+            Shape::Triangle(t) => Packable::Triangle(*t),
+            _ => Packable::No,
+        })
+        .collect();
+    (bounds, kinds)
+}
+
+fn primitives(shapes: &[Shape], order: &[u32]) -> Vec<Primitive> {
+    order
+        .iter()
+        .map(|&i| Primitive { shape: shapes[i as usize].clone(), material: 0, light: Primitive::NO_LIGHT })
+        .collect()
+}
+
+/// Closest hit by testing every shape with its scalar test: (hit, shape index).
+fn reference_hit(shapes: &[Shape], ray: &Ray, t_max: f32) -> Option<(PrimHit, u32)> {
+    let mut best = None;
+    let mut limit = t_max;
+    for (i, s) in shapes.iter().enumerate() {
+        if let Some(h) = s.intersect(ray, 0.0, limit) {
+            limit = h.t;
+            best = Some((h, i as u32));
+        }
+    }
+    best
+}
+
+/// A closest-hit query: (hit, original shape index).
+type ClosestFn = Box<dyn Fn(&Ray, f32) -> Option<(PrimHit, u32)>>;
+type OccludedFn = Box<dyn Fn(&Ray, f32) -> bool>;
+
+/// One accelerator under test: closest hit and occlusion in terms of original shape indices.
+struct Variant {
+    name: &'static str,
+    closest: ClosestFn,
+    occluded: OccludedFn,
+}
+
+fn bvh_variant(name: &'static str, shapes: &[Shape], opts: BuildOptions) -> Variant {
+    let (bounds, kinds) = accel_inputs(shapes);
+    let (bvh, order) = Bvh::build_with(&bounds, &kinds, &opts);
+    let bvh = std::rc::Rc::new(bvh);
+    let prims = std::rc::Rc::new(primitives(shapes, &order));
+    let order = std::rc::Rc::new(order);
+    let (b2, p2) = (bvh.clone(), prims.clone());
+    Variant {
+        name,
+        closest: Box::new(move |ray, t_max| {
+            bvh.intersect(&prims, ray, 0.0, t_max).map(|(h, i)| (h, order[i as usize]))
+        }),
+        occluded: Box::new(move |ray, t_max| b2.occluded(&p2, ray, 0.0, t_max)),
+    }
+}
+
+fn brute_variant(shapes: &[Shape]) -> Variant {
+    let (_, kinds) = accel_inputs(shapes);
+    let brute = std::rc::Rc::new(BruteForce::new(&kinds));
+    let identity: Vec<u32> = (0..shapes.len() as u32).collect();
+    let prims = std::rc::Rc::new(primitives(shapes, &identity));
+    let (b2, p2) = (brute.clone(), prims.clone());
+    Variant {
+        name: "brute force",
+        closest: Box::new(move |ray, t_max| brute.intersect(&prims, ray, 0.0, t_max)),
+        occluded: Box::new(move |ray, t_max| b2.occluded(&p2, ray, 0.0, t_max)),
+    }
+}
+
+/// Same closest hit as the reference: the same shape with bit-identical `(t, u, v)` and
+/// normal, or (on ties between shapes meeting at the hit point) the same `t` within rounding.
+fn check_same(name: &str, shapes: &[Shape], ray: &Ray, got: Option<(PrimHit, u32)>, want: Option<(PrimHit, u32)>) {
+    match (got, want) {
+        (None, None) => {}
+        (Some((g, gi)), Some((w, wi))) if gi == wi => {
+            assert_eq!(g, w, "{name} {ray:?}: shape {gi}");
+            let normal = |h: &PrimHit| shapes[gi as usize].surface(ray, h, &[]).n_geometric;
+            assert_eq!(normal(&g), normal(&w), "{name} {ray:?}: shape {gi}");
+        }
+        (Some((g, gi)), Some((w, wi))) => {
+            assert!(
+                (g.t - w.t).abs() <= 1e-4 * g.t.abs().max(w.t.abs()),
+                "{name} {ray:?}: shape {gi} {g:?} vs {wi} {w:?}"
+            )
+        }
+        _ => panic!("{name} {ray:?}: {got:?} vs reference {want:?}"),
+    }
+}
+
+fn check_variants(seed: u64, scenes: usize, prims: usize, rays: usize) -> usize {
+    let mut rng = Pcg32::new(seed, 7);
+    let mut checked = 0;
+    for _ in 0..scenes {
+        let shapes = random_bounded_shapes(&mut rng, prims);
+        let sah = BuildOptions::default();
+        let variants = [
+            bvh_variant("sah serial", &shapes, sah.serial()),
+            bvh_variant("sah parallel", &shapes, BuildOptions { parallel_above: 16, ..sah }),
+            bvh_variant("median", &shapes, BuildOptions { method: SplitMethod::Median, ..sah }),
+            bvh_variant("sah leaf 1, 4 bins", &shapes, BuildOptions { bins: 4, max_leaf: 1, ..sah }),
+            brute_variant(&shapes),
+        ];
+        for _ in 0..rays {
+            let ray = random_ray(&mut rng, &shapes);
+            let t_max = if rng.next_f32() < 0.5 { f32::INFINITY } else { uniform(&mut rng, 0.0, 12.0) };
+            let want = reference_hit(&shapes, &ray, t_max);
+            for v in &variants {
+                check_same(v.name, &shapes, &ray, (v.closest)(&ray, t_max), want);
+                assert_eq!((v.occluded)(&ray, t_max), want.is_some(), "{} any-hit {ray:?} t_max {t_max}", v.name);
+            }
+            checked += 1;
+        }
+    }
+    checked
+}
+
+#[test]
+fn every_build_and_brute_force_agree_with_scalar_tests() {
+    // 40 scenes × 5,000 rays + 400 scenes × 250 rays = 300,000 rays, each through five
+    // accelerators, closest hit and any-hit.
+    let rays = check_variants(11, 40, 400, 5_000) + check_variants(12, 400, 20, 250);
+    assert_eq!(rays, 300_000);
+}
+
+#[test]
+fn parallel_build_gives_the_serial_tree() {
+    let mut rng = Pcg32::new(21, 3);
+    let shapes = random_bounded_shapes(&mut rng, 60_000);
+    let (bounds, kinds) = accel_inputs(&shapes);
+    for method in [SplitMethod::Sah, SplitMethod::Median] {
+        let opts = BuildOptions { method, ..Default::default() };
+        let (serial, serial_order) = Bvh::build_with(&bounds, &kinds, &opts.serial());
+        for parallel_above in [1, 100, BuildOptions::PARALLEL_ABOVE] {
+            let (par, par_order) = Bvh::build_with(&bounds, &kinds, &BuildOptions { parallel_above, ..opts });
+            assert!(par.same_structure(&serial), "{method:?} parallel above {parallel_above}");
+            assert_eq!(par_order, serial_order);
+            assert_eq!(par.stats(), serial.stats());
+        }
+    }
+    // The comparison itself can fail: a different build is a different tree.
+    let (a, _) = Bvh::build_with(&bounds, &kinds, &BuildOptions::default());
+    let (b, _) = Bvh::build_with(&bounds, &kinds, &BuildOptions { bins: 8, ..Default::default() });
+    assert!(!a.same_structure(&b));
 }

@@ -3,10 +3,13 @@
 //! traversed as a four-wide tree (see `wide.rs`). Leaves test their quads and triangles four
 //! at a time (see `leaf.rs`).
 
-use super::build::{choose_split, BuildItem};
+use rayon::prelude::*;
+
+use super::build::{BuildItem, BuildOptions};
 use super::lanes::RayX4;
 use super::leaf::{Leaves, Packable};
-use super::wide::{collapse, Node4, RayBox4, EMPTY, LEAF};
+use super::subtree::build_tree;
+use super::wide::{collapse, wide_depth, Node4, RayBox4, EMPTY, LEAF};
 use crate::math::{Aabb, Ray};
 use crate::shape::PrimHit;
 
@@ -18,12 +21,12 @@ pub trait Intersectable {
 /// One node: 32 bytes. Leaves have `count > 0` primitives and `offset` indexes their leaf
 /// record; interior nodes have their left child at `index + 1` and their right child at
 /// `offset`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Node {
     pub bounds: Aabb,
     pub offset: u32,
     pub count: u16,
-    axis: u16,
+    pub axis: u16,
 }
 
 /// Shape statistics of a built tree.
@@ -35,6 +38,23 @@ pub struct BvhStats {
     pub max_leaf_size: usize,
 }
 
+/// Bytes held by a [`Bvh`], per structure.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BvhMemory {
+    /// The binary tree (kept for statistics, dumps and the bounds).
+    pub binary_nodes: usize,
+    /// The four-wide tree that rays traverse.
+    pub wide_nodes: usize,
+    /// Leaf records, SIMD packets of quads and triangles, indices of other shapes.
+    pub leaves: usize,
+}
+
+impl BvhMemory {
+    pub fn total(&self) -> usize {
+        self.binary_nodes + self.wide_nodes + self.leaves
+    }
+}
+
 /// The hierarchy. Primitive indices in leaves refer to the order returned by [`Bvh::build`].
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
@@ -43,67 +63,70 @@ pub struct Bvh {
     wide: Vec<Node4>,
     leaves: Leaves,
     /// Traversal stack slots needed: a four-wide node visit pushes at most four children and
-    /// pops one, so 3 per level (the wide tree is no deeper than the binary one) plus 1.
+    /// pops one, so 3 per level of the four-wide tree, plus 1.
     stack_need: usize,
 }
 
 /// Depth ≤ 32 + log2(n) < 64 for any n below 2³², so 3 · 64 + 1 slots always suffice.
 const STACK_SIZE: usize = 3 * 64 + 1;
-/// Most trees fit this smaller stack, which is cheaper to zero for every ray (zeroing the
-/// large one cost ~4% of all instructions on the Cornell box).
+/// Most trees fit one of these smaller stacks, which are cheaper to zero for every ray (zeroing
+/// the largest cost ~4% of all instructions on the Cornell box, and ~8% of the cycles of
+/// incoherent rays on 10⁵ triangles).
 const SMALL_STACK: usize = 16;
+const MEDIUM_STACK: usize = 64;
 
 impl Bvh {
-    /// Builds over the given primitive bounds; `kinds[i]` says whether primitive `i` goes into
-    /// a SIMD packet. Returns the tree and the primitive order it expects (position `i` in the
-    /// reordered array holds original primitive `order[i]`).
+    /// Builds over the given primitive bounds with the production options (binned SAH, on
+    /// rayon for large inputs); `kinds[i]` says whether primitive `i` goes into a SIMD packet.
+    /// Returns the tree and the primitive order it expects (position `i` in the reordered array
+    /// holds original primitive `order[i]`).
     pub fn build(bounds: &[Aabb], kinds: &[Packable]) -> (Bvh, Vec<u32>) {
+        Self::build_with(bounds, kinds, &BuildOptions::default())
+    }
+
+    /// [`Bvh::build`] with explicit options (split method, bins, leaf size, parallelism).
+    pub fn build_with(bounds: &[Aabb], kinds: &[Packable], opts: &BuildOptions) -> (Bvh, Vec<u32>) {
         assert_eq!(bounds.len(), kinds.len());
-        let mut items: Vec<BuildItem> = bounds
-            .iter()
-            .enumerate()
-            .map(|(i, b)| BuildItem { bounds: b.padded(), centroid: b.centroid(), index: i as u32 })
-            .collect();
-        let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * bounds.len().max(1)),
-            wide: Vec::new(),
-            leaves: Leaves::default(),
-            stack_need: 0,
+        let opts = opts.clamped();
+        let item = |(i, b): (usize, &Aabb)| BuildItem { bounds: b.padded().into(), index: i as u32 };
+        let mut items: Vec<BuildItem> = if bounds.len() > opts.parallel_above {
+            bounds.par_iter().enumerate().map(item).collect()
+        } else {
+            bounds.iter().enumerate().map(item).collect()
         };
-        if !items.is_empty() {
-            let n = items.len();
-            bvh.build_node(&mut items, 0, n, 0);
-        }
+        let mut nodes = build_tree(&mut items, &opts);
         let order: Vec<u32> = items.iter().map(|it| it.index).collect();
-        for node in bvh.nodes.iter_mut().filter(|n| n.count > 0) {
+        let mut leaves = Leaves::default();
+        for node in nodes.iter_mut().filter(|n| n.count > 0) {
             let start = node.offset as usize;
-            node.offset = bvh.leaves.push(|i| kinds[order[i] as usize], start..start + node.count as usize);
+            node.offset = leaves.push(|i| kinds[order[i] as usize], start..start + node.count as usize);
         }
-        bvh.stack_need = 3 * bvh.stats().max_depth + 1;
-        bvh.wide = collapse(&bvh.nodes);
+        leaves.shrink_to_fit();
+        let wide = collapse(&nodes);
+        let mut bvh = Bvh { nodes, wide, leaves, stack_need: 0 };
+        bvh.stack_need = 3 * wide_depth(&bvh.wide) + 1;
         (bvh, order)
     }
 
-    fn build_node(&mut self, items: &mut [BuildItem], start: usize, end: usize, depth: usize) -> usize {
-        let node_index = self.nodes.len();
-        let slice = &mut items[start..end];
-        let bounds = slice.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
-        // Leaves hold their first item's position until `build` replaces it by a leaf record.
-        self.nodes.push(Node { bounds, offset: start as u32, count: slice.len() as u16, axis: 0 });
-        if slice.len() == 1 {
-            return node_index;
+    /// True if both trees have the same nodes (bounds, split axes, leaf ranges) in the same
+    /// layout. Packets and four-wide nodes are derived from these deterministically, so with
+    /// the same primitive order the whole structure is the same.
+    pub fn same_structure(&self, other: &Bvh) -> bool {
+        self.nodes == other.nodes
+    }
+
+    /// Bytes held by the tree (see [`Bvh::memory`]).
+    pub fn memory_bytes(&self) -> usize {
+        self.memory().total()
+    }
+
+    /// Bytes held by the tree, per structure, from the vectors' capacities.
+    pub fn memory(&self) -> BvhMemory {
+        BvhMemory {
+            binary_nodes: self.nodes.capacity() * std::mem::size_of::<Node>(),
+            wide_nodes: self.wide.capacity() * std::mem::size_of::<Node4>(),
+            leaves: self.leaves.memory_bytes() + std::mem::size_of_val(self),
         }
-        let Some((axis, mid)) = choose_split(slice, &bounds, depth) else {
-            return node_index; // a leaf is cheapest
-        };
-        let left = self.build_node(items, start, start + mid, depth + 1);
-        debug_assert_eq!(left, node_index + 1);
-        let right = self.build_node(items, start + mid, end, depth + 1);
-        let node = &mut self.nodes[node_index];
-        node.offset = right as u32;
-        node.count = 0;
-        node.axis = axis as u16;
-        node_index
     }
 
     /// Closest hit among `prims` (in build order) with `t ∈ [t_min, t_max]`.
@@ -120,11 +143,17 @@ impl Bvh {
         }
         if self.stack_need <= SMALL_STACK {
             self.closest::<P, SMALL_STACK>(prims, ray, t_min, t_max)
+        } else if self.stack_need <= MEDIUM_STACK {
+            self.closest::<P, MEDIUM_STACK>(prims, ray, t_min, t_max)
         } else {
             self.closest::<P, STACK_SIZE>(prims, ray, t_min, t_max)
         }
     }
 
+    /// Near-child-first traversal with distance culling: a node's hit leaves are tested at once
+    /// (shrinking `t_max`); its hit interior children are pushed farthest first with their entry
+    /// distances, so the nearest is visited next and a popped child that starts beyond the
+    /// closest hit so far is skipped without loading it.
     #[inline(always)]
     fn closest<P: Intersectable, const N: usize>(
         &self,
@@ -135,29 +164,47 @@ impl Bvh {
     ) -> Option<(PrimHit, u32)> {
         let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
-        let mut stack = [0u32; N];
+        let mut stack = [(0u32, 0f32); N];
         let mut sp = 0;
         let mut node = 0u32;
         let mut best = None;
         loop {
             let n = &self.wide[node as usize];
-            let mut lanes = n.hit(&rb, t_min, t_max).bitmask();
-            // Leaves are tested at once (shrinking t_max for the rest); interior children wait.
+            let (mask, near) = n.hit(&rb, t_min, t_max);
+            let mut lanes = mask.bitmask();
+            let near = near.to_array();
+            let mut kids = [(0u32, 0f32); 4];
+            let mut k = 0;
             while lanes != 0 {
-                let child = n.children[lanes.trailing_zeros() as usize];
+                let lane = lanes.trailing_zeros() as usize;
+                let child = n.children[lane];
                 lanes &= lanes - 1;
                 if child & LEAF == 0 {
-                    stack[sp] = child;
-                    sp += 1;
+                    // Insertion sort, farthest first.
+                    let mut i = k;
+                    while i > 0 && kids[i - 1].1 < near[lane] {
+                        kids[i] = kids[i - 1];
+                        i -= 1;
+                    }
+                    kids[i] = (child, near[lane]);
+                    k += 1;
                 } else if child != EMPTY {
                     self.leaves.intersect(child & !LEAF, prims, ray, &rx4, t_min, &mut t_max, &mut best);
                 }
             }
-            if sp == 0 {
-                return best;
+            stack[sp..sp + k].copy_from_slice(&kids[..k]);
+            sp += k;
+            loop {
+                if sp == 0 {
+                    return best;
+                }
+                sp -= 1;
+                let (next, entry) = stack[sp];
+                if entry <= t_max {
+                    node = next;
+                    break;
+                }
             }
-            sp -= 1;
-            node = stack[sp];
         }
     }
 
@@ -169,6 +216,8 @@ impl Bvh {
         }
         if self.stack_need <= SMALL_STACK {
             self.any_hit::<P, SMALL_STACK>(prims, ray, t_min, t_max)
+        } else if self.stack_need <= MEDIUM_STACK {
+            self.any_hit::<P, MEDIUM_STACK>(prims, ray, t_min, t_max)
         } else {
             self.any_hit::<P, STACK_SIZE>(prims, ray, t_min, t_max)
         }
@@ -183,7 +232,8 @@ impl Bvh {
         let mut node = 0u32;
         loop {
             let n = &self.wide[node as usize];
-            let mut lanes = n.hit(&rb, t_min, t_max).bitmask();
+            // Any hit ends the search, so the order of children does not matter.
+            let mut lanes = n.hit(&rb, t_min, t_max).0.bitmask();
             while lanes != 0 {
                 let child = n.children[lanes.trailing_zeros() as usize];
                 lanes &= lanes - 1;

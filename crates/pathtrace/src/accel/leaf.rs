@@ -178,6 +178,27 @@ impl Leaves {
                 .any(|&i| prims[i as usize].intersect(ray, t_min, t_max).is_some())
     }
 
+    /// Number of leaves.
+    pub fn len(&self) -> usize {
+        self.leaves.len()
+    }
+
+    pub fn shrink_to_fit(&mut self) {
+        self.leaves.shrink_to_fit();
+        self.quads.shrink_to_fit();
+        self.tris.shrink_to_fit();
+        self.scalar.shrink_to_fit();
+    }
+
+    /// Heap bytes, from the vectors' capacities.
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.leaves.capacity() * size_of::<Leaf>()
+            + self.quads.capacity() * size_of::<Packed<Quad4>>()
+            + self.tris.capacity() * size_of::<Packed<Tri4>>()
+            + self.scalar.capacity() * size_of::<u32>()
+    }
+
     /// Number of SIMD packets and of primitives tested one by one in leaf `index`.
     pub fn sizes(&self, index: u32) -> (usize, usize) {
         let l = &self.leaves[index as usize];

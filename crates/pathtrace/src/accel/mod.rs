@@ -1,12 +1,16 @@
 //! Acceleration: a bounding volume hierarchy over the scene's bounded primitives.
 
+mod brute;
 mod build;
 mod bvh;
 mod lanes;
 mod leaf;
 mod quad4;
+mod subtree;
 mod tri4;
 mod wide;
 
-pub use bvh::{Bvh, BvhStats, Intersectable};
+pub use brute::BruteForce;
+pub use build::{BuildOptions, SplitMethod, MAX_BINS, MAX_LEAF_LIMIT};
+pub use bvh::{Bvh, BvhMemory, BvhStats, Intersectable};
 pub use leaf::Packable;

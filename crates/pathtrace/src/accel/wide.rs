@@ -14,8 +14,10 @@ pub(super) const EMPTY: u32 = u32::MAX;
 
 /// Four children: their boxes (min x, y, z, max x, y, z; one child per lane) and indices (an
 /// interior node, `LEAF | leaf record`, or `EMPTY`). Empty lanes have the box `[+∞, +∞]`,
-/// whose slab distances all have one sign, so it is never hit.
+/// whose slab distances all have one sign, so it is never hit. 112 bytes, aligned to 64 so
+/// that a node spans exactly two cache lines (at 16-byte alignment half of them touch three).
 #[derive(Clone, Copy, Debug)]
+#[repr(align(64))]
 pub(super) struct Node4 {
     bounds: [Vec4; 6],
     pub children: [u32; 4],
@@ -40,9 +42,10 @@ impl RayBox4 {
 }
 
 impl Node4 {
-    /// Lanes whose box overlaps the ray within `[t_min, t_max]`.
+    /// Lanes whose box overlaps the ray within `[t_min, t_max]`, and each lane's entry
+    /// distance (meaningful where the lane hits).
     #[inline(always)]
-    pub fn hit(&self, r: &RayBox4, t_min: f32, t_max: f32) -> BVec4A {
+    pub fn hit(&self, r: &RayBox4, t_min: f32, t_max: f32) -> (BVec4A, Vec4) {
         let mut near = Vec4::splat(t_min);
         let mut far = Vec4::splat(t_max);
         for axis in 0..3 {
@@ -51,7 +54,7 @@ impl Node4 {
             near = near.max(t0.min(t1));
             far = far.min(t0.max(t1));
         }
-        near.cmple(far)
+        (near.cmple(far), near)
     }
 }
 
@@ -103,4 +106,16 @@ fn collapse_node(nodes: &[Node], index: usize, out: &mut Vec<Node4>) -> u32 {
         node4(nodes, &kids, |k| if nodes[k].count > 0 { LEAF | nodes[k].offset } else { collapse_node(nodes, k, out) });
     out[me] = node;
     me as u32
+}
+
+/// Levels of four-wide nodes on the longest root-to-leaf path (0 for an empty tree).
+pub(super) fn wide_depth(nodes: &[Node4]) -> usize {
+    fn depth(nodes: &[Node4], i: u32) -> usize {
+        1 + nodes[i as usize].children.iter().filter(|&&c| c & LEAF == 0).map(|&c| depth(nodes, c)).max().unwrap_or(0)
+    }
+    if nodes.is_empty() {
+        0
+    } else {
+        depth(nodes, 0)
+    }
 }
