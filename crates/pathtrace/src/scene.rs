@@ -47,10 +47,12 @@ pub enum PrimRef {
 }
 
 /// Everything the integrator needs to know about a hit point.
+/// The material is borrowed from the scene: some models carry tables, and copying them per hit
+/// would cost time in the path loop.
 #[derive(Clone, Copy, Debug)]
-pub struct Interaction {
+pub struct Interaction<'a> {
     pub surface: SurfacePoint,
-    pub material: Material,
+    pub material: &'a Material,
     pub light: u32,
 }
 
@@ -118,11 +120,11 @@ impl Scene {
 
     /// Surface details of a hit found with `ray`.
     #[inline(always)]
-    pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
+    pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction<'_> {
         let prim = self.primitive(hit.prim);
         Interaction {
             surface: prim.shape.surface(ray, &hit.hit, &self.vertex_normals),
-            material: self.materials[prim.material as usize],
+            material: &self.materials[prim.material as usize],
             light: prim.light,
         }
     }
