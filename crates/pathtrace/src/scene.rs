@@ -367,6 +367,30 @@ pub fn validate_material(m: &Material) -> Result<(), BuildError> {
         Material::Dielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
             err(format!("dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
         }
+        Material::Conductor(c) if !colour_ok(c.eta) || !colour_ok(c.k) || !colour_ok(c.reflectance) => {
+            err("conductor eta, k and reflectance must be ≥ 0".into())
+        }
+        Material::RoughConductor(c) if !colour_ok(c.eta) || !colour_ok(c.k) || !colour_ok(c.reflectance) => {
+            err("rough_conductor eta, k and reflectance must be ≥ 0".into())
+        }
+        Material::RoughConductor(c) if c.reflectance.max_component() > 1.0 => {
+            err(format!("rough_conductor reflectance {:?} must be in [0, 1]", c.reflectance.to_array()))
+        }
+        Material::Conductor(c) if c.reflectance.max_component() > 1.0 => {
+            err(format!("conductor reflectance {:?} must be in [0, 1]", c.reflectance.to_array()))
+        }
+        Material::RoughDielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => {
+            err(format!("rough_dielectric ior {} must be positive", d.ior))
+        }
+        Material::RoughDielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
+            err(format!("rough_dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
+        }
+        Material::Plastic(p) if !(p.ior > 0.0 && p.ior.is_finite()) => {
+            err(format!("plastic ior {} must be positive", p.ior))
+        }
+        Material::RoughPlastic(p) if !(p.ior > 0.0 && p.ior.is_finite()) => {
+            err(format!("rough_plastic ior {} must be positive", p.ior))
+        }
         _ => Ok(()),
     }
 }

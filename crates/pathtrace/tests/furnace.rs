@@ -4,7 +4,9 @@
 
 use pathtrace::integrator::Strategy;
 use pathtrace::light::Emission;
-use pathtrace::material::{Diffuse, Glossy, Lambertian, Material, Microfacet, MicrofacetKind, Plastic, RoughConductor, RoughPlastic};
+use pathtrace::material::{
+    Diffuse, Glossy, Lambertian, Material, Microfacet, MicrofacetKind, Plastic, RoughConductor, RoughPlastic,
+};
 use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::shape::{Shape, Sphere};
 use pathtrace::{render, CameraDesc, RenderSettings, SceneBuilder};
@@ -108,7 +110,13 @@ fn microfacet_and_coated_materials_agree_across_strategies_and_lose_energy() {
         }
         for pair in ests.windows(2) {
             let z = pair[0].max_z_score(&pair[1]);
-            assert!(z < 4.5, "{}: strategies disagree: {:?} vs {:?} (z = {z:.2})", m.name(), pair[0].mean, pair[1].mean);
+            assert!(
+                z < 4.5,
+                "{}: strategies disagree: {:?} vs {:?} (z = {z:.2})",
+                m.name(),
+                pair[0].mean,
+                pair[1].mean
+            );
         }
     }
 }

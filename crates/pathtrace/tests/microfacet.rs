@@ -4,8 +4,8 @@
 //! (chi-square) — for GGX and Beckmann, isotropic and anisotropic, at several view angles.
 
 use pathtrace::material::{Microfacet, MicrofacetKind};
-use pathtrace::math::{Vec2, Vec3};
 use pathtrace::math::special::gauss_legendre;
+use pathtrace::math::{Vec2, Vec3};
 use pathtrace_testkit::ChiSquareTest;
 
 fn dir(theta_deg: f32, phi_deg: f32) -> Vec3 {
@@ -83,8 +83,10 @@ fn visible_normal_sampling_matches_its_pdf() {
         for (theta, phi) in VIEWS {
             let v = dir(theta, phi);
             let test = ChiSquareTest { samples: 300_000, integration_res: 8, ..Default::default() };
-            let outcome =
-                test.run(|u| Some(d.sample_visible(v, Vec2::new(u[0] as f32, u[1] as f32))), |m| d.pdf_visible(v, m) as f64);
+            let outcome = test.run(
+                |u| Some(d.sample_visible(v, Vec2::new(u[0] as f32, u[1] as f32))),
+                |m| d.pdf_visible(v, m) as f64,
+            );
             assert!(outcome.passed, "{d:?} at θv={theta}: chi-square rejected\n{}", outcome.summary());
         }
     }

@@ -125,7 +125,11 @@ fn sampling_matches_the_pdf_and_the_pdf_integrates_to_one() {
                 })
                 .count();
             let expected = smooth as f64 / n as f64;
-            assert!((integral - expected).abs() < 3e-3, "{} at wo={wo}: ∫pdf = {integral}, expected {expected}", m.name());
+            assert!(
+                (integral - expected).abs() < 3e-3,
+                "{} at wo={wo}: ∫pdf = {integral}, expected {expected}",
+                m.name()
+            );
             let mut next = lobe_sampler(11);
             let test = ChiSquareTest { samples: 300_000, integration_res: 8, ..Default::default() };
             let outcome = test.run(
@@ -151,7 +155,13 @@ fn sample_weights_equal_f_cos_over_pdf() {
                 let pdf = m.pdf(wo, s.wi);
                 let expected = m.eval(wo, s.wi) * (1.0 / pdf);
                 let err = (s.weight - expected).max_component().abs();
-                assert!(err <= 2e-3 * expected.max_component().max(1e-3), "{}: {:?} vs {:?}", m.name(), s.weight, expected);
+                assert!(
+                    err <= 2e-3 * expected.max_component().max(1e-3),
+                    "{}: {:?} vs {:?}",
+                    m.name(),
+                    s.weight,
+                    expected
+                );
                 assert!((s.pdf - pdf).abs() <= 2e-3 * pdf, "{}: pdf {} vs {}", m.name(), s.pdf, pdf);
             }
         }
@@ -238,7 +248,12 @@ fn perfect_rough_conductor_loses_exactly_the_single_scattering_deficit() {
             .collect();
         let mc = MeanEstimate::from_samples(&samples);
         let z = (mc.mean - quadrature) / mc.std_error();
-        assert!(z.abs() < 4.0, "α={alpha} θ={theta}: Monte Carlo {} ± {} vs quadrature {quadrature}", mc.mean, mc.std_error());
+        assert!(
+            z.abs() < 4.0,
+            "α={alpha} θ={theta}: Monte Carlo {} ± {} vs quadrature {quadrature}",
+            mc.mean,
+            mc.std_error()
+        );
         assert!(quadrature < 1.0);
         if alpha == 1.0 && theta == 0.0 {
             let exact = 1.0 - std::f64::consts::LN_2;

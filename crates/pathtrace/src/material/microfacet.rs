@@ -212,3 +212,25 @@ fn beckmann_visible_slopes_11(cos_theta: f64, u1: f64, u2: f64) -> (f64, f64) {
 pub fn reflect_about(v: Vec3, m: Vec3) -> Vec3 {
     2.0 * v.dot(m) * m - v
 }
+
+impl MicrofacetKind {
+    /// The name in scene files (as Mitsuba's `distribution`).
+    pub fn name(self) -> &'static str {
+        match self {
+            MicrofacetKind::Ggx => "ggx",
+            MicrofacetKind::Beckmann => "beckmann",
+        }
+    }
+}
+
+impl std::str::FromStr for MicrofacetKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "ggx" => Ok(MicrofacetKind::Ggx),
+            "beckmann" => Ok(MicrofacetKind::Beckmann),
+            other => Err(format!("unknown microfacet distribution `{other}` (ggx or beckmann)")),
+        }
+    }
+}

@@ -128,8 +128,7 @@ mod tests {
         for eta in [1.33f32, 1.49, 1.7] {
             // From outside: d'Eon & Irving 2011's fit in 1/η (0.1% accurate for η in [1, 2]).
             let x = 1.0 / eta;
-            let external_fit = 0.919317 - 3.4793 * x + 6.75335 * x.powi(2) - 7.80989 * x.powi(3)
-                + 4.98554 * x.powi(4)
+            let external_fit = 0.919317 - 3.4793 * x + 6.75335 * x.powi(2) - 7.80989 * x.powi(3) + 4.98554 * x.powi(4)
                 - 1.36881 * x.powi(5);
             let external = diffuse_fresnel_reflectance(eta);
             assert!((external - external_fit).abs() < 2e-3, "η {eta}: {external} vs {external_fit}");
