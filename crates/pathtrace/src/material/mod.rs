@@ -54,6 +54,12 @@ pub struct BsdfSample {
 }
 
 /// Every surface model.
+///
+/// `RoughPlastic` carries its 64-entry transmittance table inline, so the enum is large; it
+/// lives in the scene's material table and the path loop borrows it (`Interaction::material` is
+/// a reference), so its size costs nothing per hit, while boxing would cost `Copy` and an
+/// indirection.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Material {
     /// Black: absorbs everything (the surface of a pure emitter).

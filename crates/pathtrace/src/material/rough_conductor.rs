@@ -35,7 +35,7 @@ impl RoughConductor {
             return None;
         }
         let pdf = self.distribution.pdf_visible(wo, m) / (4.0 * cos_om);
-        if !(pdf > 0.0) {
+        if !pdf.is_finite() || pdf <= 0.0 {
             return None;
         }
         let f = fresnel_conductor_rgb(cos_om, self.eta, self.k);

@@ -109,7 +109,7 @@ impl RoughPlastic {
             return None;
         }
         let pdf = self.pdf(wo, wi);
-        if !(pdf > 0.0) {
+        if !pdf.is_finite() || pdf <= 0.0 {
             return None;
         }
         Some(BsdfSample { wi, weight: self.eval(wo, wi) * (1.0 / pdf), pdf, delta: false, eta: 1.0 })
