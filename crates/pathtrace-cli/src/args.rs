@@ -1,7 +1,7 @@
 //! Command-line arguments.
 
 use clap::{Args, Parser, Subcommand};
-use pathtrace::film::ToneMap;
+use pathtrace::film::{PixelFilter, ToneMap};
 use pathtrace::integrator::Strategy;
 use pathtrace::sampling::SamplerKind;
 use std::path::PathBuf;
@@ -32,13 +32,56 @@ pub enum Command {
     /// sRGB) images; linear PSNR uses the reference's peak value.
     Compare(CompareArgs),
     /// Measure convergence: error against a reference at 1, 2, 4, … spp for each strategy ×
-    /// sampler; writes a CSV, log–log SVG plots (error vs spp and vs time) and a table of the
-    /// time each method needs to reach a target error.
+    /// sampler × sampling (uniform, adaptive); writes a CSV, log–log plots as SVG and PNG (error
+    /// vs spp and vs time) and a table of each method's error at equal time and the time it needs
+    /// to reach a target error.
     Converge(ConvergeArgs),
     /// Convert a scene file (Mitsuba 3 .xml, .toml or .json) to the native .toml or .json format.
     ///
     /// Substitutions the native format cannot express are printed as warnings.
     Convert(ConvertArgs),
+    /// Watch a scene render live in an OpenGL window; move the camera and change settings while it
+    /// converges (F1 in the window lists the shortcuts; see docs/viewer.md).
+    ///
+    /// Needs a display; without one, use `pathtrace render`.
+    View(ViewArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// A scene file (.toml, .json or Mitsuba 3 .xml) or a built-in scene name (cornell-box)
+    #[arg(default_value = "cornell-box")]
+    pub scene: String,
+    /// Set a Mitsuba XML scene parameter (overrides its <default name=NAME>); repeatable
+    #[arg(short = 'D', long = "define", value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub defines: Vec<(String, String)>,
+    /// Samples per pixel to stop at; 0 renders until the window is closed [default: the scene's]
+    #[arg(long, value_name = "N")]
+    pub spp: Option<u32>,
+    #[command(flatten)]
+    pub quality: QualityArgs,
+    /// Starting exposure in stops (keys - and = change it)
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Starting tone map: clamp or aces (key T toggles)
+    #[arg(long, default_value = "clamp", value_parser = parse_from_str::<ToneMap>)]
+    pub tonemap: ToneMap,
+    /// Reference image (EXR, PFM or PNG) of the same size: shows live PSNR and relative MSE, and
+    /// enables the difference view
+    #[arg(long, value_name = "FILE")]
+    pub reference: Option<PathBuf>,
+    /// When the render is done, capture the window's picture area to this PNG
+    #[arg(long, value_name = "FILE")]
+    pub screenshot: Option<PathBuf>,
+    /// Take the screenshot as soon as this many samples per pixel are shown (mid-render)
+    #[arg(long, value_name = "N", requires = "screenshot")]
+    pub screenshot_at_spp: Option<u32>,
+    /// Capture the whole window, status bar included, instead of the picture area
+    #[arg(long, requires = "screenshot")]
+    pub screenshot_window: bool,
+    /// Close the window when the render is done (after the screenshot)
+    #[arg(long)]
+    pub exit_when_done: bool,
 }
 
 #[derive(Debug, Args)]
@@ -52,6 +95,13 @@ pub struct ConvergeArgs {
     /// Comma-separated samplers to compare
     #[arg(long, default_value = "independent,sobol")]
     pub samplers: String,
+    /// Comma-separated sample placement: uniform (every pixel the same spp) and/or adaptive
+    /// (each level's spp on average, sent where the estimated error is largest)
+    #[arg(long, default_value = "uniform")]
+    pub sampling: String,
+    /// Uniform samples per pixel before adaptive sampling starts
+    #[arg(long, value_name = "N", default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..))]
+    pub min_spp: u32,
     /// Highest sample count (a power of two); levels are 1, 2, 4, … up to it
     #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536))]
     pub max_spp: u32,
@@ -134,7 +184,7 @@ pub struct QualityArgs {
     /// -1 = unlimited (Russian roulette ends paths) [default: the scene's]
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_depth)]
     pub max_depth: Option<i32>,
-    /// Direction sampling: mis (unbiased, least noise), bsdf, mixture, or light (biased
+    /// Direction sampling: mis (unbiased, least noise), mis-balance, bsdf, mixture, or light (biased
     /// teaching mode: loses indirect light) [default: the scene's, else mis]
     #[arg(long, value_parser = parse_from_str::<Strategy>)]
     pub strategy: Option<Strategy>,
@@ -142,12 +192,36 @@ pub struct QualityArgs {
     /// (low-discrepancy: Owen-scrambled Sobol') [default: the scene's, else independent]
     #[arg(long, value_parser = parse_from_str::<SamplerKind>)]
     pub sampler: Option<SamplerKind>,
+    /// Pixel reconstruction filter, sampled by importance: box (the pixel itself), tent (radius 1)
+    /// or gaussian (stddev 0.5, as Mitsuba) [default: the scene's, else box]
+    #[arg(long, value_parser = PixelFilter::by_name)]
+    pub filter: Option<PixelFilter>,
     /// Random seed: the same seed, scene and settings give the same image [default: the scene's, else 0]
     #[arg(long)]
     pub seed: Option<u64>,
     /// Worker threads [default: one per core]
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+}
+
+/// Adaptive sampling options of `render`.
+#[derive(Debug, Clone, Args)]
+pub struct AdaptiveArgs {
+    /// Adaptive sampling: after --min-spp uniform samples, send each wave's samples to the pixels
+    /// with the largest estimated relative error (--spp becomes the average per pixel)
+    #[arg(long)]
+    pub adaptive: bool,
+    /// Stop when the estimated relative RMS error of the image reaches E (e.g. 0.05 for 5%);
+    /// implies --adaptive; --spp is then a cap (average per pixel), unlimited if not given
+    #[arg(long, value_name = "E", value_parser = parse_positive)]
+    pub target_error: Option<f64>,
+    /// Uniform samples per pixel before adaptive sampling starts
+    #[arg(long, value_name = "N", default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..))]
+    pub min_spp: u32,
+    /// Also write each pixel's sample count as a grey image (white = the most samples), to see
+    /// where adaptive sampling sent them
+    #[arg(long, value_name = "FILE")]
+    pub spp_image: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]
@@ -167,6 +241,8 @@ pub struct RenderArgs {
     pub time: Option<f64>,
     #[command(flatten)]
     pub quality: QualityArgs,
+    #[command(flatten)]
+    pub adaptive: AdaptiveArgs,
     /// Output file; the format follows the extension: .png (tone mapped, sRGB), .exr or .pfm
     /// (linear radiance) [default: the scene's name or file stem + .png]
     #[arg(short, long, value_name = "FILE")]

@@ -1,4 +1,4 @@
-//! `pathtrace`: render scenes, measure speed.
+//! `pathtrace`: render scenes, measure speed, watch renders live.
 
 mod args;
 mod bench;
@@ -6,11 +6,12 @@ mod compare;
 mod converge;
 mod convert;
 mod interrupt;
+mod plot;
 mod progress;
 mod render;
 mod scene_arg;
 mod stats_json;
-mod svg_plot;
+mod view;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -29,6 +30,7 @@ fn main() -> ExitCode {
         args::Command::Compare(a) => compare::run(a),
         args::Command::Converge(a) => converge::run(a),
         args::Command::Convert(a) => convert::run(a),
+        args::Command::View(a) => view::run(a),
     };
     match result {
         Ok(code) => code,

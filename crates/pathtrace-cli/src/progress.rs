@@ -14,15 +14,18 @@ pub struct Bar {
 impl Bar {
     pub fn new(pixels: u64, spp: u32, time_limit: Option<Duration>, quiet: bool) -> Self {
         let timed = time_limit.is_some();
+        // Open-ended renders (a target error and no cap) have no length: a spinner.
         let len = match time_limit {
-            Some(t) => t.as_millis() as u64,
-            None => pixels * spp as u64,
+            Some(t) => Some(t.as_millis() as u64),
+            None => (spp > 0).then_some(pixels * spp as u64),
         };
         let bar = ProgressBar::with_draw_target(
-            Some(len),
+            len,
             if quiet { ProgressDrawTarget::hidden() } else { ProgressDrawTarget::stderr() },
         );
-        let template = if timed {
+        let template = if len.is_none() {
+            "{spinner} {msg} · {elapsed_precise}"
+        } else if timed {
             "{spinner} [{bar:30}] {msg} · {elapsed_precise}"
         } else {
             "{spinner} [{bar:30}] {msg} · ETA {eta}"
@@ -41,7 +44,14 @@ impl Bar {
         }
         let spp = p.samples as f64 / self.pixels.max(1) as f64;
         let target = if p.spp_target > 0 { format!("/{}", p.spp_target) } else { String::new() };
-        self.bar.set_message(format!("{spp:.1}{target} spp · {}", format_rate(p.samples_per_second, "samples/s")));
+        // With a target error, how close the estimate is: "error 3.10% → 2.00%".
+        let error = match (p.error_estimate, p.target_error) {
+            (Some(e), Some(t)) => format!(" · error {:.2}% → {:.2}%", 100.0 * e, 100.0 * t),
+            (None, Some(t)) => format!(" · error ? → {:.2}%", 100.0 * t),
+            _ => String::new(),
+        };
+        self.bar
+            .set_message(format!("{spp:.1}{target} spp · {}{error}", format_rate(p.samples_per_second, "samples/s")));
     }
 
     pub fn finish(&self) {

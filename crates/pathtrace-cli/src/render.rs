@@ -1,12 +1,13 @@
 //! `pathtrace render`.
 
-use crate::args::{QualityArgs, RenderArgs};
+use crate::args::{AdaptiveArgs, QualityArgs, RenderArgs};
 use crate::interrupt::Interrupt;
 use crate::progress::{format_rate, Bar};
 use crate::stats_json::RenderStats;
 use crate::{scene_arg, CliError};
-use pathtrace::film::ToneMapSettings;
-use pathtrace::{RenderSession, RenderSettings};
+use pathtrace::film::{Film, Image, ToneMapSettings};
+use pathtrace::math::Rgb;
+use pathtrace::{AdaptiveSettings, RenderSession, RenderSettings};
 use pathtrace_scene::image_io::{write_image, ImageFormat};
 use pathtrace_scene::RenderDefaults;
 use std::path::{Path, PathBuf};
@@ -24,6 +25,7 @@ pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &R
         spp: if time.is_some() { spp.unwrap_or(0) } else { spp.unwrap_or(d.spp) },
         time_limit: time.map(Duration::from_secs_f64),
         sampler: q.sampler.or(d.sampler).unwrap_or_default(),
+        filter: q.filter.clone().or_else(|| d.filter.clone()).unwrap_or_default(),
         seed: q.seed.or(d.seed).unwrap_or(0),
         threads: q.threads.unwrap_or(0),
         ..RenderSettings::default()
@@ -46,11 +48,41 @@ fn check_output(path: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Adaptive settings from `--adaptive`, `--target-error` and `--min-spp`; with a target error and
+/// no time limit, an unset `--spp` means no cap.
+fn with_adaptive(mut s: RenderSettings, a: &AdaptiveArgs, spp_given: bool) -> RenderSettings {
+    if a.adaptive || a.target_error.is_some() {
+        s.adaptive = Some(AdaptiveSettings { min_spp: a.min_spp, target_error: a.target_error, ..Default::default() });
+        if a.target_error.is_some() && !spp_given && s.time_limit.is_none() {
+            s.spp = 0;
+        }
+    }
+    s
+}
+
+/// Each pixel's sample count over the largest count, as grey (linear; sRGB-encoded in a PNG).
+fn spp_image(film: &Film, spp_max: u32) -> Image {
+    let scale = 1.0 / spp_max.max(1) as f32;
+    let pixels = film.pixels().iter().map(|p| Rgb::splat(p.count as f32 * scale)).collect();
+    Image { width: film.width(), height: film.height(), pixels }
+}
+
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let loaded = scene_arg::load_with(&a.scene, &a.defines)?;
-    let settings = settings_from(&a.quality, a.spp, a.time, &loaded.defaults);
+    let settings =
+        with_adaptive(settings_from(&a.quality, a.spp, a.time, &loaded.defaults), &a.adaptive, a.spp.is_some());
+    if !loaded.scene.lights.points().is_empty() && !settings.path.strategy.is_mis() {
+        eprintln!(
+            "warning: the scene has point lights, which only the mis strategy (or mis-balance) can see (next-event \
+             estimation); with --strategy {} they render black",
+            settings.path.strategy
+        );
+    }
     let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", scene_arg::stem(&a.scene))));
     check_output(&output)?;
+    if let Some(path) = &a.adaptive.spp_image {
+        check_output(path)?;
+    }
     if !a.exposure.is_finite() {
         return Err(CliError::usage("--exposure must be a finite number of stops"));
     }
@@ -76,11 +108,26 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     write_image(&output, &image, &tone).map_err(|e| CliError::runtime(e.to_string()))?;
 
     let (spp_min, spp_max) = outcome.film.spp_range();
-    let noise = outcome.film.relative_error_estimate();
+    if let Some(path) = &a.adaptive.spp_image {
+        write_image(path, &spp_image(&outcome.film, spp_max), &ToneMapSettings::default())
+            .map_err(|e| CliError::runtime(e.to_string()))?;
+    }
+    let noise = outcome.film.relative_rms_error_estimate();
     let p = &outcome.progress;
     if !a.quiet {
         let held = if spp_min == spp_max { format!("{spp_min} spp") } else { format!("{spp_min}–{spp_max} spp") };
-        let noise_text = noise.map_or(String::new(), |n| format!(", noise ≈ {:.2}%", 100.0 * n));
+        let target = settings.adaptive.and_then(|ad| ad.target_error);
+        let noise_text = match (noise, target) {
+            (Some(n), Some(t)) => format!(", estimated error {:.2}% (target {:.2}%)", 100.0 * n, 100.0 * t),
+            (Some(n), None) => format!(", estimated error {:.2}%", 100.0 * n),
+            _ => String::new(),
+        };
+        let held = if settings.adaptive.is_some() {
+            let mean = outcome.film.total_samples() as f64 / pixels.max(1) as f64;
+            format!("{held}, {mean:.1} on average, adaptive")
+        } else {
+            held
+        };
         let dropped = if p.dropped_samples > 0 {
             format!(", {} NaN/Inf samples dropped", p.dropped_samples)
         } else {

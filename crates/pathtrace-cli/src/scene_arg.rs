@@ -72,6 +72,26 @@ pub fn load_with(arg: &str, defines: &[(String, String)]) -> Result<LoadedScene,
     }
 }
 
+/// True if the argument names a scene file rather than a built-in scene.
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+pub fn is_scene_file(arg: &str) -> bool {
+    is_file(arg)
+}
+
+/// The scene as a native model (for writing it back, e.g. with another camera), or `None` when
+/// it cannot be read as one; import warnings were already printed by [`load_with`].
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+pub fn model(arg: &str, defines: &[(String, String)]) -> Option<native::SceneFile> {
+    if is_file(arg) {
+        if is_xml(Path::new(arg)) {
+            return mitsuba::convert_file(Path::new(arg), &pairs(defines)).ok().map(|(f, _)| f);
+        }
+        return native::read_file(Path::new(arg)).ok().map(|(_, f)| f);
+    }
+    let (file, text) = builtin::source(arg)?;
+    native::parse_str(text, Format::Toml, Path::new(file)).ok()
+}
+
 /// The name for default outputs: a file's stem, or the built-in scene's name.
 pub fn stem(arg: &str) -> String {
     if is_file(arg) {

@@ -28,8 +28,15 @@ pub struct RenderStats {
     /// Path segments per sample: (camera + extension rays) / samples.
     pub mean_path_length: f64,
     pub dropped_samples: u64,
-    /// Estimated relative RMS error of the image (see `Film::relative_error_estimate`).
+    /// Estimated relative RMS error of the image: √ of the expected relative MSE against the
+    /// converged image (see `Film::relative_rms_error_estimate` and docs/sampling.md).
     pub relative_error_estimate: Option<f64>,
+    /// Adaptive sampling was on.
+    pub adaptive: bool,
+    /// The adaptive target error, if one was given.
+    pub target_error: Option<f64>,
+    /// Samples per pixel on average (differs from `spp` with adaptive sampling).
+    pub mean_spp: f64,
     pub interrupted: bool,
 }
 
@@ -64,6 +71,9 @@ impl RenderStats {
             mean_path_length: (p.rays.camera_rays + p.rays.extension_rays) as f64 / samples,
             dropped_samples: p.dropped_samples,
             relative_error_estimate: noise,
+            adaptive: s.adaptive.is_some(),
+            target_error: s.adaptive.and_then(|a| a.target_error),
+            mean_spp: p.samples as f64 / (s.width as f64 * s.height as f64).max(1.0),
             interrupted,
         }
     }

@@ -225,6 +225,10 @@ fn converge_writes_csv_plots_and_a_table() {
         "bsdf,mis",
         "--samplers",
         "independent,sobol",
+        "--sampling",
+        "uniform,adaptive",
+        "--min-spp",
+        "2",
         "--max-depth",
         "4",
         "-o",
@@ -232,15 +236,75 @@ fn converge_writes_csv_plots_and_a_table() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(dir.join("convergence.csv")).unwrap();
-    // Header + 2 strategies × 2 samplers × 3 levels (1, 2, 4 spp).
-    assert_eq!(csv.lines().count(), 1 + 12, "{csv}");
-    for name in ["error-vs-spp.svg", "error-vs-time.svg"] {
-        let svg = std::fs::read_to_string(dir.join(name)).unwrap();
-        assert_eq!(svg.matches("<polyline").count(), 4);
+    // Header + 2 strategies × 2 samplers × 2 samplings × 3 levels (1, 2, 4 spp).
+    assert_eq!(csv.lines().count(), 1 + 24, "{csv}");
+    assert!(csv.contains(",sobol,adaptive,4,"), "{csv}");
+    for name in ["error-vs-spp", "error-vs-time"] {
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).unwrap();
+        // One line per method and its legend entry.
+        assert!(svg.contains("mis + sobol + adaptive") && svg.contains("bsdf + independent"), "{name}");
+        let png = std::fs::read(dir.join(format!("{name}.png"))).unwrap();
+        assert_eq!(&png[1..4], b"PNG");
     }
     let table = std::fs::read_to_string(dir.join("table.md")).unwrap();
-    assert!(table.contains("mis + sobol") && table.contains("bsdf + independent"));
+    assert!(table.contains("mis + sobol + adaptive") && table.contains("bsdf + independent"));
+    assert!(table.contains(" s |"), "{table}");
+    assert!(dir.join("reference.exr").is_file());
     let o = run(&["converge", "--max-spp", "3"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = run(&["converge", "--sampling", "clever"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("uniform or adaptive"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn render_stops_at_a_target_error_and_reports_it() {
+    let dir = temp_dir("target-error");
+    let out = dir.join("box.exr");
+    let stats = dir.join("stats.json");
+    let o = run(&[
+        "render",
+        "cornell-box",
+        "--size",
+        "24x24",
+        "--max-depth",
+        "3",
+        "--target-error",
+        "0.2",
+        "--min-spp",
+        "4",
+        "-o",
+        out.to_str().unwrap(),
+        "--stats-json",
+        stats.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(json["adaptive"], true);
+    assert_eq!(json["target_error"], 0.2);
+    let reached = json["relative_error_estimate"].as_f64().unwrap();
+    assert!(reached <= 0.2 && reached > 0.0, "{reached}");
+    assert!(json["mean_spp"].as_f64().unwrap() >= 4.0);
+    let summary = String::from_utf8_lossy(&o.stderr);
+    assert!(summary.contains("estimated error") && summary.contains("target 20.00%"), "{summary}");
+    // --adaptive with --spp spends that many samples per pixel on average.
+    let counts = dir.join("spp.pfm");
+    let o = run(&["render", "--size", "16x16", "--max-depth", "3", "--spp", "8", "--adaptive", "--min-spp", "4"]
+        .iter()
+        .copied()
+        .chain(["-o", out.to_str().unwrap(), "--stats-json", stats.to_str().unwrap()])
+        .chain(["--spp-image", counts.to_str().unwrap()])
+        .collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(json["samples"], 16 * 16 * 8);
+    // The sample-count image: the busiest pixel is 1, the others at least min_spp / max.
+    let spp = pathtrace_scene::image_io::read_image(&counts).unwrap();
+    let max = spp.pixels.iter().map(|p| p.g).fold(0.0f32, f32::max);
+    let min = spp.pixels.iter().map(|p| p.g).fold(1.0f32, f32::min);
+    assert!(max == 1.0 && min > 0.0 && min < 1.0, "{min}..{max}");
+    let o = run(&["render", "--target-error", "-1"]);
     assert_eq!(o.status.code(), Some(2));
     let _ = std::fs::remove_dir_all(&dir);
 }

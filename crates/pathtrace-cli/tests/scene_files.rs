@@ -135,3 +135,44 @@ fn mitsuba_xml_renders_with_defines_and_warnings_and_converts() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+const XML_NEW_PLUGINS: &str = r#"<scene version="3.0.0">
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 0, -4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <sampler type="independent"><integer name="sample_count" value="2"/></sampler>
+        <film type="hdrfilm"><integer name="width" value="12"/><integer name="height" value="10"/>
+            <rfilter type="tent"><float name="radius" value="1.5"/></rfilter></film>
+    </sensor>
+    <emitter type="constant"><spectrum name="radiance" value="400:0.2, 700:0.4"/></emitter>
+    <emitter type="point"><point name="position" value="0, 2, -1"/><rgb name="intensity" value="3"/></emitter>
+    <shape type="disk"><bsdf type="thindielectric"/></shape>
+</scene>
+"#;
+
+#[test]
+fn convert_writes_every_new_plugin_and_the_native_file_renders_with_any_filter() {
+    let dir = temp_dir("plugins");
+    std::fs::write(dir.join("new.xml"), XML_NEW_PLUGINS).unwrap();
+    let o = run_in(&dir, &["convert", "new.xml", "new.toml"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("warning"), "{}", String::from_utf8_lossy(&o.stderr));
+    let toml = std::fs::read_to_string(dir.join("new.toml")).unwrap();
+    for word in ["\"disk\"", "\"thindielectric\"", "\"constant\"", "\"point\"", "\"tent\"", "radius = 1.5"] {
+        assert!(toml.contains(word), "{word} missing from\n{toml}");
+    }
+    for filter in ["box", "tent", "gaussian"] {
+        let o = run_in(&dir, &["render", "new.toml", "--quiet", "--filter", filter, "-o", "f.pfm"]);
+        assert!(o.status.success(), "{filter}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+    let o = run_in(&dir, &["render", "new.toml", "--quiet", "--filter", "mitchell"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown filter"));
+    let o = run_in(&dir, &["render", "new.toml", "--quiet", "--strategy", "bsdf", "-o", "b.pfm"]);
+    assert!(o.status.success());
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("only the mis strategy"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -13,7 +13,7 @@ use pathtrace::sampling::SamplerKind;
 use pathtrace::Scene;
 
 /// What a scene suggests for rendering it, before command-line overrides.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RenderDefaults {
     pub width: u32,
     pub height: u32,
@@ -26,6 +26,8 @@ pub struct RenderDefaults {
     pub sampler: Option<SamplerKind>,
     /// Random seed, if the scene gives one.
     pub seed: Option<u64>,
+    /// Pixel reconstruction filter, if the scene names one.
+    pub filter: Option<pathtrace::film::PixelFilter>,
 }
 
 /// A built scene with its suggested render settings.

@@ -68,9 +68,9 @@ fn the_documentation_example_loads_and_converts() {
     assert_eq!(parse_str(&json, Format::Json, "example.json".as_ref()).unwrap(), file);
 }
 
-#[test]
-fn every_gallery_scene_loads() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/gallery");
+/// Loads every `.toml` scene in `scenes/NAME` of the repository; returns how many there were.
+fn load_every_scene_in(name: &str) -> usize {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes").join(name);
     let mut count = 0;
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
@@ -79,5 +79,16 @@ fn every_gallery_scene_loads() {
             count += 1;
         }
     }
+    count
+}
+
+#[test]
+fn every_gallery_scene_loads() {
+    let count = load_every_scene_in("gallery");
     assert!(count >= 7, "found only {count} gallery scenes");
+}
+
+#[test]
+fn the_convergence_study_scenes_load() {
+    assert!(load_every_scene_in("converge") >= 1, "found no scene in scenes/converge");
 }

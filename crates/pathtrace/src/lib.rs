@@ -17,5 +17,5 @@ pub use scene::{MaterialId, Scene, SceneBuilder};
 pub mod integrator;
 pub mod render;
 
-pub use render::{render, Progress, RenderOutcome, RenderSession, RenderSettings};
+pub use render::{render, AdaptiveSettings, Progress, RenderOutcome, RenderSession, RenderSettings};
 pub mod metrics;

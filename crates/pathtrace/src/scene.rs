@@ -3,9 +3,9 @@
 
 use crate::accel::{Bvh, Intersectable, Packable};
 use crate::camera::CameraDesc;
-use crate::light::{AreaLight, Emission, LightSet, LightShape};
+use crate::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight};
 use crate::material::Material;
-use crate::math::{Ray, Transform, Vec3};
+use crate::math::{Aabb, Ray, Transform, Vec3};
 use crate::shape::{MeshError, PrimHit, Quad, Shape, SurfacePoint, Triangle, TriangleMesh};
 
 /// Index of a material in the scene.
@@ -75,6 +75,8 @@ pub enum BuildError {
     NoLights,
     #[error("invalid material parameter: {0}")]
     Material(String),
+    #[error("invalid light: {0}")]
+    Light(String),
 }
 
 /// A scene ready to render.
@@ -171,6 +173,8 @@ pub struct SceneBuilder {
     vertex_normals: Vec<[Vec3; 3]>,
     camera: CameraDesc,
     allow_no_lights: bool,
+    point_lights: Vec<PointLight>,
+    environment: Option<EnvironmentLight>,
 }
 
 impl SceneBuilder {
@@ -198,6 +202,27 @@ impl SceneBuilder {
     pub fn camera(&mut self, c: CameraDesc) -> &mut Self {
         self.camera = c;
         self
+    }
+
+    /// Adds a point light; its position and intensity must be finite, the intensity ≥ 0.
+    pub fn point_light(&mut self, light: PointLight) -> Result<(), BuildError> {
+        let i = light.intensity;
+        if !light.position.is_finite() || !i.is_finite() || i.r < 0.0 || i.g < 0.0 || i.b < 0.0 {
+            return Err(BuildError::Light("a point light needs a finite position and an intensity ≥ 0".into()));
+        }
+        self.point_lights.push(light);
+        Ok(())
+    }
+
+    /// Sets the environment (radiance arriving from every direction that leaves the scene);
+    /// its radiance must be finite and ≥ 0. A second call replaces the first.
+    pub fn environment(&mut self, env: EnvironmentLight) -> Result<(), BuildError> {
+        let l = env.radiance;
+        if !l.is_finite() || l.r < 0.0 || l.g < 0.0 || l.b < 0.0 {
+            return Err(BuildError::Light("an environment's radiance must be finite and ≥ 0".into()));
+        }
+        self.environment = Some(env);
+        Ok(())
     }
 
     /// Allows building a scene without lights (it renders black); off by default because
@@ -287,6 +312,7 @@ impl SceneBuilder {
                         Shape::Quad(q) => LightShape::Quad(*q),
                         Shape::Triangle(t) => LightShape::Triangle(*t),
                         Shape::Sphere(s) => LightShape::Sphere(*s),
+                        Shape::Disk(d) => LightShape::Disk(*d),
                         Shape::Plane(_) => return Err(BuildError::EmissivePlane),
                         Shape::Ellipsoid(_) => return Err(BuildError::EmissiveEllipsoid),
                     };
@@ -302,7 +328,13 @@ impl SceneBuilder {
                 unbounded.push(prim);
             }
         }
-        let lights = LightSet::new(lights);
+        // The environment's selection power needs the scene's size: its bounding sphere.
+        let scene_box = bounded
+            .iter()
+            .filter_map(|p| p.shape.bounds())
+            .fold(None, |acc: Option<Aabb>, b| Some(acc.map_or(b, |a| a.union(b))));
+        let scene_radius = scene_box.map_or(1.0, |b| 0.5 * b.extent().length());
+        let lights = LightSet::with_all(lights, self.point_lights, self.environment, scene_radius);
         if lights.is_empty() && !self.allow_no_lights {
             return Err(BuildError::NoLights);
         }
@@ -336,6 +368,7 @@ fn shape_name(s: &Shape) -> &'static str {
         Shape::Plane(_) => "plane",
         Shape::Quad(_) => "quad",
         Shape::Triangle(_) => "triangle",
+        Shape::Disk(_) => "disk",
     }
 }
 
@@ -390,6 +423,12 @@ pub fn validate_material(m: &Material) -> Result<(), BuildError> {
         }
         Material::RoughPlastic(p) if !(p.ior > 0.0 && p.ior.is_finite()) => {
             err(format!("rough_plastic ior {} must be positive", p.ior))
+        }
+        Material::ThinDielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => {
+            err(format!("thindielectric ior {} must be positive", d.ior))
+        }
+        Material::ThinDielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
+            err(format!("thindielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
         }
         _ => Ok(()),
     }

@@ -41,7 +41,7 @@ fn render_direct(strategy: Strategy) -> pathtrace::film::RegionEstimate {
 fn direct_lighting_from_a_sphere_light_matches_the_closed_form() {
     let expected = (ALBEDO * LE * (R_LIGHT / R_ROOM).powi(2)) as f64;
     // The light strategy is exact here too: with max depth 2 there is no indirect light to lose.
-    for strategy in [Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Mis] {
+    for strategy in [Strategy::Bsdf, Strategy::Light, Strategy::Mixture, Strategy::Mis, Strategy::MisBalance] {
         let est = render_direct(strategy);
         let z = est.max_z_score_against([expected; 3]);
         assert!(z < 4.5, "{strategy}: {:?} vs {expected} (z = {z:.2})", est.mean);

@@ -2,7 +2,9 @@
 //! sample weight equals f·cos/pdf, reflectance never exceeds 1, reciprocal models are
 //! reciprocal, and mirrors and glass conserve energy.
 
-use pathtrace::material::{fresnel_dielectric, Dielectric, Diffuse, Glossy, Lambertian, Material, Mirror};
+use pathtrace::material::{
+    fresnel_dielectric, Dielectric, Diffuse, Glossy, Lambertian, Material, Mirror, ThinDielectric,
+};
 use pathtrace::math::{Rgb, Vec2, Vec3};
 use pathtrace_testkit::{integrate_over_sphere, ChiSquareTest, TestRng};
 
@@ -146,5 +148,40 @@ fn fresnel_is_the_same_seen_from_either_side() {
         let (f_out, cos_t, _) = fresnel_dielectric(cos_i, 1.5);
         let (f_in, _, _) = fresnel_dielectric(-cos_t, 1.5);
         assert!((f_out - f_in).abs() < 1e-4, "θ={theta}: {f_out} vs {f_in}");
+    }
+}
+
+#[test]
+fn thin_glass_reflects_r_prime_and_transmits_the_rest_straight_through() {
+    let slab = ThinDielectric { ior: 1.5, tint: Rgb::WHITE };
+    let m = Material::ThinDielectric(slab);
+    assert!(m.is_delta() && m.is_two_sided());
+    for theta in [0.0f32, 30.0, 60.0, 85.0] {
+        let wo = dir(theta, 40.0);
+        // R' = R + T²R/(1 − R²) with R from the single-interface Fresnel term.
+        let (r, _, _) = fresnel_dielectric(wo.z, 1.5);
+        let expected = r + (1.0 - r) * (1.0 - r) * r / (1.0 - r * r);
+        assert!((slab.reflectance(wo.z) - expected).abs() < 1e-6);
+        assert!(expected >= r && expected < 1.0);
+        let n = 20_000;
+        let (mut reflected, mut flux) = (0usize, 0.0f64);
+        for i in 0..n {
+            let s = m.sample(wo, (i as f32 + 0.5) / n as f32, Vec2::ZERO).unwrap();
+            assert!(s.delta && s.eta == 1.0);
+            if s.wi.z > 0.0 {
+                reflected += 1;
+                assert!((s.wi - Vec3::new(-wo.x, -wo.y, wo.z)).length() < 1e-6);
+                assert!((s.pdf - expected).abs() < 1e-6);
+            } else {
+                assert_eq!(s.wi, -wo, "transmission continues along −wo");
+                assert!((s.pdf - (1.0 - expected)).abs() < 1e-6);
+            }
+            flux += s.weight.g as f64;
+        }
+        // R' + T' = 1: every sample carries weight 1 and the lobes split by R'.
+        assert!((flux / n as f64 - 1.0).abs() < 1e-6);
+        assert!((reflected as f32 / n as f32 - expected).abs() < 1e-3, "θ={theta}");
+        assert_eq!(m.eval(wo, -wo), Rgb::BLACK);
+        assert_eq!(m.pdf(wo, -wo), 0.0);
     }
 }

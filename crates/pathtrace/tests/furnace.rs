@@ -49,7 +49,7 @@ fn check(material: Material, albedo: f32, strategies: &[Strategy]) {
     }
 }
 
-const UNBIASED: [Strategy; 3] = [Strategy::Bsdf, Strategy::Mixture, Strategy::Mis];
+const UNBIASED: [Strategy; 4] = [Strategy::Bsdf, Strategy::Mixture, Strategy::Mis, Strategy::MisBalance];
 
 #[test]
 fn lambertian_furnace_holds_for_every_unbiased_strategy() {
@@ -100,7 +100,7 @@ fn microfacet_and_coated_materials_agree_across_strategies_and_lose_energy() {
         )),
     ];
     for m in models {
-        let ests: Vec<_> = [Strategy::Bsdf, Strategy::Mixture, Strategy::Mis, Strategy::Light]
+        let ests: Vec<_> = [Strategy::Bsdf, Strategy::Mixture, Strategy::Mis, Strategy::MisBalance, Strategy::Light]
             .iter()
             .map(|&s| furnace(m, 0.5, s, 128))
             .collect();

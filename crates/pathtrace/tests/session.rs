@@ -5,7 +5,7 @@ use pathtrace::material::{Lambertian, Material};
 use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::render::RenderError;
 use pathtrace::shape::{Shape, Sphere};
-use pathtrace::{CameraDesc, RenderSession, RenderSettings, Scene, SceneBuilder};
+use pathtrace::{AdaptiveSettings, CameraDesc, RenderSession, RenderSettings, Scene, SceneBuilder};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -29,6 +29,10 @@ fn a_finished_render_holds_exactly_the_requested_samples() {
     assert_eq!(out.progress.samples, 20 * 10 * 37);
     assert!(out.progress.finished && !out.progress.cancelled);
     assert_eq!(out.progress.rays.camera_rays, 20 * 10 * 37);
+    // Progress reports the film's noise estimate after each whole wave; no target without one.
+    assert_eq!(out.progress.error_estimate, out.film.relative_rms_error_estimate());
+    assert!(out.progress.error_estimate.is_some_and(|e| e > 0.0));
+    assert_eq!(out.progress.target_error, None);
 }
 
 #[test]
@@ -46,6 +50,15 @@ fn cancel_keeps_what_was_rendered() {
     // What was kept is a valid estimate: L = E/(1-a) = 2 in this furnace.
     let est = out.film.region_estimate(0, 0, 64, 64);
     assert!((est.mean[1] - 2.0).abs() < 0.2, "{:?}", est.mean);
+}
+
+#[test]
+fn an_open_ended_render_needs_a_budget_and_a_target_error_is_one() {
+    let s = RenderSettings { width: 8, height: 8, spp: 0, ..Default::default() };
+    assert!(matches!(RenderSession::start(scene(), s.clone()), Err(RenderError::NoBudget)));
+    let adaptive = AdaptiveSettings { min_spp: 4, target_error: Some(0.2), ..Default::default() };
+    let out = RenderSession::start(scene(), RenderSettings { adaptive: Some(adaptive), ..s }).unwrap().wait();
+    assert!(out.progress.finished && out.progress.error_estimate.is_some_and(|e| e <= 0.2));
 }
 
 #[test]
@@ -78,4 +91,30 @@ fn a_render_needs_a_budget_and_a_valid_camera() {
     assert!(matches!(RenderSession::start(scene(), s), Err(RenderError::NoBudget)));
     let s = RenderSettings { width: 0, ..Default::default() };
     assert!(matches!(RenderSession::start(scene(), s), Err(RenderError::Camera(_))));
+}
+
+/// An emissive ball off to the side, so where the camera looks changes the image.
+fn ball_scene(camera: CameraDesc) -> Arc<Scene> {
+    let mut b = SceneBuilder::new();
+    let lamp = b.emissive(Emission { radiance: Rgb::splat(1.0), two_sided: true });
+    b.shape(Shape::Sphere(Sphere::new(Vec3::new(1.0, 0.0, 0.0), 0.5).unwrap()), lamp, &Transform::IDENTITY).unwrap();
+    b.camera(camera);
+    Arc::new(b.build().unwrap())
+}
+
+#[test]
+fn a_camera_override_renders_as_if_the_scene_had_that_camera() {
+    let a = CameraDesc { look_from: Vec3::new(0.0, 0.0, 5.0), look_at: Vec3::ZERO, ..Default::default() };
+    let b = CameraDesc { look_at: Vec3::new(2.0, 0.5, 0.0), ..a };
+    let s = RenderSettings { width: 24, height: 16, spp: 4, ..Default::default() };
+    let render = |scene: Arc<Scene>, camera: Option<&CameraDesc>| {
+        let session = match camera {
+            Some(c) => RenderSession::start_with_camera(scene, c, s.clone()),
+            None => RenderSession::start(scene, s.clone()),
+        };
+        session.unwrap().wait().film.image()
+    };
+    let overridden = render(ball_scene(a), Some(&b));
+    assert_eq!(overridden, render(ball_scene(b), None));
+    assert_ne!(overridden, render(ball_scene(a), None));
 }

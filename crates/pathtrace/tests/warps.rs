@@ -1,12 +1,13 @@
 //! Every warp's pdf integrates to 1 over the sphere, and a chi-square test accepts the warp's
 //! samples against its pdf. Light sampling is checked the same way: directions produced by
-//! sampling a quad or sphere light from a point must follow `LightSet::pdf_direction`.
+//! sampling a quad, disk or sphere light (or the environment) from a point must follow
+//! `LightSet::pdf_direction`.
 
-use pathtrace::light::{AreaLight, Emission, LightSet, LightShape};
+use pathtrace::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight};
 use pathtrace::math::{Rgb, Vec2, Vec3};
 use pathtrace::sampling::warp;
-use pathtrace::shape::{Quad, Sphere};
-use pathtrace_testkit::{integrate_over_sphere, ChiSquareTest};
+use pathtrace::shape::{Disk, Quad, Sphere};
+use pathtrace_testkit::{integrate_over_sphere, ChiSquareTest, TestRng};
 
 fn v2(u: [f64; 2]) -> Vec2 {
     Vec2::new(u[0] as f32, u[1] as f32)
@@ -108,4 +109,71 @@ fn sphere_light_directions_follow_the_cone_and_area_pdfs() {
         |u| lights.sample(inside, 0.5, v2(u)).map(|s| s.wi),
         |w| lights.pdf_direction(inside, w) as f64,
     );
+}
+
+#[test]
+fn disk_light_directions_follow_r2_over_cos_a() {
+    // An ellipse (non-uniform axes), tilted, seen from below.
+    let disk = Disk::new(Vec3::new(0.2, 1.2, -0.3), Vec3::new(0.9, 0.1, 0.0), Vec3::new(0.0, 0.2, 0.6)).unwrap();
+    let lights = light_set(LightShape::Disk(disk));
+    let p = Vec3::new(0.1, -0.3, 0.2);
+    check(
+        "disk light",
+        &ChiSquareTest { theta_bins: 40, phi_bins: 80, ..Default::default() },
+        |u| lights.sample(p, 0.5, v2(u)).map(|s| s.wi),
+        |w| lights.pdf_direction(p, w) as f64,
+    );
+}
+
+#[test]
+fn environment_directions_are_uniform_and_mix_with_area_lights() {
+    let env = EnvironmentLight { radiance: Rgb::new(0.2, 0.5, 1.0) };
+    let only = LightSet::with_all(Vec::new(), Vec::new(), Some(env), 1.0);
+    let p = Vec3::new(0.3, 0.1, -2.0);
+    check(
+        "environment",
+        &ChiSquareTest::default(),
+        |u| only.sample(p, 0.5, v2(u)).map(|s| s.wi),
+        |w| only.pdf_direction(p, w) as f64,
+    );
+    // A quad, a point light and the environment: directions for the light/mixture strategies skip
+    // the point light and follow the summed density of the others.
+    let quad = Quad::new(Vec3::new(-0.5, 1.0, -0.8), Vec3::new(1.5, 0.2, 0.0), Vec3::new(0.0, 0.3, 1.2)).unwrap();
+    let area = AreaLight::new(LightShape::Quad(quad), Emission { radiance: Rgb::splat(1.0), two_sided: true });
+    let point = PointLight { position: Vec3::new(0.0, 3.0, 0.0), intensity: Rgb::splat(5.0) };
+    let mixed = LightSet::with_all(vec![area], vec![point], Some(env), 1.5);
+    let mut rng = TestRng::new(5);
+    check(
+        "quad + environment (point light skipped)",
+        &ChiSquareTest { theta_bins: 40, phi_bins: 80, ..Default::default() },
+        |u| mixed.sample_continuous(p, rng.next_f32(), v2(u)).map(|s| s.wi),
+        |w| mixed.pdf_direction(p, w) as f64,
+    );
+}
+
+#[test]
+fn selection_by_power_counts_every_kind_of_light() {
+    // Powers: area L·A·π = 1·1·π; point 4π·I = 4π; environment π r²·4π·L = 4π² (r = 1, L = 1).
+    let quad = Quad::new(Vec3::ZERO, Vec3::X, Vec3::Z).unwrap();
+    let area = AreaLight::new(LightShape::Quad(quad), Emission { radiance: Rgb::WHITE, two_sided: false });
+    let point = PointLight { position: Vec3::Y, intensity: Rgb::WHITE };
+    let env = EnvironmentLight { radiance: Rgb::WHITE };
+    let set = LightSet::with_all(vec![area], vec![point], Some(env), 1.0);
+    let pi = std::f32::consts::PI;
+    let total = pi + 4.0 * pi + 4.0 * pi * pi;
+    assert!((set.selection_pmf(0) - pi / total).abs() < 1e-6);
+    assert!((set.pdf_environment(Vec3::Z) - 4.0 * pi * pi / total / (4.0 * pi)).abs() < 1e-6);
+    // Next-event estimation reaches the point light as a delta sample of probability 4π/total.
+    let mut found = false;
+    for k in 0..100 {
+        if let Some(s) = set.sample(Vec3::new(0.0, -1.0, 0.0), k as f32 / 100.0, Vec2::splat(0.5)) {
+            if s.delta {
+                found = true;
+                assert!((s.pdf - 4.0 * pi / total).abs() < 1e-6);
+                assert!((s.dist - 2.0).abs() < 1e-6);
+                assert!((s.radiance.r - 0.25).abs() < 1e-6, "I/r² = 1/4");
+            }
+        }
+    }
+    assert!(found);
 }

@@ -2,11 +2,12 @@
 //! the nearest thing it can, and each replacement is named in a warning.
 
 use super::parse::{Element, XmlSource};
+use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
-    CameraSection, EmissionDef, LookAtDef, MaterialDef, MaterialKind, Num, Num3, ObjectDef, RenderSection, SamplerName,
-    SceneFile, ShapeDef, TransformStep, Triple,
+    CameraSection, EmissionDef, FilterDef, FilterName, LightDef, LookAtDef, MaterialDef, MaterialKind, Num, Num3,
+    ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep, Triple,
 };
-use crate::native::SceneError;
+use crate::native::{ItemPath, SceneError};
 use pathtrace::math::{Transform, Vec3};
 use pathtrace::sampling::SamplerKind;
 use std::collections::BTreeMap;
@@ -16,8 +17,17 @@ mod bsdf;
 
 type R<T> = Result<T, SceneError>;
 
+/// Where each item of the converted model came from: (item, byte offset in the XML), so errors
+/// found while building point at the element that caused them.
+pub type Origins = Vec<(ItemPath, usize)>;
+
 /// Converts a parsed `<scene>`; warnings are appended to `warnings`.
 pub fn convert(src: &XmlSource, root: &Element, warnings: &mut Vec<String>) -> R<SceneFile> {
+    convert_located(src, root, warnings).map(|(file, _)| file)
+}
+
+/// [`convert`], also returning where each object, material, light and setting came from.
+pub fn convert_located(src: &XmlSource, root: &Element, warnings: &mut Vec<String>) -> R<(SceneFile, Origins)> {
     let mut c = Conv {
         src,
         warnings,
@@ -26,7 +36,8 @@ pub fn convert(src: &XmlSource, root: &Element, warnings: &mut Vec<String>) -> R
         materials: BTreeMap::new(),
         bsdf_names: BTreeMap::new(),
         objects: Vec::new(),
-        point_lights: Vec::new(),
+        lights: Vec::new(),
+        origins: vec![(ItemPath::root(), root.offset)],
     };
     collect_ids(root, &mut c.ids);
     let dir = src.path.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -54,6 +65,8 @@ pub fn convert(src: &XmlSource, root: &Element, warnings: &mut Vec<String>) -> R
                     c.warn(e, "only the first <sensor> is used");
                 } else {
                     camera = Some(c.sensor(e, &mut render)?);
+                    c.origins.push((ItemPath::root().field("camera"), e.offset));
+                    c.origins.push((ItemPath::root().field("render"), e.offset));
                 }
             }
             "bsdf" | "texture" | "spectrum" | "rgb" => {} // used through <ref>
@@ -68,8 +81,9 @@ pub fn convert(src: &XmlSource, root: &Element, warnings: &mut Vec<String>) -> R
     let Some(camera) = camera else {
         return Err(src.error(root.offset, "the scene has no <sensor>: a perspective sensor is required"));
     };
-    c.add_point_lights(&camera)?;
-    Ok(SceneFile { render, camera, materials: c.materials, objects: c.objects, groups: Vec::new() })
+    let file =
+        SceneFile { render, camera, materials: c.materials, objects: c.objects, groups: Vec::new(), lights: c.lights };
+    Ok((file, c.origins))
 }
 
 fn collect_ids<'a>(e: &'a Element, ids: &mut BTreeMap<String, &'a Element>) {
@@ -92,12 +106,22 @@ struct Conv<'a, 'w> {
     /// Material names already made for `<bsdf id>` elements (by offset).
     bsdf_names: BTreeMap<usize, String>,
     objects: Vec<ObjectDef>,
-    /// Point lights: (position, intensity, where).
-    point_lights: Vec<(Vec3, Triple, usize)>,
+    /// Point lights and the environment.
+    lights: Vec<LightDef>,
+    origins: Origins,
 }
 
 fn num(x: f64) -> Num {
     Num::new(x).unwrap_or(Num::from(0.0))
+}
+
+/// A colour as a native triple (one number when the channels are equal).
+fn rgb_triple(c: [f64; 3]) -> Triple {
+    if c[0] == c[1] && c[1] == c[2] {
+        Triple::Splat(num(c[0]))
+    } else {
+        Triple::Each(c.map(num))
+    }
 }
 
 fn n3(v: Vec3) -> Num3 {
@@ -227,7 +251,7 @@ impl<'a> Conv<'a, '_> {
                 }
             }
             "float" | "integer" => Ok(Some(Triple::Splat(num(self.number(p, "value", self.req_attr(p, "value")?)?)))),
-            "spectrum" => self.spectrum(p).map(Some),
+            "spectrum" => self.spectrum(e, p).map(Some),
             "texture" => {
                 self.warn(p, &format!("`{name}`: textures are not supported, using a constant 0.5"));
                 Ok(Some(Triple::Splat(num(0.5))))
@@ -236,37 +260,53 @@ impl<'a> Conv<'a, '_> {
         }
     }
 
-    /// `<spectrum value="0.5">` exactly; `value="400:0.1, 500:0.2, …"` averaged over 400–500,
-    /// 500–600 and 600–700 nm as blue, green and red (a rough approximation, with a warning).
-    fn spectrum(&mut self, p: &Element) -> R<Triple> {
-        let text = self.req_attr(p, "value")?;
-        if !text.contains(':') {
-            let v = self.numbers(p, "value")?;
-            return match v.as_slice() {
-                [s] => Ok(Triple::Splat(num(*s))),
-                _ => Err(self.src.error(p.offset_of("value"), "<spectrum> needs one number or wavelength:value pairs")),
-            };
+    /// A `<spectrum>`: one constant `value`, `wavelength:value` pairs, or an `.spd` file
+    /// (`filename`), converted to linear sRGB as Mitsuba's RGB variants do (see spectrum.rs);
+    /// emitters (`<emitter>` parents) are normalised differently from reflectances.
+    fn spectrum(&mut self, parent: &Element, p: &Element) -> R<Triple> {
+        let usage = if parent.tag == "emitter" { SpectrumUse::Emission } else { SpectrumUse::Reflectance };
+        let samples = match (p.attr("value"), p.attr("filename")) {
+            (Some(text), _) if !text.contains(':') => {
+                let v = self.numbers(p, "value")?;
+                return match v.as_slice() {
+                    [s] => Ok(rgb_triple(constant_to_rgb(*s, usage))),
+                    _ => Err(self
+                        .src
+                        .error(p.offset_of("value"), "<spectrum> needs one number or wavelength:value pairs")),
+                };
+            }
+            (Some(text), _) => {
+                let mut samples = Vec::new();
+                for pair in text.split(',').map(str::trim).filter(|t| !t.is_empty()) {
+                    let Some((wl, v)) = pair.split_once(':') else {
+                        return Err(self.src.error(p.offset_of("value"), format!("`{pair}` is not wavelength:value")));
+                    };
+                    samples.push((self.number(p, "value", wl)?, self.number(p, "value", v)?));
+                }
+                samples
+            }
+            (None, Some(file)) => {
+                let at = p.offset_of("filename");
+                let path = self
+                    .search
+                    .iter()
+                    .map(|d| d.join(file))
+                    .find(|f| f.is_file())
+                    .ok_or_else(|| self.src.error(at, format!("spectrum file `{file}` not found")))?;
+                let text = std::fs::read_to_string(&path)
+                    .map_err(|e| self.src.error(at, format!("cannot read `{}`: {e}", path.display())))?;
+                parse_spd(&text)
+                    .map_err(|(line, m)| self.src.error(at, format!("`{}` line {line}: {m}", path.display())))?
+            }
+            (None, None) => return Err(self.src.error(p.offset, "<spectrum> needs a `value` or a `filename`")),
+        };
+        let at = p.offset_of(if p.attr("value").is_some() { "value" } else { "filename" });
+        check_samples(&samples).map_err(|m| self.src.error(at, m))?;
+        let converted = spectrum_to_rgb(&samples, usage);
+        if converted.clamped {
+            self.warn(p, "the spectrum is outside the sRGB gamut: its RGB value is clamped (as Mitsuba does)");
         }
-        let mut bins = [(0.0, 0usize); 3];
-        for pair in text.split(',').map(str::trim).filter(|t| !t.is_empty()) {
-            let Some((wl, v)) = pair.split_once(':') else {
-                return Err(self.src.error(p.offset_of("value"), format!("`{pair}` is not wavelength:value")));
-            };
-            let (wl, v) = (self.number(p, "value", wl)?, self.number(p, "value", v)?);
-            let bin = if wl >= 600.0 {
-                0
-            } else if wl >= 500.0 {
-                1
-            } else {
-                2
-            };
-            bins[bin].0 += v;
-            bins[bin].1 += 1;
-        }
-        let all: f64 = bins.iter().map(|b| b.0).sum::<f64>() / bins.iter().map(|b| b.1).sum::<usize>().max(1) as f64;
-        let avg = |b: (f64, usize)| if b.1 == 0 { all } else { b.0 / b.1 as f64 };
-        self.warn(p, "a per-wavelength <spectrum> is approximated by RGB band averages (600–700, 500–600, 400–500 nm)");
-        Ok(Triple::Each([num(avg(bins[0])), num(avg(bins[1])), num(avg(bins[2]))]))
+        Ok(rgb_triple(converted.rgb))
     }
 
     // ---------------------------------------------------------------- transforms
@@ -386,12 +426,9 @@ impl<'a> Conv<'a, '_> {
                         .ok_or_else(|| self.src.error(film.offset, format!("film {name} must be from 1 to 32768")))?;
                 }
             }
-            if let Some(f) = film.children.iter().find(|c| c.tag == "rfilter") {
-                if f.attr("type") != Some("box") {
-                    let t = f.attr("type").unwrap_or("?");
-                    self.warn(f, &format!("reconstruction filter `{t}` is not supported: using a box filter"));
-                }
-            }
+            render.filter = Some(self.rfilter(film)?);
+            let at = film.children.iter().find(|c| c.tag == "rfilter").unwrap_or(film);
+            self.origins.push((ItemPath::root().field("render").field("filter"), at.offset));
         }
         render.width = Some(width);
         render.height = Some(height);
@@ -466,6 +503,38 @@ impl<'a> Conv<'a, '_> {
         })
     }
 
+    /// The film's `<rfilter>`; without one, Mitsuba's default: a gaussian of stddev 0.5.
+    fn rfilter(&mut self, film: &'a Element) -> R<FilterDef> {
+        let default = FilterDef { kind: FilterName::Gaussian, radius: None, stddev: None };
+        let Some(f) = film.children.iter().find(|c| c.tag == "rfilter") else { return Ok(default) };
+        let f = self.deref(f)?;
+        let positive = |this: &Self, name: &str, v: Option<f64>| match v {
+            Some(x) if x <= 0.0 => Err(this.src.error(f.offset, format!("rfilter `{name}` must be positive"))),
+            v => Ok(v.map(num)),
+        };
+        Ok(match f.attr("type").unwrap_or("box") {
+            "box" => FilterDef {
+                kind: FilterName::Box,
+                radius: positive(self, "radius", self.float(f, "radius")?)?,
+                stddev: None,
+            },
+            "tent" => FilterDef {
+                kind: FilterName::Tent,
+                radius: positive(self, "radius", self.float(f, "radius")?)?,
+                stddev: None,
+            },
+            "gaussian" => FilterDef {
+                kind: FilterName::Gaussian,
+                radius: None,
+                stddev: positive(self, "stddev", self.float(f, "stddev")?)?,
+            },
+            other => {
+                self.warn(f, &format!("reconstruction filter `{other}` is not supported: using a gaussian"));
+                default
+            }
+        })
+    }
+
     fn unique_name(&self, base: &str) -> String {
         if !self.materials.contains_key(base) {
             return base.to_string();
@@ -504,6 +573,12 @@ impl<'a> Conv<'a, '_> {
                 let ext = self.ior(e, "ext_ior", 1.000277)?;
                 let tint = self.color(e, "specular_transmittance")?.unwrap_or(Triple::Splat(num(1.0)));
                 MaterialKind::Dielectric { ior: num(int / ext), tint }
+            }
+            "thindielectric" => {
+                let int = self.ior(e, "int_ior", 1.5046)?;
+                let ext = self.ior(e, "ext_ior", 1.000277)?;
+                let tint = self.color(e, "specular_transmittance")?.unwrap_or(Triple::Splat(num(1.0)));
+                MaterialKind::ThinDielectric { ior: num(int / ext), tint }
             }
             other => match self.microfacet_bsdf(e, other)? {
                 Some(kind) => kind,
@@ -575,6 +650,8 @@ impl<'a> Conv<'a, '_> {
         };
         let name = self.unique_name(&base);
         self.materials.insert(name.clone(), MaterialDef { kind, emission });
+        let at = bsdf.or(emitter).unwrap_or(shape).offset;
+        self.origins.push((ItemPath::root().field("materials").field(&name), at));
         if let Some(b) = shared {
             self.bsdf_names.insert(b.offset, name.clone());
         }
@@ -622,6 +699,7 @@ impl<'a> Conv<'a, '_> {
                 u: n3(Vec3::new(2.0, 0.0, 0.0)),
                 v: n3(Vec3::new(0.0, 2.0, 0.0)),
             },
+            "disk" => ShapeDef::Disk { center: n3(Vec3::ZERO), normal: n3(Vec3::Z), radius: num(1.0) },
             "cube" => ShapeDef::Box { min: n3(Vec3::splat(-1.0)), max: n3(Vec3::splat(1.0)) },
             "sphere" => {
                 let center = match self.prop(e, "center") {
@@ -641,67 +719,59 @@ impl<'a> Conv<'a, '_> {
         };
         let transform = self.to_world(e)?;
         let material = self.shape_material(e, &label)?;
+        let item = ItemPath::root().field("objects").index(self.objects.len());
+        self.origins.push((item.clone(), e.offset));
+        for (field, prop) in [("file", "filename"), ("part", "shape_index")] {
+            if let Some(p) = self.prop(e, prop) {
+                self.origins.push((item.field(field), p.offset_of("value")));
+            }
+        }
+        if let Some(t) = e.children.iter().find(|c| c.tag == "transform" && c.attr("name") == Some("to_world")) {
+            for (i, step) in t.children.iter().enumerate() {
+                self.origins.push((item.field("transform").index(i), step.offset));
+            }
+        }
         self.objects.push(ObjectDef { shape, material, transform });
         Ok(())
     }
 
     fn top_emitter(&mut self, e: &'a Element) -> R<()> {
         let ty = self.req_attr(e, "type")?;
-        if ty == "point" {
-            let pos = match self.prop(e, "position") {
-                Some(p) => self.vec3_of(p, "value", 0.0)?,
-                None => {
-                    let steps = self.to_world(e)?;
-                    let mut t = Transform::IDENTITY;
-                    for s in &steps {
-                        t = t.then(&s.to_transform().map_err(|m| self.src.error(e.offset, m))?);
+        match ty {
+            "point" => {
+                let position = match self.prop(e, "position") {
+                    Some(p) => self.vec3_of(p, "value", 0.0)?,
+                    None => {
+                        let steps = self.to_world(e)?;
+                        let mut t = Transform::IDENTITY;
+                        for s in &steps {
+                            t = t.then(&s.to_transform().map_err(|m| self.src.error(e.offset, m))?);
+                        }
+                        t.point(Vec3::ZERO)
                     }
-                    t.point(Vec3::ZERO)
+                };
+                let intensity = self.color(e, "intensity")?.unwrap_or(Triple::Splat(num(1.0)));
+                self.origins.push((ItemPath::root().field("lights").index(self.lights.len()), e.offset));
+                self.lights.push(LightDef::Point { position: n3(position), intensity });
+            }
+            "constant" => {
+                let radiance = self.color(e, "radiance")?.unwrap_or(Triple::Splat(num(1.0)));
+                let env = LightDef::Constant { radiance };
+                let existing = self.lights.iter().position(|l| matches!(l, LightDef::Constant { .. }));
+                let i = existing.unwrap_or(self.lights.len());
+                self.origins.push((ItemPath::root().field("lights").index(i), e.offset));
+                match existing {
+                    Some(i) => {
+                        self.warn(e, "only one environment is supported: this `constant` emitter replaces the first");
+                        self.lights[i] = env;
+                    }
+                    None => self.lights.push(env),
                 }
-            };
-            let intensity = self.color(e, "intensity")?.unwrap_or(Triple::Splat(num(1.0)));
-            self.point_lights.push((pos, intensity, e.offset));
-            return Ok(());
-        }
-        if ty == "area" && e.attr("id").is_some() {
-            return Ok(()); // attached to shapes through <ref>
-        }
-        if ty == "area" {
-            self.warn(e, "an area emitter outside a shape emits nothing and is skipped");
-            return Ok(());
-        }
-        self.warn(e, &format!("emitter `{ty}` is not supported and is skipped"));
-        Ok(())
-    }
-
-    /// Point lights become small emissive spheres of the same intensity: radius 1% of the light's
-    /// distance to the camera (smaller spheres lose f32 precision in cone sampling), radiance
-    /// I / (π r²).
-    fn add_point_lights(&mut self, camera: &CameraSection) -> R<()> {
-        let lights = std::mem::take(&mut self.point_lights);
-        let eye = Vec3::new(camera.look_from[0].f32(), camera.look_from[1].f32(), camera.look_from[2].f32());
-        for (i, (pos, intensity, offset)) in lights.into_iter().enumerate() {
-            let r = (0.01 * (pos - eye).length()).max(1e-3);
-            let at = self.src.location(offset);
-            self.warnings.push(format!("{at}: point emitter approximated by an emissive sphere of radius {r}"));
-            let scale = 1.0 / (std::f64::consts::PI * (r as f64).powi(2));
-            let radiance = match intensity {
-                Triple::Splat(n) => Triple::Splat(num(n.get() * scale)),
-                Triple::Each(v) => Triple::Each(v.map(|n| num(n.get() * scale))),
-            };
-            let name = self.unique_name(&format!("point-light-{i}"));
-            self.materials.insert(
-                name.clone(),
-                MaterialDef {
-                    kind: MaterialKind::Emissive,
-                    emission: Some(EmissionDef { radiance, two_sided: false }),
-                },
-            );
-            self.objects.push(ObjectDef {
-                shape: ShapeDef::Sphere { center: n3(pos), radius: num(r as f64) },
-                material: name,
-                transform: Vec::new(),
-            });
+            }
+            // Attached to shapes through <ref>.
+            "area" if e.attr("id").is_some() => {}
+            "area" => self.warn(e, "an area emitter outside a shape emits nothing and is skipped"),
+            other => self.warn(e, &format!("emitter `{other}` is not supported and is skipped")),
         }
         Ok(())
     }

@@ -23,19 +23,33 @@
 pub mod convert;
 pub mod parse;
 
-use crate::native::{build, Format, SceneError, SceneFile, Source};
+mod cie_tables;
+pub mod spectrum;
+
+use crate::native::{build, ItemPath, Locate, SceneError, SceneFile};
 use crate::LoadedScene;
+use convert::Origins;
 use parse::XmlSource;
 use std::path::Path;
 
 /// Parses and converts Mitsuba XML text into the native model; `path` names the file in errors
 /// and anchors relative mesh paths. Returns the model and the warnings about substitutions.
 pub fn convert_str(text: &str, path: &Path, defines: &[(&str, &str)]) -> Result<(SceneFile, Vec<String>), SceneError> {
+    convert_located(text, path, defines).map(|(file, _, warnings)| (file, warnings))
+}
+
+/// A converted scene with what its build errors need: the XML text and where each item of the
+/// model came from.
+fn convert_located(
+    text: &str,
+    path: &Path,
+    defines: &[(&str, &str)],
+) -> Result<(SceneFile, XmlLocator, Vec<String>), SceneError> {
     let mut src = XmlSource::new(path.to_path_buf(), text.to_string());
     let mut warnings = Vec::new();
     let root = parse::parse(&mut src, defines, &mut warnings)?;
-    let file = convert::convert(&src, &root, &mut warnings)?;
-    Ok((file, warnings))
+    let (file, origins) = convert::convert_located(&src, &root, &mut warnings)?;
+    Ok((file, XmlLocator { src, origins }, warnings))
 }
 
 /// Reads a Mitsuba XML file into the native model, with warnings.
@@ -44,13 +58,43 @@ pub fn convert_file(path: &Path, defines: &[(&str, &str)]) -> Result<(SceneFile,
     convert_str(&text, path, defines)
 }
 
+/// Locates build errors of a converted scene at the XML element the item came from (the most
+/// specific one recorded: an object's `filename` property, else its `<shape>`, else `<scene>`).
+struct XmlLocator {
+    src: XmlSource,
+    origins: Origins,
+}
+
+impl Locate for XmlLocator {
+    fn path(&self) -> &Path {
+        &self.src.path
+    }
+
+    fn error_at(&self, item: &ItemPath, message: impl Into<String>) -> SceneError {
+        // Longest recorded prefix of the item; the last recorded wins among equals.
+        let best = self.origins.iter().filter(|(p, _)| item.starts_with(p)).fold(
+            None,
+            |best: Option<&(ItemPath, usize)>, o| match best {
+                Some(b) if b.0 .0.len() > o.0 .0.len() => Some(b),
+                _ => Some(o),
+            },
+        );
+        self.src.error(best.map_or(0, |b| b.1), message)
+    }
+}
+
 /// Builds a converted scene; `path` is the XML file (mesh paths are relative to its folder).
-/// Build errors have no XML element to point at; they are reported at the file.
+/// Without the XML text, build errors are reported at the file (use [`load_str`] or
+/// [`load_mitsuba`] to have them located at their element).
 pub fn build_model(file: &SceneFile, path: &Path) -> Result<LoadedScene, SceneError> {
-    let source = Source { path: path.to_path_buf(), text: String::new(), format: Format::Toml };
-    build(file, &source).map_err(|mut e| {
+    let locator = XmlLocator { src: XmlSource::new(path.to_path_buf(), String::new()), origins: Vec::new() };
+    build_located(file, &locator)
+}
+
+fn build_located(file: &SceneFile, locator: &XmlLocator) -> Result<LoadedScene, SceneError> {
+    build(file, locator).map_err(|mut e| {
         if e.message.starts_with("the scene has no lights") {
-            e.message = "the scene has no supported lights (area emitters on shapes, point emitters): \
+            e.message = "the scene has no supported lights (area emitters on shapes, point or constant emitters): \
                          nothing would be visible"
                 .into();
         } else if e.message.starts_with("the scene has no objects") {
@@ -60,10 +104,11 @@ pub fn build_model(file: &SceneFile, path: &Path) -> Result<LoadedScene, SceneEr
     })
 }
 
-/// Loads and builds a Mitsuba XML scene text (see [`convert_str`]).
+/// Loads and builds a Mitsuba XML scene text (see [`convert_str`]); build errors (a missing or
+/// broken mesh, degenerate geometry, a bad value) point at the XML element they come from.
 pub fn load_str(text: &str, path: &Path, defines: &[(&str, &str)]) -> Result<(LoadedScene, Vec<String>), SceneError> {
-    let (file, warnings) = convert_str(text, path, defines)?;
-    Ok((build_model(&file, path)?, warnings))
+    let (file, locator, warnings) = convert_located(text, path, defines)?;
+    Ok((build_located(&file, &locator)?, warnings))
 }
 
 /// Loads and builds a Mitsuba XML scene file, with `defines` overriding its `<default>`

@@ -3,28 +3,28 @@
 //! first), meshes loaded relative to the scene file, and every failure reported at its item.
 
 use super::error::SceneError;
-use super::locate::ItemPath;
+use super::locate::{ItemPath, Locate};
 use super::model::{
-    CameraSection, GroupDef, MaterialDef, MaterialKind, MetalDef, ObjectDef, RenderSection, RoughnessDef, SceneFile,
-    ShapeDef,
+    CameraSection, FilterDef, FilterName, GroupDef, LightDef, MaterialDef, MaterialKind, MetalDef, ObjectDef,
+    RenderSection, RoughnessDef, SceneFile, ShapeDef,
 };
-use super::parse::Source;
 use super::transform::compose;
 use super::values::vec3;
 use crate::{LoadedScene, RenderDefaults};
-use pathtrace::light::Emission;
+use pathtrace::film::{GaussianFilter, PixelFilter};
+use pathtrace::light::{Emission, EnvironmentLight, PointLight};
 use pathtrace::material::{
     metal, Conductor, Dielectric, Diffuse, Glossy, Lambertian, Material, Microfacet, Mirror, Plastic, RoughConductor,
-    RoughDielectric, RoughPlastic,
+    RoughDielectric, RoughPlastic, ThinDielectric,
 };
 use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::scene::{validate_material, BuildError};
-use pathtrace::shape::{Plane, Quad, Shape, Sphere, Triangle};
+use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
 use pathtrace::{Camera, CameraDesc, MaterialId, SceneBuilder};
 use std::collections::BTreeMap;
 
 /// Builds the scene a file describes; `src` locates errors and resolves relative mesh paths.
-pub fn build(file: &SceneFile, src: &Source) -> Result<LoadedScene, SceneError> {
+pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneError> {
     let defaults = render_defaults(&file.render, &file.camera, src)?;
     let mut ctx = Ctx { src, b: SceneBuilder::new(), ids: BTreeMap::new(), materials: &file.materials };
     for (name, def) in &file.materials {
@@ -38,17 +38,20 @@ pub fn build(file: &SceneFile, src: &Source) -> Result<LoadedScene, SceneError> 
     for (i, g) in file.groups.iter().enumerate() {
         ctx.add_group(g, &Transform::IDENTITY, &root.field("groups").index(i))?;
     }
+    for (i, l) in file.lights.iter().enumerate() {
+        ctx.add_light(l, &root.field("lights").index(i))?;
+    }
     let camera = camera_desc(&file.camera);
     Camera::new(&camera, defaults.width, defaults.height)
         .map_err(|e| src.error_at(&root.field("camera"), format!("invalid camera: {e}")))?;
     ctx.b.camera(camera);
     let scene = ctx.b.build().map_err(|e| match e {
-        BuildError::Empty => SceneError::whole_file(&src.path, "the scene has no objects (add an [[objects]] entry)"),
+        BuildError::Empty => SceneError::whole_file(src.path(), "the scene has no objects (add an [[objects]] entry)"),
         BuildError::NoLights => src.error_at(
             &root.field("materials"),
             "the scene has no lights: nothing would be visible (give an object an emissive material)",
         ),
-        other => SceneError::whole_file(&src.path, other.to_string()),
+        other => SceneError::whole_file(src.path(), other.to_string()),
     })?;
     Ok(LoadedScene { scene, defaults })
 }
@@ -65,7 +68,7 @@ fn camera_desc(c: &CameraSection) -> CameraDesc {
 
 /// Render settings with defaults filled in. With `camera.aspect` (= width / height) and not both
 /// sizes given, the missing size is derived from the given (or default) one, rounded.
-fn render_defaults(r: &RenderSection, c: &CameraSection, src: &Source) -> Result<RenderDefaults, SceneError> {
+fn render_defaults(r: &RenderSection, c: &CameraSection, src: &impl Locate) -> Result<RenderDefaults, SceneError> {
     let at = |field: &str| ItemPath::root().field("render").field(field);
     let max = RenderSection::MAX_SIZE;
     for (name, v) in [("width", r.width), ("height", r.height)] {
@@ -105,6 +108,7 @@ fn render_defaults(r: &RenderSection, c: &CameraSection, src: &Source) -> Result
         strategy: r.strategy.map(|s| s.0),
         sampler: r.sampler.map(|s| s.0),
         seed: r.seed,
+        filter: r.filter.map(|f| pixel_filter(&f)).transpose().map_err(|e| src.error_at(&at("filter"), e))?,
     })
 }
 
@@ -136,14 +140,29 @@ fn check_coating(albedo: Rgb, specular: Rgb, ior: f32) -> Result<(), String> {
     Ok(())
 }
 
-struct Ctx<'a> {
-    src: &'a Source,
+/// The engine's filter for a `filter` table, with Mitsuba's defaults for missing parameters.
+pub fn pixel_filter(f: &FilterDef) -> Result<PixelFilter, String> {
+    match (f.kind, f.radius, f.stddev) {
+        (FilterName::Gaussian, Some(_), _) => Err("a gaussian filter takes `stddev`, not `radius`".into()),
+        (FilterName::Box | FilterName::Tent, _, Some(_)) => Err("only the gaussian filter takes `stddev`".into()),
+        (FilterName::Box, r, None) => PixelFilter::with_radius("box", r.map_or(0.5, |r| r.f32())),
+        (FilterName::Tent, r, None) => {
+            PixelFilter::with_radius("tent", r.map_or(PixelFilter::DEFAULT_TENT_RADIUS, |r| r.f32()))
+        }
+        (FilterName::Gaussian, None, s) => {
+            GaussianFilter::new(s.map_or(PixelFilter::DEFAULT_GAUSSIAN_STDDEV, |s| s.f32())).map(PixelFilter::Gaussian)
+        }
+    }
+}
+
+struct Ctx<'a, L: Locate> {
+    src: &'a L,
     b: SceneBuilder,
     ids: BTreeMap<String, MaterialId>,
     materials: &'a BTreeMap<String, MaterialDef>,
 }
 
-impl Ctx<'_> {
+impl<L: Locate> Ctx<'_, L> {
     fn add_material(&mut self, name: &str, def: &MaterialDef) -> Result<MaterialId, SceneError> {
         let at = ItemPath::root().field("materials").field(name);
         let m = match def.kind {
@@ -155,6 +174,9 @@ impl Ctx<'_> {
             }
             MaterialKind::Dielectric { ior, tint } => {
                 Material::Dielectric(Dielectric { ior: ior.f32(), tint: tint.rgb() })
+            }
+            MaterialKind::ThinDielectric { ior, tint } => {
+                Material::ThinDielectric(ThinDielectric { ior: ior.f32(), tint: tint.rgb() })
             }
             MaterialKind::Emissive => Material::Black,
             MaterialKind::Conductor { metal, reflectance } => {
@@ -202,6 +224,16 @@ impl Ctx<'_> {
         })
     }
 
+    fn add_light(&mut self, l: &LightDef, at: &ItemPath) -> Result<(), SceneError> {
+        let result = match *l {
+            LightDef::Point { position, intensity } => {
+                self.b.point_light(PointLight { position: vec3(&position), intensity: intensity.rgb() })
+            }
+            LightDef::Constant { radiance } => self.b.environment(EnvironmentLight { radiance: radiance.rgb() }),
+        };
+        result.map_err(|e| self.src.error_at(at, e.to_string()))
+    }
+
     fn add_group(&mut self, g: &GroupDef, outer: &Transform, at: &ItemPath) -> Result<(), SceneError> {
         let t = self.transform(&g.transform, at)?.then(outer);
         for (i, o) in g.objects.iter().enumerate() {
@@ -245,6 +277,10 @@ impl Ctx<'_> {
             ShapeDef::Quad { q, u, v } => Shape::Quad(
                 Quad::new(vec3(q), vec3(u), vec3(v)).ok_or_else(|| degenerate("quad: u and v must span an area"))?,
             ),
+            ShapeDef::Disk { center, normal, radius } => Shape::Disk(
+                Disk::round(vec3(center), vec3(normal), radius.f32())
+                    .ok_or_else(|| degenerate("disk: the radius must be positive and the normal non-zero"))?,
+            ),
             ShapeDef::Triangle { a, b, c } => Shape::Triangle(
                 Triangle::new(vec3(a), vec3(b), vec3(c), Triangle::FLAT)
                     .ok_or_else(|| degenerate("triangle: its corners are on one line"))?,
@@ -268,7 +304,7 @@ impl Ctx<'_> {
         object: &ItemPath,
     ) -> Result<(), SceneError> {
         let at = &object.field("file");
-        let dir = self.src.path.parent().unwrap_or(std::path::Path::new(""));
+        let dir = self.src.path().parent().unwrap_or(std::path::Path::new(""));
         let path = dir.join(file);
         // The mesh error already names its file (and line or byte offset there).
         let meshes =

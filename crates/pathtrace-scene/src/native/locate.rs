@@ -188,6 +188,23 @@ impl JsonScan<'_> {
     }
 }
 
+/// Turns an item of a parsed scene into an error at its place in the file the scene was read
+/// from: a native TOML/JSON [`super::Source`], or Mitsuba XML through the element each item was
+/// converted from.
+pub trait Locate {
+    /// The scene file (relative mesh paths resolve against its folder).
+    fn path(&self) -> &std::path::Path;
+    /// An error about `item` (or the deepest part of it the file shows), quoting the file.
+    fn error_at(&self, item: &ItemPath, message: impl Into<String>) -> super::SceneError;
+}
+
+impl ItemPath {
+    /// True if `self` starts with every key of `prefix`.
+    pub fn starts_with(&self, prefix: &ItemPath) -> bool {
+        self.0.len() >= prefix.0.len() && self.0.iter().zip(&prefix.0).all(|(a, b)| a == b)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

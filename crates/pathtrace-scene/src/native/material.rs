@@ -17,6 +17,7 @@ pub enum MaterialType {
     Mirror,
     Glossy,
     Dielectric,
+    ThinDielectric,
     Emissive,
     Conductor,
     RoughConductor,
@@ -38,6 +39,8 @@ pub enum MaterialKind {
     Glossy { albedo: Triple, exponent: Num },
     /// Smooth glass; `ior` defaults to 1.5, `tint` to 1.
     Dielectric { ior: Num, tint: Triple },
+    /// A thin glass sheet (Mitsuba's `thindielectric`); `ior` defaults to 1.5, `tint` to 1.
+    ThinDielectric { ior: Num, tint: Triple },
     /// A black surface that emits `radiance` (set on the [`MaterialDef`]'s emission).
     Emissive,
     /// Smooth metal: Fresnel reflection with a complex index (named `metal` or `eta` + `k`),
@@ -120,7 +123,7 @@ fn allowed(t: MaterialType) -> &'static [&'static str] {
         MaterialType::Diffuse | MaterialType::Lambertian => &["albedo"],
         MaterialType::Mirror => &["reflectance"],
         MaterialType::Glossy => &["albedo", "exponent"],
-        MaterialType::Dielectric => &["ior", "tint"],
+        MaterialType::Dielectric | MaterialType::ThinDielectric => &["ior", "tint"],
         MaterialType::Emissive => &["radiance"],
         MaterialType::Conductor => &["metal", "eta", "k", "reflectance"],
         MaterialType::RoughConductor => {
@@ -203,8 +206,8 @@ impl TryFrom<RawMaterial> for MaterialDef {
 
     fn try_from(r: RawMaterial) -> Result<Self, String> {
         let t = r.kind.ok_or(
-            "a material needs a `type` (diffuse, lambertian, mirror, glossy, dielectric, emissive, conductor, \
-             rough_conductor, rough_dielectric, plastic, rough_plastic)",
+            "a material needs a `type` (diffuse, lambertian, mirror, glossy, dielectric, thindielectric, emissive, \
+             conductor, rough_conductor, rough_dielectric, plastic, rough_plastic)",
         )?;
         let name = serde_json::to_value(t).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
         if let Some(extra) = r.present().into_iter().find(|f| !allowed(t).contains(f)) {
@@ -222,6 +225,9 @@ impl TryFrom<RawMaterial> for MaterialDef {
             },
             MaterialType::Dielectric => {
                 MaterialKind::Dielectric { ior: r.ior.map_or(Num::from(1.5), |i| i.0), tint: r.tint.unwrap_or(one) }
+            }
+            MaterialType::ThinDielectric => {
+                MaterialKind::ThinDielectric { ior: r.ior.map_or(Num::from(1.5), |i| i.0), tint: r.tint.unwrap_or(one) }
             }
             MaterialType::Emissive => MaterialKind::Emissive,
             MaterialType::Conductor => {
@@ -284,6 +290,9 @@ impl From<MaterialDef> for RawMaterial {
             }
             MaterialKind::Dielectric { ior, tint } => {
                 (r.kind, r.ior, r.tint) = (Some(MaterialType::Dielectric), Some(Ior(ior)), Some(tint))
+            }
+            MaterialKind::ThinDielectric { ior, tint } => {
+                (r.kind, r.ior, r.tint) = (Some(MaterialType::ThinDielectric), Some(Ior(ior)), Some(tint))
             }
             MaterialKind::Emissive => r.kind = Some(MaterialType::Emissive),
             MaterialKind::Conductor { metal, reflectance } => {

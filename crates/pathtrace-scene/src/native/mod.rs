@@ -35,7 +35,7 @@ mod values;
 
 pub use build::build;
 pub use error::{line_column, SceneError};
-pub use locate::{ItemPath, Key};
+pub use locate::{ItemPath, Key, Locate};
 pub use model::SceneFile;
 pub use parse::{parse_str, to_string, Format, Source};
 

@@ -6,7 +6,7 @@ pub use super::material::{EmissionDef, MaterialDef, MaterialKind, MaterialType};
 pub use super::object::{GroupDef, ObjectDef, ShapeDef, ShapeType};
 pub use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
 pub use super::transform::{LookAtDef, TransformStep};
-pub use super::values::{Num, Num3, SamplerName, StrategyName, Triple};
+pub use super::values::{FilterName, Num, Num3, SamplerName, StrategyName, Triple};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -28,6 +28,9 @@ pub struct SceneFile {
     /// Groups of objects sharing a transform.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub groups: Vec<GroupDef>,
+    /// Lights that are not surfaces: point lights and the environment.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub lights: Vec<LightDef>,
 }
 
 /// `[render]`: every field optional; the defaults are the `DEFAULT_*` constants.
@@ -55,6 +58,35 @@ pub struct RenderSection {
     /// Random seed (default 0).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
+    /// Pixel reconstruction filter (default: box of radius 0.5, the pixel itself).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub filter: Option<FilterDef>,
+}
+
+/// `filter = { type = "tent", radius = 1 }`: a pixel filter sampled by importance.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FilterDef {
+    /// `box`, `tent` or `gaussian`.
+    #[serde(rename = "type")]
+    pub kind: FilterName,
+    /// Half-width in pixels, for `box` (default 0.5) and `tent` (default 1).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radius: Option<Num>,
+    /// Standard deviation in pixels, for `gaussian` (default 0.5; cut off at 4 stddev).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stddev: Option<Num>,
+}
+
+/// `[[lights]]`: a light that is not a surface.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum LightDef {
+    /// An isotropic point light at `position` with `intensity` in W/sr (seen only by the `mis`
+    /// strategy's light sampling).
+    Point { position: Num3, intensity: Triple },
+    /// A constant environment: `radiance` arrives from every direction that leaves the scene.
+    Constant { radiance: Triple },
 }
 
 impl RenderSection {

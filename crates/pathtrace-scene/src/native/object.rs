@@ -18,6 +18,7 @@ pub enum ShapeType {
     Box,
     Triangle,
     Mesh,
+    Disk,
 }
 
 /// An object's geometry, in its local frame (before the transform list).
@@ -31,6 +32,9 @@ pub enum ShapeDef {
     Quad { q: Num3, u: Num3, v: Num3 },
     /// The axis-aligned box [min, max] as six outward-facing quads.
     Box { min: Num3, max: Num3 },
+    /// The round disk of `radius` around `center`, its front facing along `normal` (an ellipse
+    /// after a non-uniform scale).
+    Disk { center: Num3, normal: Num3, radius: Num },
     /// The triangle abc; its front faces along (b − a) × (c − a).
     Triangle { a: Num3, b: Num3, c: Num3 },
     /// Triangles from an OBJ, PLY or Mitsuba `.serialized` file; the path is relative to the scene
@@ -114,6 +118,7 @@ fn fields_of(t: ShapeType) -> &'static [&'static str] {
         ShapeType::Box => &["min", "max"],
         ShapeType::Triangle => &["a", "b", "c"],
         ShapeType::Mesh => &["file", "part"],
+        ShapeType::Disk => &["center", "normal", "radius"],
     }
 }
 
@@ -125,6 +130,7 @@ fn type_name(t: ShapeType) -> &'static str {
         ShapeType::Box => "box",
         ShapeType::Triangle => "triangle",
         ShapeType::Mesh => "mesh",
+        ShapeType::Disk => "disk",
     }
 }
 
@@ -155,7 +161,7 @@ impl TryFrom<RawObject> for ObjectDef {
     type Error = String;
 
     fn try_from(r: RawObject) -> Result<Self, String> {
-        let t = r.kind.ok_or("an object needs a `type` (sphere, plane, quad, box, triangle, mesh)")?;
+        let t = r.kind.ok_or("an object needs a `type` (sphere, plane, quad, box, triangle, mesh, disk)")?;
         let name = type_name(t);
         let wanted = fields_of(t);
         if let Some(extra) = r.present().into_iter().find(|f| !wanted.contains(f)) {
@@ -173,6 +179,11 @@ impl TryFrom<RawObject> for ObjectDef {
             ShapeType::Quad => ShapeDef::Quad { q: need(r.q, "q")?, u: need(r.u, "u")?, v: need(r.v, "v")? },
             ShapeType::Box => ShapeDef::Box { min: need(r.min, "min")?, max: need(r.max, "max")? },
             ShapeType::Triangle => ShapeDef::Triangle { a: need(r.a, "a")?, b: need(r.b, "b")?, c: need(r.c, "c")? },
+            ShapeType::Disk => ShapeDef::Disk {
+                center: need(r.center, "center")?,
+                normal: need(r.normal, "normal")?,
+                radius: r.radius.ok_or_else(|| missing("radius"))?,
+            },
             ShapeType::Mesh => ShapeDef::Mesh { file: r.file.ok_or_else(|| missing("file"))?, part: r.part },
         };
         let material =
@@ -208,6 +219,10 @@ impl From<ObjectDef> for RawObject {
             ShapeDef::Mesh { file, part } => {
                 (r.file, r.part) = (Some(file), part);
                 ShapeType::Mesh
+            }
+            ShapeDef::Disk { center, normal, radius } => {
+                (r.center, r.normal, r.radius) = (Some(center), Some(normal), Some(radius));
+                ShapeType::Disk
             }
         });
         r

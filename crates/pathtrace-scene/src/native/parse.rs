@@ -2,7 +2,7 @@
 //! syntax or schema error becomes a [`SceneError`] at its line and column.
 
 use super::error::SceneError;
-use super::locate::{locate_json, locate_toml, ItemPath};
+use super::locate::{locate_json, locate_toml, ItemPath, Locate};
 use super::model::SceneFile;
 use std::path::{Path, PathBuf};
 
@@ -49,6 +49,16 @@ impl Source {
     /// Parses the text into the model.
     pub fn parse(&self) -> Result<SceneFile, SceneError> {
         parse_str(&self.text, self.format, &self.path)
+    }
+}
+
+impl Locate for Source {
+    fn path(&self) -> &Path {
+        &self.path
+    }
+
+    fn error_at(&self, item: &ItemPath, message: impl Into<String>) -> SceneError {
+        Source::error_at(self, item, message)
     }
 }
 

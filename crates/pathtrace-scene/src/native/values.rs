@@ -183,10 +183,10 @@ macro_rules! named_choice {
 }
 
 named_choice!(
-    /// A path-sampling strategy by name: `mis`, `bsdf`, `mixture` or `light`.
+    /// A path-sampling strategy by name: `mis`, `mis-balance`, `bsdf`, `mixture` or `light`.
     StrategyName,
     Strategy,
-    "a strategy name (mis, bsdf, mixture or light)"
+    "a strategy name (mis, mis-balance, bsdf, mixture or light)"
 );
 named_choice!(
     /// A pixel sampler by name: `independent`, `stratified` or `sobol`.
@@ -194,6 +194,15 @@ named_choice!(
     SamplerKind,
     "a sampler name (independent, stratified or sobol)"
 );
+
+/// The pixel filters by name: `box`, `tent` or `gaussian`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FilterName {
+    Box,
+    Tent,
+    Gaussian,
+}
 
 #[cfg(test)]
 mod tests {

@@ -71,6 +71,11 @@ impl Film {
         &self.pixels[(y * self.width + x) as usize]
     }
 
+    /// Every pixel's statistics, row by row.
+    pub fn pixels(&self) -> &[PixelStats] {
+        &self.pixels
+    }
+
     /// Adds one sample to pixel `(x, y)`; NaN or infinite samples are dropped and counted.
     pub fn add_sample(&mut self, x: u32, y: u32, c: Rgb) {
         if !c.is_finite() {

@@ -7,7 +7,7 @@
 use super::Strategy;
 use crate::material::Material;
 use crate::math::{offset_ray_origin, Frame, Ray, Rgb, Vec3};
-use crate::sampling::{power_heuristic, Sampler};
+use crate::sampling::Sampler;
 use crate::scene::{Primitive, Scene};
 
 /// Settings of the path loop.
@@ -82,8 +82,19 @@ pub fn radiance(
     let mut segments = 1u32;
     let mut prev = PrevVertex { p: ray.origin, pdf: 0.0, specular: true };
 
-    // A ray that escapes the scene ends the path: there is no environment light (yet).
-    while let Some(hit) = scene.intersect(&ray, f32::INFINITY) {
+    loop {
+        // ---- Escape: the environment (if any) is seen, then the path ends ------------------
+        let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
+            if let Some(env) = lights.environment() {
+                let weight = if strategy.is_mis() && !prev.specular {
+                    strategy.mis_weight(prev.pdf, lights.pdf_environment(ray.dir))
+                } else {
+                    1.0
+                };
+                l += beta * env.radiance(ray.dir) * weight;
+            }
+            break;
+        };
         let it = scene.interaction(&ray, &hit);
         let p = it.surface.p;
         let wo_world = -ray.dir;
@@ -93,9 +104,9 @@ pub fn radiance(
             if let Some(light) = lights.get(it.light) {
                 let le = light.emitted(it.surface.n_geometric, wo_world);
                 if !le.is_black() {
-                    let weight = if strategy == Strategy::Mis && !prev.specular {
+                    let weight = if strategy.is_mis() && !prev.specular {
                         let pdf_light = lights.pdf_hit(it.light, prev.p, p, it.surface.n_geometric);
-                        power_heuristic(prev.pdf, pdf_light)
+                        strategy.mis_weight(prev.pdf, pdf_light)
                     } else {
                         1.0
                     };
@@ -119,9 +130,12 @@ pub fn radiance(
         let wo = frame.to_local(wo_world);
         let delta = material.is_delta();
         let can_sample_lights = !delta && !lights.is_empty();
+        // The `light` and `mixture` strategies follow the sampled direction, which point
+        // lights (Dirac deltas) cannot provide: they sample the other lights only.
+        let can_follow_lights = !delta && lights.has_continuous();
 
         // ---- Light sampling (next-event estimation, MIS only) ----------------------------
-        if strategy == Strategy::Mis && can_sample_lights {
+        if strategy.is_mis() && can_sample_lights {
             let u_select = sampler.next_1d();
             let u_light = sampler.next_2d();
             if let Some(ls) = lights.sample(p, u_select, u_light) {
@@ -129,12 +143,18 @@ pub fn radiance(
                 let f = material.eval(wo, wi);
                 if !ls.radiance.is_black() && !f.is_black() && same_side(n_g, wo_world, ls.wi) {
                     let origin = offset_ray_origin(p, n_g, ls.wi);
-                    let to_light = ls.point - origin;
-                    let dist = to_light.length();
+                    let (shadow, t_max) = if ls.dist.is_infinite() {
+                        // The environment: unoccluded if the ray leaves the scene.
+                        (Ray::new(origin, ls.wi), f32::INFINITY)
+                    } else {
+                        let to_light = ls.point - origin;
+                        let dist = to_light.length();
+                        (Ray::new(origin, to_light / dist), dist * (1.0 - SHADOW_EPSILON))
+                    };
                     stats.shadow_rays += 1;
-                    let shadow = Ray::new(origin, to_light / dist);
-                    if !scene.occluded(&shadow, dist * (1.0 - SHADOW_EPSILON)) {
-                        let w = power_heuristic(ls.pdf, material.pdf(wo, wi));
+                    if !scene.occluded(&shadow, t_max) {
+                        // A point light cannot be found by bsdf sampling: its sample counts in full.
+                        let w = if ls.delta { 1.0 } else { strategy.mis_weight(ls.pdf, material.pdf(wo, wi)) };
                         l += beta * f * ls.radiance * (w / ls.pdf);
                     }
                 }
@@ -147,10 +167,10 @@ pub fn radiance(
         let next = match strategy {
             // A Dirac lobe (plastic's coating) cannot be reached by light sampling alone: such
             // materials are sampled by the material under the `light` strategy.
-            Strategy::Light if can_sample_lights && !material.has_delta_lobe() => {
+            Strategy::Light if can_follow_lights && !material.has_delta_lobe() => {
                 sample_towards_lights(scene, material, &frame, p, wo, u_lobe, u_dir)
             }
-            Strategy::Mixture if can_sample_lights => sample_mixture(scene, material, &frame, p, wo, u_lobe, u_dir),
+            Strategy::Mixture if can_follow_lights => sample_mixture(scene, material, &frame, p, wo, u_lobe, u_dir),
             _ => material.sample(wo, u_lobe, u_dir).map(|s| Scatter {
                 wi_world: frame.to_world(s.wi),
                 weight: s.weight,
@@ -203,7 +223,7 @@ fn same_side(n: Vec3, a: Vec3, b: Vec3) -> bool {
 }
 
 /// The `light` strategy: continue towards a light point; pdf of the direction summed over all
-/// lights.
+/// lights (point lights excepted).
 fn sample_towards_lights(
     scene: &Scene,
     material: &Material,
@@ -213,7 +233,7 @@ fn sample_towards_lights(
     u_select: f32,
     u: crate::math::Vec2,
 ) -> Option<Scatter> {
-    let ls = scene.lights.sample(p, u_select, u)?;
+    let ls = scene.lights.sample_continuous(p, u_select, u)?;
     let pdf = scene.lights.pdf_direction(p, ls.wi);
     let f = material.eval(wo, frame.to_local(ls.wi));
     (pdf > 0.0).then(|| Scatter { wi_world: ls.wi, weight: f * (1.0 / pdf), pdf, specular: false, eta: 1.0 })
@@ -232,7 +252,7 @@ fn sample_mixture(
 ) -> Option<Scatter> {
     // Reuse the one number for both the coin flip and the sub-strategy's 1D choice.
     let wi_world = if u_choice < 0.5 {
-        scene.lights.sample(p, u_choice * 2.0, u)?.wi
+        scene.lights.sample_continuous(p, u_choice * 2.0, u)?.wi
     } else {
         let s = material.sample(wo, u_choice * 2.0 - 1.0, u)?;
         if s.delta {

@@ -1,5 +1,7 @@
 //! How the path tracer picks directions at each non-specular vertex.
 
+use crate::sampling::{balance_heuristic, power_heuristic};
+
 /// Direction-sampling strategy. All but `Light` converge to the same (correct) image.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Strategy {
@@ -16,10 +18,12 @@ pub enum Strategy {
     /// with the power heuristic. The default.
     #[default]
     Mis,
+    /// As `Mis`, weighted by the balance heuristic instead (to measure the difference).
+    MisBalance,
 }
 
 impl Strategy {
-    pub const NAMES: [&'static str; 4] = ["bsdf", "light", "mixture", "mis"];
+    pub const NAMES: [&'static str; 5] = ["bsdf", "light", "mixture", "mis", "mis-balance"];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -27,6 +31,24 @@ impl Strategy {
             Strategy::Light => "light",
             Strategy::Mixture => "mixture",
             Strategy::Mis => "mis",
+            Strategy::MisBalance => "mis-balance",
+        }
+    }
+
+    /// True for the strategies that combine light and material samples by MIS.
+    pub fn is_mis(self) -> bool {
+        matches!(self, Strategy::Mis | Strategy::MisBalance)
+    }
+
+    /// The MIS weight of a sample drawn with density `pdf_f` when the other technique has
+    /// density `pdf_g` at the same direction: the power heuristic (β = 2) for `Mis`, the
+    /// balance heuristic for `MisBalance` (Veach & Guibas 1995).
+    #[inline]
+    pub fn mis_weight(self, pdf_f: f32, pdf_g: f32) -> f32 {
+        if self == Strategy::MisBalance {
+            balance_heuristic(pdf_f, pdf_g)
+        } else {
+            power_heuristic(pdf_f, pdf_g)
         }
     }
 
@@ -43,7 +65,8 @@ impl std::str::FromStr for Strategy {
             "bsdf" | "naive" => Ok(Strategy::Bsdf),
             "light" => Ok(Strategy::Light),
             "mixture" | "mix" => Ok(Strategy::Mixture),
-            "mis" => Ok(Strategy::Mis),
+            "mis" | "mis-power" => Ok(Strategy::Mis),
+            "mis-balance" => Ok(Strategy::MisBalance),
             _ => Err(format!("unknown strategy '{s}' (expected one of: {})", Self::NAMES.join(", "))),
         }
     }

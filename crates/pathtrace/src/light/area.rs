@@ -2,7 +2,7 @@
 //! face (or both faces).
 //!
 //! Sampling densities, converted from area to solid angle at the reference point:
-//! - quads and triangles: uniform by area, pdf_ω = r² / (|cos θ_l| · A) (the area-to-solid-angle
+//! - quads, triangles and disks: uniform by area, pdf_ω = r² / (|cos θ_l| · A) (the area-to-solid-angle
 //!   Jacobian; derived in docs/sampling.md);
 //! - spheres seen from outside: uniform over the cone of directions they subtend,
 //!   pdf_ω = 1 / (2π (1 - cos θ_max)), cos θ_max = √(1 - r²/d²) (pbrt-v3 §14.2.3);
@@ -10,7 +10,7 @@
 
 use crate::math::{Frame, Ray, Rgb, Vec2, Vec3, PI};
 use crate::sampling::warp;
-use crate::shape::{Quad, Sphere, Triangle};
+use crate::shape::{Disk, Quad, Sphere, Triangle};
 
 /// What an object emits.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,6 +27,7 @@ pub enum LightShape {
     Quad(Quad),
     Triangle(Triangle),
     Sphere(Sphere),
+    Disk(Disk),
 }
 
 /// One emissive primitive, with its area and (for flat shapes) unit normal precomputed: light
@@ -86,6 +87,7 @@ impl AreaLight {
             LightShape::Quad(q) => (q.area(), q.normal()),
             LightShape::Triangle(t) => (t.area(), t.e1.cross(t.e2).normalize()),
             LightShape::Sphere(s) => (s.area(), Vec3::ZERO),
+            LightShape::Disk(d) => (d.area(), d.normal()),
         };
         Self { shape, emission, area, normal }
     }
@@ -119,6 +121,7 @@ impl AreaLight {
                 t.p0 + b.x * t.e1 + b.y * t.e2
             }
             LightShape::Sphere(s) => return sample_sphere(s, ref_p, u),
+            LightShape::Disk(d) => d.sample_uniform(u),
         };
         ShapeSample::new(ref_p, point, self.normal, |dist, wi| solid_angle_pdf(dist, wi, self.normal, self.area))
     }
@@ -143,6 +146,9 @@ impl AreaLight {
                 .intersect(&ray, 0.0, f32::INFINITY)
                 .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), self.normal, self.area)),
             LightShape::Triangle(t) => t
+                .intersect(&ray, 0.0, f32::INFINITY)
+                .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), self.normal, self.area)),
+            LightShape::Disk(d) => d
                 .intersect(&ray, 0.0, f32::INFINITY)
                 .map_or(0.0, |h| area_to_solid_angle(ref_p, ray.at(h.t), self.normal, self.area)),
             LightShape::Sphere(s) => {

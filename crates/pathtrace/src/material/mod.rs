@@ -4,7 +4,8 @@
 //! from the surface; `wo` towards the viewer, `wi` towards the light. `eval` returns
 //! `f(wo, wi)·|cos θi|`, so models whose BRDF is singular at grazing angles stay finite.
 //! Reflective models are two-sided: the integrator flips the frame so that `wo.z > 0`. The
-//! dielectric sees both sides (z > 0 is outside, where the geometric normal points).
+//! dielectric sees both sides (z > 0 is outside, where the geometric normal points); the thin
+//! dielectric is symmetric, so it is two-sided too.
 
 mod conductor;
 mod dielectric;
@@ -20,6 +21,7 @@ mod plastic;
 mod rough_conductor;
 mod rough_dielectric;
 mod rough_plastic;
+mod thin_dielectric;
 
 pub use conductor::Conductor;
 pub use dielectric::{fresnel_dielectric, Dielectric};
@@ -35,6 +37,7 @@ pub use plastic::Plastic;
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
+pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Rgb, Vec2, Vec3};
 
@@ -74,6 +77,7 @@ pub enum Material {
     RoughDielectric(RoughDielectric),
     Plastic(Plastic),
     RoughPlastic(RoughPlastic),
+    ThinDielectric(ThinDielectric),
 }
 
 impl Material {
@@ -92,6 +96,7 @@ impl Material {
             Material::RoughDielectric(m) => m.sample(wo, u_lobe, u),
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
             Material::RoughPlastic(m) => m.sample(wo, u_lobe, u),
+            Material::ThinDielectric(m) => m.sample(wo, u_lobe),
         }
     }
 
@@ -106,7 +111,11 @@ impl Material {
             Material::RoughDielectric(m) => m.eval(wo, wi),
             Material::Plastic(m) => m.eval(wo, wi),
             Material::RoughPlastic(m) => m.eval(wo, wi),
-            Material::Black | Material::Mirror(_) | Material::Dielectric(_) | Material::Conductor(_) => Rgb::BLACK,
+            Material::Black
+            | Material::Mirror(_)
+            | Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::ThinDielectric(_) => Rgb::BLACK,
         }
     }
 
@@ -121,13 +130,20 @@ impl Material {
             Material::RoughDielectric(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.pdf(wo, wi),
             Material::RoughPlastic(m) => m.pdf(wo, wi),
-            Material::Black | Material::Mirror(_) | Material::Dielectric(_) | Material::Conductor(_) => 0.0,
+            Material::Black
+            | Material::Mirror(_)
+            | Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::ThinDielectric(_) => 0.0,
         }
     }
 
     /// True if the model only scatters into discrete directions, so light sampling is skipped.
     pub fn is_delta(&self) -> bool {
-        matches!(self, Material::Mirror(_) | Material::Dielectric(_) | Material::Conductor(_))
+        matches!(
+            self,
+            Material::Mirror(_) | Material::Dielectric(_) | Material::Conductor(_) | Material::ThinDielectric(_)
+        )
     }
 
     /// True if some but not all of the model's scattering is a Dirac lobe (`plastic`'s coating):
@@ -160,6 +176,7 @@ impl Material {
             Material::RoughDielectric(_) => "rough_dielectric",
             Material::Plastic(_) => "plastic",
             Material::RoughPlastic(_) => "rough_plastic",
+            Material::ThinDielectric(_) => "thindielectric",
         }
     }
 }

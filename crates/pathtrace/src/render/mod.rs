@@ -1,8 +1,10 @@
 //! Rendering: settings, the tile worker, and the background [`RenderSession`].
 
+mod adaptive;
 mod session;
 mod settings;
 mod tile;
 
+pub use adaptive::{allocate, AdaptiveSettings};
 pub use session::{render, Progress, RenderError, RenderOutcome, RenderSession};
 pub use settings::RenderSettings;

@@ -5,11 +5,14 @@
 //!
 //! Work proceeds in waves of 1, 2, 4, … samples per pixel (capped), each wave a parallel loop
 //! over tiles, so a first image is ready quickly. Each pixel merges its waves in order, so the
-//! result is bit-identical whatever the number of threads.
+//! result is bit-identical whatever the number of threads. With adaptive sampling, waves after
+//! the uniform start give each pixel its own number of samples (`adaptive.rs`), decided between
+//! waves from the merged film, so that stays bit-identical too.
 
+use super::adaptive::{allocate, AdaptiveSettings};
 use super::settings::RenderSettings;
-use super::tile::{render_tile, tiles, TileResult};
-use crate::camera::{Camera, CameraError};
+use super::tile::{render_tile, tiles, Tile, TileJob, TileResult, WaveSamples};
+use crate::camera::{Camera, CameraDesc, CameraError};
 use crate::film::{Film, Image};
 use crate::integrator::PathStats;
 use crate::sampling::Sampler;
@@ -27,14 +30,15 @@ pub enum RenderError {
     Camera(#[from] CameraError),
     #[error("could not start worker threads: {0}")]
     Threads(String),
-    #[error("nothing to render: give a sample count or a time limit")]
+    #[error("nothing to render: give a sample count, a time limit or a target error")]
     NoBudget,
 }
 
 /// A snapshot of how far a render is.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Progress {
-    /// Samples per pixel completed by every pixel (whole waves).
+    /// Samples per pixel completed by every pixel (whole waves); with adaptive sampling, the
+    /// average over pixels.
     pub spp_done: u32,
     /// The target (0 for open-ended renders).
     pub spp_target: u32,
@@ -45,6 +49,11 @@ pub struct Progress {
     pub rays_per_second: f64,
     pub rays: PathStats,
     pub dropped_samples: u64,
+    /// The film's estimated relative RMS error after the last whole wave
+    /// (`Film::relative_rms_error_estimate`); `None` before every pixel has two samples.
+    pub error_estimate: Option<f64>,
+    /// The adaptive target error, if any.
+    pub target_error: Option<f64>,
     pub finished: bool,
     pub cancelled: bool,
 }
@@ -66,9 +75,12 @@ struct Shared {
     extension_rays: AtomicU64,
     shadow_rays: AtomicU64,
     dropped: AtomicU64,
+    /// `f64` bits of the last error estimate; NaN for none.
+    error_estimate: AtomicU64,
     start: Instant,
     end: Mutex<Option<Instant>>,
     spp_target: u32,
+    target_error: Option<f64>,
 }
 
 impl Shared {
@@ -86,6 +98,17 @@ impl Shared {
         self.shadow_rays.fetch_add(r.stats.shadow_rays, Ordering::Relaxed);
         self.dropped.fetch_add(r.dropped, Ordering::Relaxed);
     }
+
+    fn stop_requested(&self, deadline: Option<Instant>) -> bool {
+        self.cancel.load(Ordering::Relaxed) || deadline.is_some_and(|d| Instant::now() >= d)
+    }
+
+    /// Updates the error estimate from the film (after a whole wave) and returns it.
+    fn update_error_estimate(&self) -> Option<f64> {
+        let e = self.lock_film().relative_rms_error_estimate();
+        self.error_estimate.store(e.unwrap_or(f64::NAN).to_bits(), Ordering::Relaxed);
+        e
+    }
 }
 
 /// A render in progress.
@@ -97,10 +120,22 @@ pub struct RenderSession {
 impl RenderSession {
     /// Starts rendering `scene` on background threads.
     pub fn start(scene: Arc<Scene>, settings: RenderSettings) -> Result<Self, RenderError> {
-        if settings.spp == 0 && settings.time_limit.is_none() {
+        let camera = scene.camera;
+        Self::start_with_camera(scene, &camera, settings)
+    }
+
+    /// Starts rendering `scene` seen through `camera` instead of the scene's own camera, so an
+    /// interactive front end can move the view without rebuilding (or copying) the BVH.
+    pub fn start_with_camera(
+        scene: Arc<Scene>,
+        camera: &CameraDesc,
+        settings: RenderSettings,
+    ) -> Result<Self, RenderError> {
+        let target_error = settings.adaptive.and_then(|a| a.target_error);
+        if settings.spp == 0 && settings.time_limit.is_none() && target_error.is_none() {
             return Err(RenderError::NoBudget);
         }
-        let camera = Camera::new(&scene.camera, settings.width, settings.height)?;
+        let camera = Camera::new(camera, settings.width, settings.height)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(settings.threads)
             .thread_name(|i| format!("pathtrace-worker-{i}"))
@@ -116,9 +151,11 @@ impl RenderSession {
             extension_rays: AtomicU64::new(0),
             shadow_rays: AtomicU64::new(0),
             dropped: AtomicU64::new(0),
+            error_estimate: AtomicU64::new(f64::NAN.to_bits()),
             start: Instant::now(),
             end: Mutex::new(None),
             spp_target: settings.spp,
+            target_error,
         });
         let worker_shared = Arc::clone(&shared);
         let handle = std::thread::Builder::new()
@@ -155,6 +192,8 @@ impl RenderSession {
             rays_per_second: rays.total_rays() as f64 / secs,
             rays,
             dropped_samples: s.dropped.load(Ordering::Relaxed),
+            error_estimate: Some(f64::from_bits(s.error_estimate.load(Ordering::Relaxed))).filter(|e| !e.is_nan()),
+            target_error: s.target_error,
             finished: s.finished.load(Ordering::Acquire),
             cancelled: s.cancel.load(Ordering::Relaxed),
         }
@@ -207,28 +246,105 @@ pub fn render(scene: Arc<Scene>, settings: RenderSettings) -> Result<RenderOutco
 }
 
 fn run_waves(scene: &Scene, camera: &Camera, settings: &RenderSettings, shared: &Shared) {
+    match settings.adaptive {
+        None => run_uniform(scene, camera, settings, shared),
+        Some(adaptive) => run_adaptive(scene, camera, settings, &adaptive, shared),
+    }
+}
+
+/// One wave: a parallel loop over tiles; tiles not started before a stop are skipped.
+fn run_wave(
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    shared: &Shared,
+    tile_list: &[Tile],
+    samples: WaveSamples,
+) {
+    let deadline = settings.time_limit.map(|t| shared.start + t);
+    let job = TileJob { scene, camera, path: &settings.path, filter: &settings.filter };
+    tile_list.par_iter().for_each_init(
+        || Sampler::new(settings.sampler, settings.seed, settings.strata_count()),
+        |sampler, &tile| {
+            if shared.stop_requested(deadline) {
+                return;
+            }
+            let result = render_tile(&job, sampler, tile, samples);
+            shared.record(&result);
+        },
+    );
+}
+
+/// Every pixel gets the same samples: waves of `settings.waves()`.
+fn run_uniform(scene: &Scene, camera: &Camera, settings: &RenderSettings, shared: &Shared) {
     let tile_list = tiles(settings.width, settings.height, settings.tile_size);
     let deadline = settings.time_limit.map(|t| shared.start + t);
-    let out_of_time = || deadline.is_some_and(|d| Instant::now() >= d);
     let mut first = 0u32;
     for count in settings.waves() {
-        if shared.cancel.load(Ordering::Relaxed) || out_of_time() {
+        if shared.stop_requested(deadline) {
             break;
         }
-        tile_list.par_iter().for_each_init(
-            || Sampler::new(settings.sampler, settings.seed, settings.strata_count()),
-            |sampler, &tile| {
-                if shared.cancel.load(Ordering::Relaxed) || out_of_time() {
-                    return;
-                }
-                let result = render_tile(scene, camera, &settings.path, sampler, tile, first, count);
-                shared.record(&result);
-            },
-        );
-        if shared.cancel.load(Ordering::Relaxed) || out_of_time() {
+        run_wave(scene, camera, settings, shared, &tile_list, WaveSamples::Uniform { first, count });
+        if shared.stop_requested(deadline) {
             break;
         }
         first = first.saturating_add(count);
         shared.spp_done.store(first, Ordering::Relaxed);
+        shared.update_error_estimate();
+    }
+}
+
+/// `min_spp` uniform samples per pixel in doubling waves, then waves whose budget (the same
+/// doubling, in samples per pixel on average) is shared out by [`allocate`]. Stops when the
+/// budget (`spp` on average) is spent, the target error is reached, time is up or on cancel.
+fn run_adaptive(
+    scene: &Scene,
+    camera: &Camera,
+    settings: &RenderSettings,
+    adaptive: &AdaptiveSettings,
+    shared: &Shared,
+) {
+    let tile_list = tiles(settings.width, settings.height, settings.tile_size);
+    let deadline = settings.time_limit.map(|t| shared.start + t);
+    let pixels = settings.width as u64 * settings.height as u64;
+    let budget = (settings.spp > 0).then(|| settings.spp as u64 * pixels);
+    let min_spp = match budget {
+        Some(_) => adaptive.min_spp.clamp(1, settings.spp),
+        None => adaptive.min_spp.max(1),
+    };
+    let cap = settings.max_wave_spp.max(1);
+    let mut given = vec![0u32; pixels as usize];
+    let (mut uniform_done, mut spent, mut wave_spp) = (0u32, 0u64, 1u32);
+    loop {
+        let remaining = budget.map_or(u64::MAX, |b| b - spent);
+        if remaining == 0 || shared.stop_requested(deadline) {
+            break;
+        }
+        let per_pixel = wave_spp.min(cap);
+        wave_spp = wave_spp.saturating_mul(2);
+        if uniform_done < min_spp {
+            let count = per_pixel.min(min_spp - uniform_done);
+            run_wave(scene, camera, settings, shared, &tile_list, WaveSamples::Uniform { first: uniform_done, count });
+            uniform_done += count;
+            given.iter_mut().for_each(|n| *n += count);
+            spent += count as u64 * pixels;
+        } else {
+            let wave_budget = (per_pixel as u64 * pixels).min(remaining);
+            let count = allocate(&shared.lock_film(), &given, wave_budget, adaptive.floor);
+            let samples = WaveSamples::PerPixel { width: settings.width, first: &given, count: &count };
+            run_wave(scene, camera, settings, shared, &tile_list, samples);
+            given.iter_mut().zip(&count).for_each(|(n, c)| *n = n.saturating_add(*c));
+            spent += wave_budget;
+        }
+        if shared.stop_requested(deadline) {
+            break;
+        }
+        shared.spp_done.store((spent / pixels.max(1)) as u32, Ordering::Relaxed);
+        let error = shared.update_error_estimate();
+        if let (Some(target), Some(error)) = (adaptive.target_error, error) {
+            if error <= target && uniform_done >= min_spp {
+                break;
+            }
+        }
     }
 }

@@ -1,5 +1,7 @@
 //! What to render and how long for.
 
+use super::adaptive::AdaptiveSettings;
+use crate::film::PixelFilter;
 use crate::integrator::PathSettings;
 use crate::sampling::SamplerKind;
 use std::time::Duration;
@@ -9,12 +11,15 @@ use std::time::Duration;
 pub struct RenderSettings {
     pub width: u32,
     pub height: u32,
-    /// Samples per pixel to reach; 0 means "until the time limit or cancel".
+    /// Samples per pixel to reach (with adaptive sampling: on average over the image); 0 means
+    /// "until the time limit, the target error or cancel".
     pub spp: u32,
     /// Stop after this much wall-clock time (completed tiles are kept).
     pub time_limit: Option<Duration>,
     pub path: PathSettings,
     pub sampler: SamplerKind,
+    /// Pixel reconstruction filter, sampled by importance (default: the pixel's own square).
+    pub filter: PixelFilter,
     pub seed: u64,
     /// Worker threads; 0 means one per core.
     pub threads: usize,
@@ -22,6 +27,8 @@ pub struct RenderSettings {
     pub tile_size: u32,
     /// Waves double from 1 spp up to this many samples per pixel each.
     pub max_wave_spp: u32,
+    /// Adaptive sampling (`None`, the default: every pixel gets `spp` samples).
+    pub adaptive: Option<AdaptiveSettings>,
 }
 
 impl Default for RenderSettings {
@@ -33,10 +40,12 @@ impl Default for RenderSettings {
             time_limit: None,
             path: PathSettings::default(),
             sampler: SamplerKind::default(),
+            filter: PixelFilter::default(),
             seed: 0,
             threads: 0,
             tile_size: 16,
             max_wave_spp: 16,
+            adaptive: None,
         }
     }
 }

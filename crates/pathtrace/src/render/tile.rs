@@ -1,7 +1,7 @@
 //! Rendering one tile for one wave of samples.
 
 use crate::camera::Camera;
-use crate::film::PixelStats;
+use crate::film::{PixelFilter, PixelStats};
 use crate::integrator::{radiance, PathSettings, PathStats};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -27,6 +27,39 @@ pub(super) fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     out
 }
 
+/// What every tile of a render shares: the scene, the camera, the path settings and the pixel
+/// filter.
+pub(super) struct TileJob<'a> {
+    pub scene: &'a Scene,
+    pub camera: &'a Camera,
+    pub path: &'a PathSettings,
+    pub filter: &'a PixelFilter,
+}
+
+/// Which samples of each pixel a wave renders.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum WaveSamples<'a> {
+    /// Samples `first .. first + count` of every pixel.
+    Uniform { first: u32, count: u32 },
+    /// Pixel `i` (row-major over an image `width` wide) takes samples
+    /// `first[i] .. first[i] + count[i]` (adaptive sampling).
+    PerPixel { width: u32, first: &'a [u32], count: &'a [u32] },
+}
+
+impl WaveSamples<'_> {
+    /// The first sample index and the number of samples of pixel `(x, y)`.
+    #[inline(always)]
+    fn range(&self, x: u32, y: u32) -> (u32, u32) {
+        match *self {
+            WaveSamples::Uniform { first, count } => (first, count),
+            WaveSamples::PerPixel { width, first, count } => {
+                let i = (y * width + x) as usize;
+                (first[i], count[i])
+            }
+        }
+    }
+}
+
 /// The samples of one tile for one wave.
 pub(super) struct TileResult {
     pub tile: Tile,
@@ -35,7 +68,7 @@ pub(super) struct TileResult {
     pub dropped: u64,
 }
 
-/// Renders samples `first .. first + count` of every pixel in `tile`. Each pixel sample's
+/// Renders the wave's samples (`samples`) of every pixel in `tile`, filtered by the job's pixel filter. Each pixel sample's
 /// random numbers depend only on (seed, pixel, sample index), never on the thread.
 ///
 /// On x86-64 CPUs with AVX2 the same code runs compiled for AVX2 (chosen at run time, so the
@@ -43,48 +76,25 @@ pub(super) struct TileResult {
 /// bit-identical images; the AVX2 build is about 6% faster (3-operand VEX encoding; measured in
 /// docs/benchmarks.md). Setting the environment variable `PATHTRACE_NO_AVX2` forces the portable
 /// build, for that measurement.
-pub(super) fn render_tile(
-    scene: &Scene,
-    camera: &Camera,
-    path: &PathSettings,
-    sampler: &mut Sampler,
-    tile: Tile,
-    first: u32,
-    count: u32,
-) -> TileResult {
+pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") && std::env::var_os("PATHTRACE_NO_AVX2").is_none() {
         // SAFETY: `render_tile_avx2` only requires AVX2, which the CPU was just checked to have.
         #[allow(unsafe_code)]
-        return unsafe { render_tile_avx2(scene, camera, path, sampler, tile, first, count) };
+        return unsafe { render_tile_avx2(job, sampler, tile, samples) };
     }
-    render_tile_body(scene, camera, path, sampler, tile, first, count)
+    render_tile_body(job, sampler, tile, samples)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn render_tile_avx2(
-    scene: &Scene,
-    camera: &Camera,
-    path: &PathSettings,
-    sampler: &mut Sampler,
-    tile: Tile,
-    first: u32,
-    count: u32,
-) -> TileResult {
-    render_tile_body(scene, camera, path, sampler, tile, first, count)
+fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
+    render_tile_body(job, sampler, tile, samples)
 }
 
 #[inline(always)]
-fn render_tile_body(
-    scene: &Scene,
-    camera: &Camera,
-    path: &PathSettings,
-    sampler: &mut Sampler,
-    tile: Tile,
-    first: u32,
-    count: u32,
-) -> TileResult {
+fn render_tile_body(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
+    let TileJob { scene, camera, path, filter } = *job;
     let mut pixels = vec![PixelStats::default(); (tile.w * tile.h) as usize];
     let mut stats = PathStats::default();
     let mut dropped = 0;
@@ -92,11 +102,14 @@ fn render_tile_body(
         for tx in 0..tile.w {
             let (x, y) = (tile.x0 + tx, tile.y0 + ty);
             let acc = &mut pixels[(ty * tile.w + tx) as usize];
+            let (first, count) = samples.range(x, y);
             for s in first..first + count {
                 sampler.start(x, y, s);
-                let jitter = sampler.next_2d();
-                let ray = camera.generate_ray(x, y, jitter);
-                let l = radiance(scene, ray, sampler, path, &mut stats);
+                // The filter picks where in (or around) the pixel the ray goes and weights the
+                // sample by f/pdf (exactly 1 for box and tent): see film/filter.rs.
+                let fs = filter.sample(sampler.next_2d());
+                let ray = camera.generate_ray(x, y, fs.jitter);
+                let l = radiance(scene, ray, sampler, path, &mut stats) * fs.weight;
                 if l.is_finite() {
                     acc.add(l);
                 } else {

@@ -1,11 +1,15 @@
 //! Multiple importance sampling weights (Veach & Guibas, "Optimally Combining Sampling
 //! Techniques for Monte Carlo Rendering", SIGGRAPH 1995), for one sample from each technique.
 
-/// Balance heuristic: w_f = p_f / (p_f + p_g).
+/// Balance heuristic: w_f = p_f / (p_f + p_g). Infinite `pdf_f` (a delta technique) takes all
+/// the weight.
 #[inline]
 pub fn balance_heuristic(pdf_f: f32, pdf_g: f32) -> f32 {
     if pdf_f <= 0.0 {
         return 0.0;
+    }
+    if pdf_f.is_infinite() {
+        return 1.0;
     }
     pdf_f / (pdf_f + pdf_g)
 }
@@ -42,5 +46,6 @@ mod tests {
         }
         assert_eq!(power_heuristic(0.0, 1.0), 0.0);
         assert_eq!(power_heuristic(f32::INFINITY, 1.0), 1.0);
+        assert_eq!(balance_heuristic(f32::INFINITY, 1.0), 1.0);
     }
 }

@@ -1,12 +1,14 @@
 //! Geometric shapes: one file per shape, gathered in the closed [`Shape`] enum that the
 //! renderer dispatches on with `match` (no virtual calls, no allocation).
 
+mod disk;
 mod mesh;
 mod plane;
 mod quad;
 mod sphere;
 mod triangle;
 
+pub use disk::Disk;
 pub use mesh::{MeshError, TriangleMesh};
 pub use plane::Plane;
 pub use quad::Quad;
@@ -46,6 +48,7 @@ pub enum Shape {
     Plane(Plane),
     Quad(Quad),
     Triangle(Triangle),
+    Disk(Disk),
 }
 
 impl Shape {
@@ -58,6 +61,7 @@ impl Shape {
             Shape::Plane(s) => s.intersect(ray, t_min, t_max),
             Shape::Quad(s) => s.intersect(ray, t_min, t_max),
             Shape::Triangle(s) => s.intersect(ray, t_min, t_max),
+            Shape::Disk(s) => s.intersect(ray, t_min, t_max),
         }
     }
 
@@ -70,6 +74,7 @@ impl Shape {
             Shape::Plane(s) => s.surface(ray, hit),
             Shape::Quad(s) => s.surface(ray, hit),
             Shape::Triangle(s) => s.surface(hit, vertex_normals),
+            Shape::Disk(s) => s.surface(ray, hit),
         }
     }
 
@@ -81,6 +86,7 @@ impl Shape {
             Shape::Plane(_) => None,
             Shape::Quad(s) => Some(s.bounds()),
             Shape::Triangle(s) => Some(s.bounds()),
+            Shape::Disk(s) => Some(s.bounds()),
         }
     }
 
@@ -91,6 +97,7 @@ impl Shape {
             Shape::Ellipsoid(_) | Shape::Plane(_) => None,
             Shape::Quad(s) => Some(s.area()),
             Shape::Triangle(s) => Some(s.area()),
+            Shape::Disk(s) => Some(s.area()),
         }
     }
 
@@ -109,6 +116,7 @@ impl Shape {
                 let [a, b, c] = s.vertices();
                 Triangle::new(t.point(a), t.point(b), t.point(c), s.shading).map(Shape::Triangle)
             }
+            Shape::Disk(s) => s.transformed(t).map(Shape::Disk),
         }
     }
 }

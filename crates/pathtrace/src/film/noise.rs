@@ -1,0 +1,93 @@
+//! How much noise a film still holds, estimated from its own per-pixel variance.
+//!
+//! The estimate mirrors the relative MSE of `metrics::relative_mse`, (1/3N) Σ (a − b)² / (b² + 0.01),
+//! with the unknown converged image b replaced by the pixel mean and the squared error (a − b)²
+//! by its expectation, the variance of the mean s²/n:
+//!
+//! ```text
+//! relative MSE ≈ (1/3N) Σ_pixels Σ_channels (s²/n) / (mean² + 0.01)
+//! relative error = √(relative MSE)   (an RMS over pixels of stderr / √(mean² + 0.01))
+//! ```
+//!
+//! So an estimated relative error of 0.05 means the image is expected to be within about 5% RMS
+//! of the converged one, in the same units `pathtrace converge` measures against a reference.
+
+use super::{Film, PixelStats};
+
+/// The `0.01` of relative MSE: keeps black pixels from dominating (Rousselle et al. 2011).
+pub const RELATIVE_EPSILON: f64 = 0.01;
+
+/// A pixel's relative variance per sample, Σ_c s²_c / (mean_c² + 0.01): its contribution to the
+/// relative MSE is this divided by its sample count (and by 3N).
+pub fn relative_variance(p: &PixelStats) -> f64 {
+    let v = p.sample_variance();
+    (0..3).map(|c| v[c] / (p.mean[c] * p.mean[c] + RELATIVE_EPSILON)).sum()
+}
+
+impl Film {
+    /// The expected relative MSE of the current image against the converged one (see the module
+    /// docs). `None` before every pixel has two samples (no variance estimate yet).
+    pub fn relative_mse_estimate(&self) -> Option<f64> {
+        let mut sum = 0.0;
+        for p in self.pixels() {
+            if p.count < 2 {
+                return None;
+            }
+            sum += relative_variance(p) / p.count as f64;
+        }
+        Some(sum / (3 * self.pixels().len()).max(1) as f64)
+    }
+
+    /// √ of [`Film::relative_mse_estimate`]: the RMS relative error the image is expected to hold.
+    pub fn relative_rms_error_estimate(&self) -> Option<f64> {
+        self.relative_mse_estimate().map(f64::sqrt)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Rgb;
+
+    #[test]
+    fn matches_the_formula_on_a_hand_made_film() {
+        let mut film = Film::new(2, 1);
+        // Pixel 0: samples 1 and 3 (mean 2, s² = 2); pixel 1: constant 0.5 (s² = 0).
+        film.add_sample(0, 0, Rgb::splat(1.0));
+        assert_eq!(film.relative_mse_estimate(), None);
+        film.add_sample(0, 0, Rgb::splat(3.0));
+        film.add_sample(1, 0, Rgb::splat(0.5));
+        film.add_sample(1, 0, Rgb::splat(0.5));
+        let expected = 3.0 * (2.0 / 2.0) / (4.0 + 0.01) / 6.0;
+        assert!((film.relative_mse_estimate().unwrap() - expected).abs() < 1e-12);
+        assert!((film.relative_rms_error_estimate().unwrap() - expected.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn agrees_with_the_measured_error_of_noisy_pixels() {
+        // 400 pixels of true value 0.5, each the mean of 16 uniform samples in [0, 1]: the
+        // estimate and the actual relative MSE must agree to within a few percent.
+        let mut film = Film::new(20, 20);
+        let mut state = 12345u64;
+        let mut next = || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        for y in 0..20 {
+            for x in 0..20 {
+                for _ in 0..16 {
+                    film.add_sample(x, y, Rgb::new(next(), next(), next()));
+                }
+            }
+        }
+        let actual: f64 = film
+            .pixels()
+            .iter()
+            .flat_map(|p| p.mean.iter().map(|m| (m - 0.5) * (m - 0.5) / (0.25 + 0.01)))
+            .sum::<f64>()
+            / 1200.0;
+        let estimate = film.relative_mse_estimate().unwrap();
+        // Both are means of 1200 roughly independent terms: agreement within 10% is ~2.5σ.
+        assert!((estimate / actual - 1.0).abs() < 0.1, "estimate {estimate} vs actual {actual}");
+    }
+}

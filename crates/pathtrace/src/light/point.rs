@@ -1,0 +1,32 @@
+//! Point lights: all power from one point, `intensity` I in W·sr⁻¹ per channel, equal in every
+//! direction. Irradiance at distance r falls off as I·cos θ/r². A point has no area, so no ray
+//! can hit it: only next-event estimation (the `mis` strategy) sees point lights.
+
+use crate::math::{Rgb, Vec3, PI};
+
+/// An isotropic point light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLight {
+    pub position: Vec3,
+    /// Radiant intensity (W·sr⁻¹ per channel).
+    pub intensity: Rgb,
+}
+
+impl PointLight {
+    /// Total emitted power in luminance units: 4π·I.
+    pub fn power(&self) -> f32 {
+        4.0 * PI * self.intensity.luminance()
+    }
+
+    /// The unit direction and distance from `ref_p` to the light, and the radiance-like term
+    /// I/r² that the integrator treats as a Dirac delta in direction.
+    pub(super) fn sample(&self, ref_p: Vec3) -> Option<(Vec3, f32, Rgb)> {
+        let d = self.position - ref_p;
+        let dist2 = d.length_squared();
+        if !(dist2 > 0.0 && dist2.is_finite()) {
+            return None;
+        }
+        let dist = dist2.sqrt();
+        Some((d / dist, dist, self.intensity * (1.0 / dist2)))
+    }
+}
