@@ -17,6 +17,8 @@ pub enum MaterialType {
     Mirror,
     Glossy,
     Dielectric,
+    /// Mitsuba's name (`thin_dielectric`, spelled like the other two-word types, is accepted too).
+    #[serde(rename = "thindielectric", alias = "thin_dielectric")]
     ThinDielectric,
     Emissive,
     Conductor,
