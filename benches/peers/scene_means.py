@@ -1,22 +1,41 @@
-"""Mean pixel value per channel of the shared Mitsuba test scenes, rendered by Mitsuba 3.
+"""Mean pixel value per channel of Mitsuba 3 XML scenes, rendered by Mitsuba 3 (and by pathtrace).
 
-The reference numbers in crates/pathtrace-scene/tests/mitsuba_means.rs come from this script:
+Two uses, chosen by whether a scene file is named:
 
-    bash benches/peers/setup.sh
-    .venv-peers/bin/python benches/peers/scene_means.py --size 64 --spp 4096
+1. Reference means of the shared test scenes (no SCENE argument). The reference numbers in
+   crates/pathtrace-scene/tests/mitsuba_means.rs come from this mode:
 
-Each scene is loaded as written except for the film size (width and height are replaced in the
-XML text, so `$res` defaults and fixed sizes alike become SIZE × SIZE) and the sample count
-(`--spp`, through the sampler's `sample_count`). The scene's own integrator, depth, filter and
-emitters are kept. Nothing is written to the scenes' folders.
+       bash benches/peers/setup.sh
+       .venv-peers/bin/python benches/peers/scene_means.py --size 64 --spp 4096
+
+   Each scene is loaded as written except for the film size (width and height are replaced in the
+   XML text, so `$res` defaults and fixed sizes alike become SIZE × SIZE) and the sample count
+   (`--spp`, default 4096, through the sampler's `sample_count`). The scene's own integrator, depth,
+   filter and emitters are kept. `--only TEXT` renders only scenes whose path contains TEXT.
+
+2. Mitsuba against pathtrace on one scene (SCENE.xml given). Renders the same XML file with both
+   renderers at the same settings and prints the image means (R, G, B), their ratio
+   ours / Mitsuba, and a standard error of each mean estimated from independent renders with
+   different seeds (so "agrees within noise" can be judged):
+
+       .venv-peers/bin/python benches/peers/scene_means.py SCENE.xml --pathtrace target/release/pathtrace \
+           [--spp 256] [--runs 2] [-D name=value ...]
+
+   `-D name=value` sets a scene `<default>` for both (e.g. `-D resx=320 -D resy=180 -D integrator=path`).
+   Without `--pathtrace` only Mitsuba's mean is printed. `--spp` defaults to 256 here.
+
+Nothing of Mitsuba's is written to the repository or the scenes' folders: images of the second
+mode go to a temporary directory.
 """
 import argparse
+import json
 import os
 import re
+import shlex
+import subprocess
+import sys
+import tempfile
 import time
-
-import mitsuba as mi
-import numpy as np
 
 SCENES = [
     "cbox/cbox.xml",
@@ -26,16 +45,24 @@ SCENES = [
 ]
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--scenes", default=os.path.join(os.path.dirname(__file__), "../../../shared/scenes"))
-    ap.add_argument("--size", type=int, default=64)
-    ap.add_argument("--spp", type=int, default=4096)
-    ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--variant", default="scalar_rgb")
-    ap.add_argument("--only", default=None, help="render only scenes whose path contains this text")
-    a = ap.parse_args()
-    mi.set_variant(a.variant)
+def image_mean(np, img):
+    a = np.array(img, dtype=np.float64)[..., :3]
+    return a.reshape(-1, 3).mean(axis=0)
+
+
+def mean_and_se(np, means):
+    m = np.mean(means, axis=0)
+    se = np.std(means, axis=0, ddof=1) / np.sqrt(len(means)) if len(means) > 1 else np.full(3, np.nan)
+    return m, se
+
+
+def fmt(v):
+    return "(" + ", ".join(f"{x:.4f}" for x in v) + ")"
+
+
+def reference_means(a, mi, np):
+    """Mode 1: the shared test scenes at SIZE × SIZE."""
+    spp = a.spp or 4096
     for rel in SCENES:
         if a.only and a.only not in rel:
             continue
@@ -53,11 +80,80 @@ def main():
         finally:
             os.chdir(cwd)
         t0 = time.time()
-        img = mi.render(scene, spp=a.spp, seed=a.seed)
+        img = mi.render(scene, spp=spp, seed=a.seed)
         elapsed = time.time() - t0
-        means = np.array(img, dtype=np.float64)[:, :, :3].mean(axis=(0, 1))
-        print(f"{rel}: mean = [{means[0]:.5f}, {means[1]:.5f}, {means[2]:.5f}]  ({a.size}², {a.spp} spp, {elapsed:.1f} s)")
+        means = image_mean(np, img)
+        print(f"{rel}: mean = [{means[0]:.5f}, {means[1]:.5f}, {means[2]:.5f}]  ({a.size}², {spp} spp, {elapsed:.1f} s)")
+    return 0
+
+
+def compare(a, mi, np):
+    """Mode 2: one scene, Mitsuba against pathtrace, with standard errors from repeated runs."""
+    spp = a.spp or 256
+    defines = dict(d.split("=", 1) for d in a.defines)
+    scene = mi.load_file(a.scene, **defines)
+    theirs = []
+    for run in range(a.runs):
+        img = mi.render(scene, spp=spp, seed=run)
+        theirs.append(image_mean(np, img))
+    m, se = mean_and_se(np, theirs)
+    print(f"mitsuba  {a.variant}  {spp} spp x {a.runs}: mean {fmt(m)}  s.e. {fmt(se)}")
+
+    if not a.pathtrace:
+        return 0
+    ours = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for run in range(a.runs):
+            out = os.path.join(tmp, f"ours{run}.exr")
+            stats = os.path.join(tmp, f"stats{run}.json")
+            cmd = shlex.split(a.pathtrace) + ["render", a.scene, "--spp", str(spp), "--seed", str(run + 1),
+                                              "--threads", str(a.threads), "--quiet",
+                                              "--stats-json", stats, "-o", out]
+            for d in a.defines:
+                cmd += ["-D", d]
+            subprocess.run(cmd, check=True)
+            bmp = mi.Bitmap(out).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
+            ours.append(image_mean(np, bmp))
+            seconds = json.load(open(stats)).get("render_seconds")
+            print(f"pathtrace run {run}: {seconds:.1f} s")
+    o, ose = mean_and_se(np, ours)
+    print(f"pathtrace           {spp} spp x {a.runs}: mean {fmt(o)}  s.e. {fmt(ose)}")
+    ratio = o / m
+    z = (o - m) / np.sqrt(se ** 2 + ose ** 2)
+    print(f"ours / mitsuba: {fmt(ratio)}   z: {fmt(z)}")
+    return 0
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("scene", nargs="?", help="one XML scene to compare with pathtrace (mode 2); "
+                   "without it, the shared test scenes' reference means (mode 1)")
+    p.add_argument("--spp", type=int, default=None, help="samples per pixel (default 4096 in mode 1, 256 in mode 2)")
+    p.add_argument("--variant", default="scalar_rgb")
+    # Mode 1.
+    p.add_argument("--scenes", default=os.path.join(os.path.dirname(__file__), "../../../shared/scenes"))
+    p.add_argument("--size", type=int, default=64)
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--only", default=None, help="render only scenes whose path contains this text")
+    # Mode 2.
+    p.add_argument("--pathtrace", metavar="BIN", help="our binary (split like a shell command line)")
+    p.add_argument("--runs", type=int, default=2, help="renders per renderer (different seeds), for the s.e.")
+    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME=VALUE")
+    a = p.parse_args(argv)
+
+    import numpy as np
+    import mitsuba as mi
+
+    mi.set_variant(a.variant)
+    if a.scene is None:
+        return reference_means(a, mi, np)
+    import drjit as dr
+
+    mi.set_log_level(mi.LogLevel.Error)
+    dr.set_thread_count(a.threads)
+    return compare(a, mi, np)
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

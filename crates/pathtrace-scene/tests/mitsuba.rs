@@ -5,7 +5,7 @@ use pathtrace::film::{Film, RegionEstimate};
 use pathtrace::math::Vec3;
 use pathtrace::{render, RenderSettings, Scene};
 use pathtrace_scene::mitsuba::{convert_str, load_mitsuba, load_str};
-use pathtrace_scene::native::model::{FilterName, LightDef, MaterialKind, ShapeDef, TransformStep, Triple};
+use pathtrace_scene::native::model::{FilterName, LightDef, MaterialKind, MetalDef, ShapeDef, TransformStep, Triple};
 use pathtrace_scene::native::{Format, SceneFile};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -111,12 +111,12 @@ fn fov_axis_becomes_a_vertical_fov() {
 fn unsupported_plugins_warn_and_fall_back() {
     let xml = scene(&format!(
         r#"<emitter type="envmap"/><shape type="cylinder"/>
-        <shape type="sphere"><bsdf type="roughplastic"/></shape>{LIGHT}"#
+        <shape type="sphere"><bsdf type="blendbsdf"/></shape>{LIGHT}"#
     ));
     let (f, w) = conv(&xml, &[]);
     assert!(w.iter().any(|w| w.contains("envmap")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("cylinder")), "{w:?}");
-    assert!(w.iter().any(|w| w.contains("roughplastic") && w.starts_with("t.xml:")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("blendbsdf") && w.starts_with("t.xml:")), "{w:?}");
     assert_eq!(f.objects.len(), 2);
 }
 
@@ -362,7 +362,7 @@ fn public_scenes_load() {
         ("cornell-box-bitterli/scene_v3.xml", true),
         ("teapot-simple/simple.xml", true),
         ("cbox-classic/docs/scenes/integrator_depth_inf.xml", true),
-        ("veach-mis/docs/scenes/integrator_direct_both.xml", false),
+        ("veach-mis/docs/scenes/integrator_direct_both.xml", true),
         ("veach-mis-bitterli/scene_v3.xml", false),
     ];
     for (s, supported) in scenes {
@@ -376,6 +376,8 @@ fn public_scenes_load() {
                 assert!(!supported, "{s}: warnings:\n  {}", w.join("\n  "));
                 // Every warning names where and what was substituted.
                 assert!(w.iter().all(|w| w.contains(".xml:")), "{w:?}");
+                // Every BSDF these scenes use is supported.
+                assert!(!w.iter().any(|w| w.contains("bsdf `") || w.contains("conductor:")), "{s}: {w:?}");
                 eprintln!("{s}: loads with {} warning(s):\n  {}", w.len(), w.join("\n  "))
             }
             Err(e) => panic!("{s}: {e}"),
@@ -505,4 +507,49 @@ fn without_fov_a_50mm_lens_on_35mm_film_is_assumed() {
         "<sensor type=\"perspective\"><string name=\"focal_length\" value=\"abcmm\"/>",
     );
     assert!(err(&xml).contains("`abc` is not a number"));
+}
+
+#[test]
+fn metals_rough_glass_and_plastics_import_without_warnings() {
+    let xml = scene(&format!(
+        r#"<bsdf type="conductor" id="gold"><string name="material" value="Au"/></bsdf>
+        <bsdf type="twosided" id="brushed"><bsdf type="roughconductor">
+            <string name="distribution" value="ggx"/><float name="alpha_u" value="0.05"/>
+            <float name="alpha_v" value="0.3"/><boolean name="sample_visible" value="true"/>
+            <rgb name="eta" value="0.2, 0.9, 1.1"/><rgb name="k" value="3.9, 2.4, 2.1"/></bsdf></bsdf>
+        <bsdf type="roughdielectric" id="frosted"><string name="int_ior" value="water"/>
+            <float name="alpha" value="0.2"/></bsdf>
+        <bsdf type="roughplastic" id="shell"><rgb name="diffuse_reflectance" value="0.1, 0.2, 0.3"/>
+            <float name="int_ior" value="2"/><boolean name="nonlinear" value="true"/></bsdf>
+        <bsdf type="plastic" id="toy"/>
+        <shape type="sphere"><ref id="gold"/></shape><shape type="sphere"><ref id="brushed"/></shape>
+        <shape type="sphere"><ref id="frosted"/></shape><shape type="sphere"><ref id="shell"/></shape>
+        <shape type="sphere"><ref id="toy"/></shape>{LIGHT}"#
+    ));
+    let (f, w) = conv(&xml, &[]);
+    assert!(w.is_empty(), "{w:?}");
+    let kind = |name: &str| f.materials[name].kind;
+    let MaterialKind::Conductor { metal: MetalDef::Named(name), .. } = kind("gold") else {
+        panic!("{:?}", kind("gold"))
+    };
+    assert_eq!(name.0, "Au");
+    let MaterialKind::RoughConductor { metal: MetalDef::Custom { .. }, roughness, .. } = kind("brushed") else {
+        panic!("{:?}", kind("brushed"))
+    };
+    assert_eq!((roughness.alpha_u.get(), roughness.alpha_v.get()), (0.05, 0.3));
+    let MaterialKind::RoughDielectric { ior, roughness, .. } = kind("frosted") else { panic!("{:?}", kind("frosted")) };
+    // int_ior / ext_ior with Mitsuba's defaults: water in air; beckmann by default.
+    assert!((ior.get() - 1.333 / 1.000277).abs() < 1e-6, "{ior:?}");
+    assert_eq!(roughness.distribution, pathtrace::material::MicrofacetKind::Beckmann);
+    let MaterialKind::RoughPlastic { nonlinear: true, ior, .. } = kind("shell") else { panic!("{:?}", kind("shell")) };
+    assert!((ior.get() - 2.0 / 1.000277).abs() < 1e-6);
+    let MaterialKind::Plastic { ior, .. } = kind("toy") else { panic!("{:?}", kind("toy")) };
+    assert!((ior.get() - 1.49 / 1.000277).abs() < 1e-6);
+    // And the scene builds and renders.
+    assert!(load_str(&xml, Path::new("t.xml"), &[]).is_ok());
+    let bad = scene(&format!(
+        r#"<shape type="sphere"><bsdf type="conductor"><string name="material" value="gold"/></bsdf></shape>{LIGHT}"#
+    ));
+    let err = convert_str(&bad, Path::new("t.xml"), &[]).unwrap_err().to_string();
+    assert!(err.contains("unknown metal") && err.contains("t.xml:"), "{err}");
 }

@@ -47,10 +47,12 @@ pub enum PrimRef {
 }
 
 /// Everything the integrator needs to know about a hit point.
+/// The material is borrowed from the scene: some models carry tables, and copying them per hit
+/// would cost time in the path loop.
 #[derive(Clone, Copy, Debug)]
-pub struct Interaction {
+pub struct Interaction<'a> {
     pub surface: SurfacePoint,
-    pub material: Material,
+    pub material: &'a Material,
     pub light: u32,
 }
 
@@ -120,11 +122,11 @@ impl Scene {
 
     /// Surface details of a hit found with `ray`.
     #[inline(always)]
-    pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
+    pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction<'_> {
         let prim = self.primitive(hit.prim);
         Interaction {
             surface: prim.shape.surface(ray, &hit.hit, &self.vertex_normals),
-            material: self.materials[prim.material as usize],
+            material: &self.materials[prim.material as usize],
             light: prim.light,
         }
     }
@@ -406,6 +408,30 @@ pub fn validate_material(m: &Material) -> Result<(), BuildError> {
         }
         Material::Dielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
             err(format!("dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
+        }
+        Material::Conductor(c) if !colour_ok(c.eta) || !colour_ok(c.k) || !colour_ok(c.reflectance) => {
+            err("conductor eta, k and reflectance must be ≥ 0".into())
+        }
+        Material::RoughConductor(c) if !colour_ok(c.eta) || !colour_ok(c.k) || !colour_ok(c.reflectance) => {
+            err("rough_conductor eta, k and reflectance must be ≥ 0".into())
+        }
+        Material::RoughConductor(c) if c.reflectance.max_component() > 1.0 => {
+            err(format!("rough_conductor reflectance {:?} must be in [0, 1]", c.reflectance.to_array()))
+        }
+        Material::Conductor(c) if c.reflectance.max_component() > 1.0 => {
+            err(format!("conductor reflectance {:?} must be in [0, 1]", c.reflectance.to_array()))
+        }
+        Material::RoughDielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => {
+            err(format!("rough_dielectric ior {} must be positive", d.ior))
+        }
+        Material::RoughDielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
+            err(format!("rough_dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
+        }
+        Material::Plastic(p) if !(p.ior > 0.0 && p.ior.is_finite()) => {
+            err(format!("plastic ior {} must be positive", p.ior))
+        }
+        Material::RoughPlastic(p) if !(p.ior > 0.0 && p.ior.is_finite()) => {
+            err(format!("rough_plastic ior {} must be positive", p.ior))
         }
         Material::ThinDielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => {
             err(format!("thindielectric ior {} must be positive", d.ior))

@@ -13,6 +13,8 @@ use pathtrace::sampling::SamplerKind;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+mod bsdf;
+
 type R<T> = Result<T, SceneError>;
 
 /// Where each item of the converted model came from: (item, byte offset in the XML), so errors
@@ -126,34 +128,9 @@ fn n3(v: Vec3) -> Num3 {
     [num(v.x as f64), num(v.y as f64), num(v.z as f64)]
 }
 
-/// The IOR table Mitsuba accepts by name (a subset).
+/// An IOR by Mitsuba's name (the engine's table holds Mitsuba's values).
 fn named_ior(name: &str) -> Option<f64> {
-    Some(match name.to_ascii_lowercase().as_str() {
-        "vacuum" => 1.0,
-        "helium" => 1.00004,
-        "hydrogen" => 1.00013,
-        "air" => 1.000277,
-        "carbon dioxide" => 1.00045,
-        "water" => 1.333,
-        "acetone" => 1.36,
-        "ethanol" => 1.361,
-        "carbon tetrachloride" => 1.461,
-        "glycerol" => 1.4729,
-        "benzene" => 1.501,
-        "silicone oil" => 1.52045,
-        "bromine" => 1.661,
-        "water ice" => 1.31,
-        "fused quartz" => 1.458,
-        "pyrex" => 1.470,
-        "acrylic glass" => 1.49,
-        "polypropylene" => 1.49,
-        "bk7" => 1.5046,
-        "sodium chloride" => 1.544,
-        "amber" => 1.55,
-        "pet" => 1.575,
-        "diamond" => 2.419,
-        _ => return None,
-    })
+    pathtrace::material::named_ior(name).map(f64::from)
 }
 
 /// Splits a list of numbers separated by commas and/or whitespace.
@@ -591,14 +568,6 @@ impl<'a> Conv<'a, '_> {
                     None => MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) },
                 }
             }
-            "conductor" => {
-                let material = self.string(e, "material")?.unwrap_or("none");
-                if material != "none" || self.prop(e, "eta").is_some() || self.prop(e, "k").is_some() {
-                    self.warn(e, "conductor: the Fresnel tint is approximated by a perfect mirror");
-                }
-                let reflectance = self.color(e, "specular_reflectance")?.unwrap_or(Triple::Splat(num(1.0)));
-                MaterialKind::Mirror { reflectance }
-            }
             "dielectric" => {
                 let int = self.ior(e, "int_ior", 1.5046)?;
                 let ext = self.ior(e, "ext_ior", 1.000277)?;
@@ -611,10 +580,13 @@ impl<'a> Conv<'a, '_> {
                 let tint = self.color(e, "specular_transmittance")?.unwrap_or(Triple::Splat(num(1.0)));
                 MaterialKind::ThinDielectric { ior: num(int / ext), tint }
             }
-            other => {
-                self.warn(e, &format!("bsdf `{other}` is not supported: using a grey (0.5) lambertian"));
-                grey
-            }
+            other => match self.microfacet_bsdf(e, other)? {
+                Some(kind) => kind,
+                None => {
+                    self.warn(e, &format!("bsdf `{other}` is not supported: using a grey (0.5) lambertian"));
+                    grey
+                }
+            },
         })
     }
 

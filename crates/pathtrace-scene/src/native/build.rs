@@ -5,16 +5,19 @@
 use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
 use super::model::{
-    CameraSection, FilterDef, FilterName, GroupDef, LightDef, MaterialDef, MaterialKind, ObjectDef, RenderSection,
-    SceneFile, ShapeDef,
+    CameraSection, FilterDef, FilterName, GroupDef, LightDef, MaterialDef, MaterialKind, MetalDef, ObjectDef,
+    RenderSection, RoughnessDef, SceneFile, ShapeDef,
 };
 use super::transform::compose;
 use super::values::vec3;
 use crate::{LoadedScene, RenderDefaults};
 use pathtrace::film::{GaussianFilter, PixelFilter};
 use pathtrace::light::{Emission, EnvironmentLight, PointLight};
-use pathtrace::material::{Dielectric, Diffuse, Glossy, Lambertian, Material, Mirror, ThinDielectric};
-use pathtrace::math::{Transform, Vec3};
+use pathtrace::material::{
+    metal, Conductor, Dielectric, Diffuse, Glossy, Lambertian, Material, Microfacet, Mirror, Plastic, RoughConductor,
+    RoughDielectric, RoughPlastic, ThinDielectric,
+};
+use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::scene::{validate_material, BuildError};
 use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
 use pathtrace::{Camera, CameraDesc, MaterialId, SceneBuilder};
@@ -109,6 +112,34 @@ fn render_defaults(r: &RenderSection, c: &CameraSection, src: &impl Locate) -> R
     })
 }
 
+/// The RGB (η, k) of a conductor definition.
+fn metal_optics(m: MetalDef) -> (Rgb, Rgb) {
+    match m {
+        // Names were checked against the same table when the file was read.
+        MetalDef::Named(name) => {
+            let (eta, k) = metal(name.0).unwrap_or(([0.0; 3], [1.0; 3]));
+            (Rgb::from_array(eta), Rgb::from_array(k))
+        }
+        MetalDef::Custom { eta, k } => (eta.rgb(), k.rgb()),
+    }
+}
+
+fn microfacet(r: RoughnessDef) -> Microfacet {
+    Microfacet::new(r.distribution, r.alpha_u.f32(), r.alpha_v.f32())
+}
+
+/// Plastics precompute tables from their parameters: check those first.
+fn check_coating(albedo: Rgb, specular: Rgb, ior: f32) -> Result<(), String> {
+    let unit = |c: Rgb| c.is_finite() && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0 && c.max_component() <= 1.0;
+    if !unit(albedo) || !unit(specular) {
+        return Err("plastic `albedo` and `specular` must be in [0, 1]".into());
+    }
+    if !(ior > 0.0 && ior.is_finite()) {
+        return Err(format!("plastic ior {ior} must be positive"));
+    }
+    Ok(())
+}
+
 /// The engine's filter for a `filter` table, with Mitsuba's defaults for missing parameters.
 pub fn pixel_filter(f: &FilterDef) -> Result<PixelFilter, String> {
     match (f.kind, f.radius, f.stddev) {
@@ -148,6 +179,37 @@ impl<L: Locate> Ctx<'_, L> {
                 Material::ThinDielectric(ThinDielectric { ior: ior.f32(), tint: tint.rgb() })
             }
             MaterialKind::Emissive => Material::Black,
+            MaterialKind::Conductor { metal, reflectance } => {
+                let (eta, k) = metal_optics(metal);
+                Material::Conductor(Conductor { eta, k, reflectance: reflectance.rgb() })
+            }
+            MaterialKind::RoughConductor { metal, reflectance, roughness } => {
+                let (eta, k) = metal_optics(metal);
+                let distribution = microfacet(roughness);
+                Material::RoughConductor(RoughConductor { distribution, eta, k, reflectance: reflectance.rgb() })
+            }
+            MaterialKind::RoughDielectric { ior, tint, roughness } => Material::RoughDielectric(RoughDielectric {
+                distribution: microfacet(roughness),
+                ior: ior.f32(),
+                tint: tint.rgb(),
+            }),
+            MaterialKind::Plastic { albedo, specular, ior, nonlinear } => {
+                check_coating(albedo.rgb(), specular.rgb(), ior.f32())
+                    .map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
+                Material::Plastic(Plastic::new(albedo.rgb(), specular.rgb(), ior.f32(), nonlinear))
+            }
+            MaterialKind::RoughPlastic { albedo, specular, ior, nonlinear, roughness } => {
+                check_coating(albedo.rgb(), specular.rgb(), ior.f32())
+                    .map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
+                let distribution = microfacet(roughness);
+                Material::RoughPlastic(RoughPlastic::new(
+                    distribution,
+                    albedo.rgb(),
+                    specular.rgb(),
+                    ior.f32(),
+                    nonlinear,
+                ))
+            }
         };
         validate_material(&m).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
         Ok(match def.emission {

@@ -3,20 +3,29 @@
 //! Files are read into a flat [`RawMaterial`] (every field optional, unknown fields rejected, so a
 //! wrongly typed value is reported at its own position), then checked into a [`MaterialDef`].
 
+use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
 use super::values::{Num, Triple};
+use pathtrace::material::MicrofacetKind;
 use serde::{Deserialize, Serialize};
 
 /// The surface models, as named by `type`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 pub enum MaterialType {
     Diffuse,
     Lambertian,
     Mirror,
     Glossy,
     Dielectric,
+    /// Mitsuba's name (`thin_dielectric`, spelled like the other two-word types, is accepted too).
+    #[serde(rename = "thindielectric", alias = "thin_dielectric")]
     ThinDielectric,
     Emissive,
+    Conductor,
+    RoughConductor,
+    RoughDielectric,
+    Plastic,
+    RoughPlastic,
 }
 
 /// A material's scattering model and parameters.
@@ -36,6 +45,17 @@ pub enum MaterialKind {
     ThinDielectric { ior: Num, tint: Triple },
     /// A black surface that emits `radiance` (set on the [`MaterialDef`]'s emission).
     Emissive,
+    /// Smooth metal: Fresnel reflection with a complex index (named `metal` or `eta` + `k`),
+    /// times `reflectance` (default 1).
+    Conductor { metal: MetalDef, reflectance: Triple },
+    /// Rough metal (microfacets).
+    RoughConductor { metal: MetalDef, reflectance: Triple, roughness: RoughnessDef },
+    /// Rough glass (microfacets); `ior` defaults to 1.5, `tint` to 1.
+    RoughDielectric { ior: Num, tint: Triple, roughness: RoughnessDef },
+    /// Diffuse base under a smooth coating (Mitsuba's `plastic`).
+    Plastic { albedo: Triple, specular: Triple, ior: Num, nonlinear: bool },
+    /// Diffuse base under a rough coating (Mitsuba's `roughplastic`; isotropic roughness).
+    RoughPlastic { albedo: Triple, specular: Triple, ior: Num, nonlinear: bool, roughness: RoughnessDef },
 }
 
 /// Light given off by a surface.
@@ -70,7 +90,7 @@ pub struct RawMaterial {
     #[serde(skip_serializing_if = "Option::is_none")]
     exponent: Option<Num>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    ior: Option<Num>,
+    ior: Option<Ior>,
     #[serde(skip_serializing_if = "Option::is_none")]
     tint: Option<Triple>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -79,6 +99,24 @@ pub struct RawMaterial {
     emission: Option<Triple>,
     #[serde(skip_serializing_if = "Option::is_none")]
     two_sided: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    metal: Option<MetalName>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    eta: Option<Triple>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    k: Option<Triple>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    specular: Option<Triple>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    nonlinear: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    distribution: Option<DistributionName>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    alpha: Option<Num>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    alpha_u: Option<Num>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    alpha_v: Option<Num>,
 }
 
 /// The fields each type accepts besides `type`, `emission` and `two_sided`.
@@ -89,6 +127,13 @@ fn allowed(t: MaterialType) -> &'static [&'static str] {
         MaterialType::Glossy => &["albedo", "exponent"],
         MaterialType::Dielectric | MaterialType::ThinDielectric => &["ior", "tint"],
         MaterialType::Emissive => &["radiance"],
+        MaterialType::Conductor => &["metal", "eta", "k", "reflectance"],
+        MaterialType::RoughConductor => {
+            &["metal", "eta", "k", "reflectance", "distribution", "alpha", "alpha_u", "alpha_v"]
+        }
+        MaterialType::RoughDielectric => &["ior", "tint", "distribution", "alpha", "alpha_u", "alpha_v"],
+        MaterialType::Plastic => &["albedo", "specular", "ior", "nonlinear"],
+        MaterialType::RoughPlastic => &["albedo", "specular", "ior", "nonlinear", "distribution", "alpha"],
     }
 }
 
@@ -101,8 +146,56 @@ impl RawMaterial {
             ("ior", self.ior.is_some()),
             ("tint", self.tint.is_some()),
             ("radiance", self.radiance.is_some()),
+            ("metal", self.metal.is_some()),
+            ("eta", self.eta.is_some()),
+            ("k", self.k.is_some()),
+            ("specular", self.specular.is_some()),
+            ("nonlinear", self.nonlinear.is_some()),
+            ("distribution", self.distribution.is_some()),
+            ("alpha", self.alpha.is_some()),
+            ("alpha_u", self.alpha_u.is_some()),
+            ("alpha_v", self.alpha_v.is_some()),
         ];
         fields.iter().filter(|f| f.1).map(|f| f.0).collect()
+    }
+
+    /// `metal = "Au"`, or `eta` and `k` together; neither means `none` (a perfect mirror), as
+    /// Mitsuba's default.
+    fn metal_def(&self) -> Result<MetalDef, String> {
+        match (self.metal, self.eta, self.k) {
+            (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
+                Err("give either `metal` or `eta` and `k`, not both".into())
+            }
+            (Some(name), None, None) => Ok(MetalDef::Named(name)),
+            (None, Some(eta), Some(k)) => {
+                let ok = |t: Triple| t.vec3().min_element() >= 0.0;
+                if !ok(eta) || !ok(k) {
+                    return Err("`eta` and `k` must be ≥ 0".into());
+                }
+                Ok(MetalDef::Custom { eta, k })
+            }
+            (None, Some(_), None) | (None, None, Some(_)) => Err("`eta` and `k` go together".into()),
+            (None, None, None) => Ok(MetalDef::Named(MetalName("none"))),
+        }
+    }
+
+    /// `distribution` (default beckmann, as Mitsuba) and `alpha` (default 0.1), or `alpha_u`
+    /// and `alpha_v` for anisotropic roughness.
+    fn roughness(&self) -> Result<RoughnessDef, String> {
+        let distribution = self.distribution.map_or(MicrofacetKind::Beckmann, |d| d.0);
+        let (alpha_u, alpha_v) = match (self.alpha, self.alpha_u, self.alpha_v) {
+            (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
+                return Err("give either `alpha` or `alpha_u` and `alpha_v`, not both".into())
+            }
+            (Some(a), None, None) => (a, a),
+            (None, Some(u), Some(v)) => (u, v),
+            (None, Some(_), None) | (None, None, Some(_)) => return Err("`alpha_u` and `alpha_v` go together".into()),
+            (None, None, None) => (Num::from(0.1), Num::from(0.1)),
+        };
+        if alpha_u.get() < 0.0 || alpha_v.get() < 0.0 {
+            return Err("roughness `alpha` must be ≥ 0".into());
+        }
+        Ok(RoughnessDef { distribution, alpha_u, alpha_v })
     }
 }
 
@@ -115,7 +208,8 @@ impl TryFrom<RawMaterial> for MaterialDef {
 
     fn try_from(r: RawMaterial) -> Result<Self, String> {
         let t = r.kind.ok_or(
-            "a material needs a `type` (diffuse, lambertian, mirror, glossy, dielectric, thindielectric, emissive)",
+            "a material needs a `type` (diffuse, lambertian, mirror, glossy, dielectric, thindielectric, emissive, \
+             conductor, rough_conductor, rough_dielectric, plastic, rough_plastic)",
         )?;
         let name = serde_json::to_value(t).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
         if let Some(extra) = r.present().into_iter().find(|f| !allowed(t).contains(f)) {
@@ -132,12 +226,39 @@ impl TryFrom<RawMaterial> for MaterialDef {
                 exponent: required(r.exponent, &name, "exponent")?,
             },
             MaterialType::Dielectric => {
-                MaterialKind::Dielectric { ior: r.ior.unwrap_or(Num::from(1.5)), tint: r.tint.unwrap_or(one) }
+                MaterialKind::Dielectric { ior: r.ior.map_or(Num::from(1.5), |i| i.0), tint: r.tint.unwrap_or(one) }
             }
             MaterialType::ThinDielectric => {
-                MaterialKind::ThinDielectric { ior: r.ior.unwrap_or(Num::from(1.5)), tint: r.tint.unwrap_or(one) }
+                MaterialKind::ThinDielectric { ior: r.ior.map_or(Num::from(1.5), |i| i.0), tint: r.tint.unwrap_or(one) }
             }
             MaterialType::Emissive => MaterialKind::Emissive,
+            MaterialType::Conductor => {
+                MaterialKind::Conductor { metal: r.metal_def()?, reflectance: r.reflectance.unwrap_or(one) }
+            }
+            MaterialType::RoughConductor => MaterialKind::RoughConductor {
+                metal: r.metal_def()?,
+                reflectance: r.reflectance.unwrap_or(one),
+                roughness: r.roughness()?,
+            },
+            MaterialType::RoughDielectric => MaterialKind::RoughDielectric {
+                ior: r.ior.map_or(Num::from(1.5), |i| i.0),
+                tint: r.tint.unwrap_or(one),
+                roughness: r.roughness()?,
+            },
+            // Plastics default to Mitsuba's: albedo 0.5, polypropylene (1.49), linear.
+            MaterialType::Plastic => MaterialKind::Plastic {
+                albedo: r.albedo.unwrap_or(Triple::Splat(Num::from(0.5))),
+                specular: r.specular.unwrap_or(one),
+                ior: r.ior.map_or(Num::from(1.49), |i| i.0),
+                nonlinear: r.nonlinear.unwrap_or(false),
+            },
+            MaterialType::RoughPlastic => MaterialKind::RoughPlastic {
+                albedo: r.albedo.unwrap_or(Triple::Splat(Num::from(0.5))),
+                specular: r.specular.unwrap_or(one),
+                ior: r.ior.map_or(Num::from(1.49), |i| i.0),
+                nonlinear: r.nonlinear.unwrap_or(false),
+                roughness: r.roughness()?,
+            },
         };
         let radiance = match t {
             MaterialType::Emissive => {
@@ -170,12 +291,36 @@ impl From<MaterialDef> for RawMaterial {
                 (r.kind, r.albedo, r.exponent) = (Some(MaterialType::Glossy), Some(albedo), Some(exponent))
             }
             MaterialKind::Dielectric { ior, tint } => {
-                (r.kind, r.ior, r.tint) = (Some(MaterialType::Dielectric), Some(ior), Some(tint))
+                (r.kind, r.ior, r.tint) = (Some(MaterialType::Dielectric), Some(Ior(ior)), Some(tint))
             }
             MaterialKind::ThinDielectric { ior, tint } => {
-                (r.kind, r.ior, r.tint) = (Some(MaterialType::ThinDielectric), Some(ior), Some(tint))
+                (r.kind, r.ior, r.tint) = (Some(MaterialType::ThinDielectric), Some(Ior(ior)), Some(tint))
             }
             MaterialKind::Emissive => r.kind = Some(MaterialType::Emissive),
+            MaterialKind::Conductor { metal, reflectance } => {
+                (r.kind, r.reflectance) = (Some(MaterialType::Conductor), Some(reflectance));
+                r.set_metal(metal);
+            }
+            MaterialKind::RoughConductor { metal, reflectance, roughness } => {
+                (r.kind, r.reflectance) = (Some(MaterialType::RoughConductor), Some(reflectance));
+                r.set_metal(metal);
+                r.set_roughness(roughness);
+            }
+            MaterialKind::RoughDielectric { ior, tint, roughness } => {
+                (r.kind, r.ior, r.tint) = (Some(MaterialType::RoughDielectric), Some(Ior(ior)), Some(tint));
+                r.set_roughness(roughness);
+            }
+            MaterialKind::Plastic { albedo, specular, ior, nonlinear } => {
+                r.kind = Some(MaterialType::Plastic);
+                (r.albedo, r.specular, r.ior, r.nonlinear) =
+                    (Some(albedo), Some(specular), Some(Ior(ior)), Some(nonlinear));
+            }
+            MaterialKind::RoughPlastic { albedo, specular, ior, nonlinear, roughness } => {
+                r.kind = Some(MaterialType::RoughPlastic);
+                (r.albedo, r.specular, r.ior, r.nonlinear) =
+                    (Some(albedo), Some(specular), Some(Ior(ior)), Some(nonlinear));
+                r.set_roughness(roughness);
+            }
         }
         if let Some(e) = m.emission {
             if m.kind == MaterialKind::Emissive {
@@ -186,6 +331,24 @@ impl From<MaterialDef> for RawMaterial {
             r.two_sided = e.two_sided.then_some(true);
         }
         r
+    }
+}
+
+impl RawMaterial {
+    fn set_metal(&mut self, m: MetalDef) {
+        match m {
+            MetalDef::Named(name) => self.metal = Some(name),
+            MetalDef::Custom { eta, k } => (self.eta, self.k) = (Some(eta), Some(k)),
+        }
+    }
+
+    fn set_roughness(&mut self, r: RoughnessDef) {
+        self.distribution = Some(DistributionName(r.distribution));
+        if r.alpha_u == r.alpha_v {
+            self.alpha = Some(r.alpha_u);
+        } else {
+            (self.alpha_u, self.alpha_v) = (Some(r.alpha_u), Some(r.alpha_v));
+        }
     }
 }
 
@@ -210,8 +373,35 @@ mod tests {
         assert!(parse("type = \"mirror\"\nalbedo = 1").unwrap_err().contains("`albedo` is not a parameter"));
         assert!(parse("type = \"lambertian\"").unwrap_err().contains("needs `albedo`"));
         assert!(parse("type = \"lambertian\"\nalbedo = 1\ntwo_sided = true").unwrap_err().contains("two_sided"));
-        assert!(parse("type = \"plastic\"").unwrap_err().contains("unknown variant"));
+        assert!(parse("type = \"velvet\"").unwrap_err().contains("unknown variant"));
+        assert!(parse("type = \"rough_plastic\"\nalpha_u = 0.1\nalpha_v = 0.2")
+            .unwrap_err()
+            .contains("not a parameter"));
+        assert!(parse("type = \"rough_conductor\"\nalpha = 0.1\nalpha_u = 0.2").unwrap_err().contains("not both"));
+        assert!(parse("type = \"conductor\"\neta = 0.2").unwrap_err().contains("go together"));
+        assert!(parse("type = \"conductor\"\nmetal = \"gold\"").unwrap_err().contains("unknown metal"));
+        assert!(parse("type = \"plastic\"\nior = \"jelly\"").unwrap_err().contains("unknown index"));
         assert!(parse("type = \"mirror\"\ncolour = 1").unwrap_err().contains("unknown field"));
+    }
+
+    #[test]
+    fn microfacet_materials_take_defaults_and_round_trip() {
+        let gold = parse("type = \"rough_conductor\"\nmetal = \"Au\"\ndistribution = \"ggx\"\nalpha = 0.2").unwrap();
+        let MaterialKind::RoughConductor { metal, roughness, .. } = gold.kind else { panic!("{gold:?}") };
+        assert_eq!(metal, MetalDef::Named(MetalName("Au")));
+        assert_eq!((roughness.distribution, roughness.alpha_u.get()), (MicrofacetKind::Ggx, 0.2));
+        let plastic = parse("type = \"plastic\"\nior = \"water\"").unwrap();
+        let MaterialKind::Plastic { ior, albedo, nonlinear, .. } = plastic.kind else { panic!("{plastic:?}") };
+        assert!((ior.get() - 1.333).abs() < 1e-6 && albedo == Triple::Splat(Num::from(0.5)) && !nonlinear);
+        for text in [
+            "type = \"rough_dielectric\"\nalpha_u = 0.1\nalpha_v = 0.3",
+            "type = \"conductor\"\neta = [0.2, 0.4, 1.4]\nk = 3",
+            "type = \"rough_plastic\"\nalbedo = [0.1, 0.2, 0.3]\nnonlinear = true\ndistribution = \"ggx\"",
+        ] {
+            let m = parse(text).unwrap();
+            let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
+            assert_eq!(m, back, "{text}");
+        }
     }
 
     #[test]

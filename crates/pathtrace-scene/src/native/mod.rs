@@ -28,6 +28,7 @@ mod locate;
 mod material;
 pub mod model;
 mod object;
+mod optics;
 mod parse;
 mod transform;
 mod values;

@@ -4,6 +4,7 @@
 
 pub use super::material::{EmissionDef, MaterialDef, MaterialKind, MaterialType};
 pub use super::object::{GroupDef, ObjectDef, ShapeDef, ShapeType};
+pub use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
 pub use super::transform::{LookAtDef, TransformStep};
 pub use super::values::{FilterName, Num, Num3, SamplerName, StrategyName, Triple};
 use serde::{Deserialize, Serialize};

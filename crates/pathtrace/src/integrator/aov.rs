@@ -66,7 +66,7 @@ fn first_hit(scene: &Scene, cam: &Camera, x: u32, y: u32) -> Option<HitSample> {
         n = -n;
     }
     let frame = Frame::from_normal(n);
-    let albedo = directional_albedo(&it.material, frame.to_local(wo_world));
+    let albedo = directional_albedo(it.material, frame.to_local(wo_world));
     Some(HitSample { albedo, normal: n, depth: hit.hit.t })
 }
 

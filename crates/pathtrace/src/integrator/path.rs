@@ -165,10 +165,12 @@ pub fn radiance(
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();
         let next = match strategy {
-            Strategy::Light if can_follow_lights => {
-                sample_towards_lights(scene, &material, &frame, p, wo, u_lobe, u_dir)
+            // A Dirac lobe (plastic's coating) cannot be reached by light sampling alone: such
+            // materials are sampled by the material under the `light` strategy.
+            Strategy::Light if can_follow_lights && !material.has_delta_lobe() => {
+                sample_towards_lights(scene, material, &frame, p, wo, u_lobe, u_dir)
             }
-            Strategy::Mixture if can_follow_lights => sample_mixture(scene, &material, &frame, p, wo, u_lobe, u_dir),
+            Strategy::Mixture if can_follow_lights => sample_mixture(scene, material, &frame, p, wo, u_lobe, u_dir),
             _ => material.sample(wo, u_lobe, u_dir).map(|s| Scatter {
                 wi_world: frame.to_world(s.wi),
                 weight: s.weight,
@@ -253,6 +255,12 @@ fn sample_mixture(
         scene.lights.sample_continuous(p, u_choice * 2.0, u)?.wi
     } else {
         let s = material.sample(wo, u_choice * 2.0 - 1.0, u)?;
+        if s.delta {
+            // Only the material's half of the mixture produces a Dirac lobe's direction: its
+            // probability is 0.5·p_lobe, so the weight is f/(0.5·p_lobe) = 2·(f/p_lobe).
+            let wi_world = frame.to_world(s.wi);
+            return Some(Scatter { wi_world, weight: s.weight * 2.0, pdf: s.pdf, specular: true, eta: s.eta });
+        }
         frame.to_world(s.wi)
     };
     let wi = frame.to_local(wi_world);

@@ -7,18 +7,36 @@
 //! dielectric sees both sides (z > 0 is outside, where the geometric normal points); the thin
 //! dielectric is symmetric, so it is two-sided too.
 
+mod conductor;
 mod dielectric;
 mod diffuse;
+mod fresnel;
 mod glossy;
+mod ior;
 mod lambertian;
+mod metals;
+pub mod microfacet;
 mod mirror;
+mod plastic;
+mod rough_conductor;
+mod rough_dielectric;
+mod rough_plastic;
 mod thin_dielectric;
 
+pub use conductor::Conductor;
 pub use dielectric::{fresnel_dielectric, Dielectric};
 pub use diffuse::Diffuse;
+pub use fresnel::{fresnel_conductor, fresnel_conductor_rgb};
 pub use glossy::Glossy;
+pub use ior::{ior_names, named_ior};
 pub use lambertian::Lambertian;
+pub use metals::{metal, metal_names};
+pub use microfacet::{Microfacet, MicrofacetKind};
 pub use mirror::Mirror;
+pub use plastic::Plastic;
+pub use rough_conductor::RoughConductor;
+pub use rough_dielectric::RoughDielectric;
+pub use rough_plastic::RoughPlastic;
 pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Rgb, Vec2, Vec3};
@@ -39,6 +57,12 @@ pub struct BsdfSample {
 }
 
 /// Every surface model.
+///
+/// `RoughPlastic` carries its 64-entry transmittance table inline, so the enum is large; it
+/// lives in the scene's material table and the path loop borrows it (`Interaction::material` is
+/// a reference), so its size costs nothing per hit, while boxing would cost `Copy` and an
+/// indirection.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Material {
     /// Black: absorbs everything (the surface of a pure emitter).
@@ -48,6 +72,11 @@ pub enum Material {
     Mirror(Mirror),
     Glossy(Glossy),
     Dielectric(Dielectric),
+    Conductor(Conductor),
+    RoughConductor(RoughConductor),
+    RoughDielectric(RoughDielectric),
+    Plastic(Plastic),
+    RoughPlastic(RoughPlastic),
     ThinDielectric(ThinDielectric),
 }
 
@@ -62,6 +91,11 @@ impl Material {
             Material::Mirror(m) => m.sample(wo),
             Material::Glossy(m) => m.sample(wo, u),
             Material::Dielectric(m) => m.sample(wo, u_lobe),
+            Material::Conductor(m) => m.sample(wo),
+            Material::RoughConductor(m) => m.sample(wo, u),
+            Material::RoughDielectric(m) => m.sample(wo, u_lobe, u),
+            Material::Plastic(m) => m.sample(wo, u_lobe, u),
+            Material::RoughPlastic(m) => m.sample(wo, u_lobe, u),
             Material::ThinDielectric(m) => m.sample(wo, u_lobe),
         }
     }
@@ -73,7 +107,15 @@ impl Material {
             Material::Diffuse(m) => m.eval(wo, wi),
             Material::Lambertian(m) => m.eval(wo, wi),
             Material::Glossy(m) => m.eval(wo, wi),
-            Material::Black | Material::Mirror(_) | Material::Dielectric(_) | Material::ThinDielectric(_) => Rgb::BLACK,
+            Material::RoughConductor(m) => m.eval(wo, wi),
+            Material::RoughDielectric(m) => m.eval(wo, wi),
+            Material::Plastic(m) => m.eval(wo, wi),
+            Material::RoughPlastic(m) => m.eval(wo, wi),
+            Material::Black
+            | Material::Mirror(_)
+            | Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::ThinDielectric(_) => Rgb::BLACK,
         }
     }
 
@@ -84,18 +126,35 @@ impl Material {
             Material::Diffuse(m) => m.pdf(wo, wi),
             Material::Lambertian(m) => m.pdf(wo, wi),
             Material::Glossy(m) => m.pdf(wo, wi),
-            Material::Black | Material::Mirror(_) | Material::Dielectric(_) | Material::ThinDielectric(_) => 0.0,
+            Material::RoughConductor(m) => m.pdf(wo, wi),
+            Material::RoughDielectric(m) => m.pdf(wo, wi),
+            Material::Plastic(m) => m.pdf(wo, wi),
+            Material::RoughPlastic(m) => m.pdf(wo, wi),
+            Material::Black
+            | Material::Mirror(_)
+            | Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::ThinDielectric(_) => 0.0,
         }
     }
 
     /// True if the model only scatters into discrete directions, so light sampling is skipped.
     pub fn is_delta(&self) -> bool {
-        matches!(self, Material::Mirror(_) | Material::Dielectric(_) | Material::ThinDielectric(_))
+        matches!(
+            self,
+            Material::Mirror(_) | Material::Dielectric(_) | Material::Conductor(_) | Material::ThinDielectric(_)
+        )
+    }
+
+    /// True if some but not all of the model's scattering is a Dirac lobe (`plastic`'s coating):
+    /// light sampling covers the rest, and sampling towards lights alone would miss that lobe.
+    pub fn has_delta_lobe(&self) -> bool {
+        matches!(self, Material::Plastic(_))
     }
 
     /// True if the model treats both sides of a surface alike.
     pub fn is_two_sided(&self) -> bool {
-        !matches!(self, Material::Dielectric(_))
+        !matches!(self, Material::Dielectric(_) | Material::RoughDielectric(_))
     }
 
     /// True if the model scatters no light at all.
@@ -112,6 +171,11 @@ impl Material {
             Material::Mirror(_) => "mirror",
             Material::Glossy(_) => "glossy",
             Material::Dielectric(_) => "dielectric",
+            Material::Conductor(_) => "conductor",
+            Material::RoughConductor(_) => "rough_conductor",
+            Material::RoughDielectric(_) => "rough_dielectric",
+            Material::Plastic(_) => "plastic",
+            Material::RoughPlastic(_) => "rough_plastic",
             Material::ThinDielectric(_) => "thindielectric",
         }
     }

@@ -4,6 +4,7 @@ mod aabb;
 mod frame;
 mod ray;
 mod rgb;
+pub mod special;
 mod transform;
 
 pub use aabb::Aabb;
