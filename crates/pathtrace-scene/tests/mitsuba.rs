@@ -506,3 +506,23 @@ fn without_fov_a_50mm_lens_on_35mm_film_is_assumed() {
     );
     assert!(err(&xml).contains("`abc` is not a number"));
 }
+
+#[test]
+fn matpreview_scenes_load_their_environment_map() {
+    let Some(dir) = shared_scenes() else {
+        eprintln!("skipped: ../shared/scenes is absent");
+        return;
+    };
+    for s in ["bsdf_diffuse_plain", "bsdf_plastic_shiny", "bsdf_roughconductor_copper", "bsdf_dielectric_glass"] {
+        let path = dir.join(format!("matpreview/docs/scenes/{s}.xml"));
+        let (loaded, w) = load_mitsuba(&path, &[]).unwrap_or_else(|e| panic!("{s}: {e}"));
+        // Materials and textures may still be substituted, but never the emitter.
+        assert!(!w.iter().any(|w| w.contains("emitter")), "{s}: {w:#?}");
+        let env = loaded.scene.lights.environment().unwrap_or_else(|| panic!("{s}: no environment"));
+        let map = env.env_map().unwrap_or_else(|| panic!("{s}: the environment is not a map"));
+        // museum.exr at scale 3 is bright somewhere: its mean radiance over the sphere.
+        let mean = map.luminance_integral() / (4.0 * std::f32::consts::PI);
+        eprintln!("{s}: envmap mean luminance {mean:.4}, {} warning(s)", w.len());
+        assert!(mean.is_finite() && mean > 0.0, "{s}: {mean}");
+    }
+}
