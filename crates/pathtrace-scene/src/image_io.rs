@@ -149,7 +149,8 @@ pub fn read_linear_image(path: &Path) -> Result<Image, ImageIoError> {
         return read_image(path);
     }
     let file = fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
-    hdr_codec::decode(BufReader::new(file)).map_err(|reason| ImageIoError::InvalidHdr { path: path.to_path_buf(), reason })
+    hdr_codec::decode(BufReader::new(file))
+        .map_err(|reason| ImageIoError::InvalidHdr { path: path.to_path_buf(), reason })
 }
 
 /// Reads an EXR file, explaining a missing-channel failure in our own words.

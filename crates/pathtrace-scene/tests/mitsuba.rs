@@ -110,11 +110,11 @@ fn fov_axis_becomes_a_vertical_fov() {
 #[test]
 fn unsupported_plugins_warn_and_fall_back() {
     let xml = scene(&format!(
-        r#"<emitter type="envmap"/><shape type="cylinder"/>
+        r#"<emitter type="spot"/><shape type="cylinder"/>
         <shape type="sphere"><bsdf type="roughplastic"/></shape>{LIGHT}"#
     ));
     let (f, w) = conv(&xml, &[]);
-    assert!(w.iter().any(|w| w.contains("envmap")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("spot")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("cylinder")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("roughplastic") && w.starts_with("t.xml:")), "{w:?}");
     assert_eq!(f.objects.len(), 2);

@@ -5,8 +5,8 @@
 use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
 use super::model::{
-    CameraSection, FilterDef, FilterName, GroupDef, LightDef, MaterialDef, MaterialKind, ObjectDef, RenderSection,
-    Num, SceneFile, ShapeDef,
+    CameraSection, FilterDef, FilterName, GroupDef, LightDef, MaterialDef, MaterialKind, Num, ObjectDef, RenderSection,
+    SceneFile, ShapeDef,
 };
 use super::transform::compose;
 use super::values::vec3;
