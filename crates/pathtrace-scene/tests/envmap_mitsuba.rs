@@ -73,7 +73,10 @@ fn the_museum_map_looks_as_in_mitsuba() {
         eprintln!("view{k} {target:?}: ours {:.5?}, Mitsuba {reference:.5?}", est.mean);
         for (c, &theirs) in reference.iter().enumerate() {
             let ours = est.mean[c];
-            assert!((ours - theirs).abs() <= 0.01 * theirs, "view{k} channel {c}: ours {ours:.5} vs Mitsuba {theirs:.5}");
+            assert!(
+                (ours - theirs).abs() <= 0.01 * theirs,
+                "view{k} channel {c}: ours {ours:.5} vs Mitsuba {theirs:.5}"
+            );
         }
     }
     std::fs::remove_dir_all(&dir).ok();
