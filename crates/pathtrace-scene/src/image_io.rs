@@ -7,6 +7,7 @@
 mod atomic;
 mod error;
 mod exr_codec;
+mod hdr_codec;
 mod pfm_codec;
 mod png_codec;
 #[cfg(test)]
@@ -138,6 +139,18 @@ pub fn read_image(path: &Path) -> Result<Image, ImageIoError> {
         }
         ImageFormat::Exr => read_exr(path),
     }
+}
+
+/// Reads a scene-linear input image, such as an environment map: everything [`read_image`]
+/// reads, and Radiance RGBE (`.hdr`, `.pic`), which the renderer reads but never writes.
+pub fn read_linear_image(path: &Path) -> Result<Image, ImageIoError> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    if ext != "hdr" && ext != "pic" {
+        return read_image(path);
+    }
+    let file = fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
+    hdr_codec::decode(BufReader::new(file))
+        .map_err(|reason| ImageIoError::InvalidHdr { path: path.to_path_buf(), reason })
 }
 
 /// Reads an EXR file, explaining a missing-channel failure in our own words.

@@ -110,11 +110,11 @@ fn fov_axis_becomes_a_vertical_fov() {
 #[test]
 fn unsupported_plugins_warn_and_fall_back() {
     let xml = scene(&format!(
-        r#"<emitter type="envmap"/><shape type="cylinder"/>
+        r#"<emitter type="spot"/><shape type="cylinder"/>
         <shape type="sphere"><bsdf type="blendbsdf"/></shape>{LIGHT}"#
     ));
     let (f, w) = conv(&xml, &[]);
-    assert!(w.iter().any(|w| w.contains("envmap")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("spot")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("cylinder")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("blendbsdf") && w.starts_with("t.xml:")), "{w:?}");
     assert_eq!(f.objects.len(), 2);
@@ -552,4 +552,24 @@ fn metals_rough_glass_and_plastics_import_without_warnings() {
     ));
     let err = convert_str(&bad, Path::new("t.xml"), &[]).unwrap_err().to_string();
     assert!(err.contains("unknown metal") && err.contains("t.xml:"), "{err}");
+}
+
+#[test]
+fn matpreview_scenes_load_their_environment_map() {
+    let Some(dir) = shared_scenes() else {
+        eprintln!("skipped: ../shared/scenes is absent");
+        return;
+    };
+    for s in ["bsdf_diffuse_plain", "bsdf_plastic_shiny", "bsdf_roughconductor_copper", "bsdf_dielectric_glass"] {
+        let path = dir.join(format!("matpreview/docs/scenes/{s}.xml"));
+        let (loaded, w) = load_mitsuba(&path, &[]).unwrap_or_else(|e| panic!("{s}: {e}"));
+        // Materials and textures may still be substituted, but never the emitter.
+        assert!(!w.iter().any(|w| w.contains("emitter")), "{s}: {w:#?}");
+        let env = loaded.scene.lights.environment().unwrap_or_else(|| panic!("{s}: no environment"));
+        let map = env.env_map().unwrap_or_else(|| panic!("{s}: the environment is not a map"));
+        // museum.exr at scale 3 is bright somewhere: its mean radiance over the sphere.
+        let mean = map.luminance_integral() / (4.0 * std::f32::consts::PI);
+        eprintln!("{s}: envmap mean luminance {mean:.4}, {} warning(s)", w.len());
+        assert!(mean.is_finite() && mean > 0.0, "{s}: {mean}");
+    }
 }

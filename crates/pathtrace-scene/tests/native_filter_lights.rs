@@ -57,7 +57,7 @@ fn filters_lights_disks_and_thin_glass_build() {
     let lights = &loaded.scene.lights;
     assert_eq!(lights.len(), 1, "the emissive disk is an area light");
     assert_eq!(lights.points().len(), 1);
-    assert_eq!(lights.environment().map(|e| e.radiance.b), Some(0.3));
+    assert_eq!(lights.environment().and_then(|e| e.constant_radiance()).map(|r| r.b), Some(0.3));
     for (text, expected) in [
         (r#"filter = { type = "box" }"#, PixelFilter::Pixel),
         (r#"filter = { type = "box", radius = 1 }"#, PixelFilter::Box { radius: 1.0 }),

@@ -5,7 +5,7 @@ use crate::accel::{Bvh, Intersectable, Packable};
 use crate::camera::CameraDesc;
 use crate::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight};
 use crate::material::Material;
-use crate::math::{Aabb, Ray, Transform, Vec3};
+use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::shape::{MeshError, PrimHit, Quad, Shape, SurfacePoint, Triangle, TriangleMesh};
 
 /// Index of a material in the scene.
@@ -224,9 +224,10 @@ impl SceneBuilder {
     }
 
     /// Sets the environment (radiance arriving from every direction that leaves the scene);
-    /// its radiance must be finite and ≥ 0. A second call replaces the first.
+    /// a constant radiance must be finite and ≥ 0 (a map checks its pixels when it is made). A
+    /// second call replaces the first.
     pub fn environment(&mut self, env: EnvironmentLight) -> Result<(), BuildError> {
-        let l = env.radiance;
+        let l = env.constant_radiance().unwrap_or(Rgb::BLACK);
         if !l.is_finite() || l.r < 0.0 || l.g < 0.0 || l.b < 0.0 {
             return Err(BuildError::Light("an environment's radiance must be finite and ≥ 0".into()));
         }

@@ -29,7 +29,7 @@ fn env_scene(material: Material, shape: Shape, env: Rgb) -> Arc<Scene> {
     let mut b = SceneBuilder::new();
     let m = b.material(material);
     b.shape(shape, m, &Transform::IDENTITY).unwrap();
-    b.environment(EnvironmentLight { radiance: env }).unwrap();
+    b.environment(EnvironmentLight::constant(env)).unwrap();
     // Close and narrow: every pixel sees the object.
     b.camera(CameraDesc {
         look_from: Vec3::new(0.0, 0.0, -3.0),

@@ -127,8 +127,8 @@ fn disk_light_directions_follow_r2_over_cos_a() {
 
 #[test]
 fn environment_directions_are_uniform_and_mix_with_area_lights() {
-    let env = EnvironmentLight { radiance: Rgb::new(0.2, 0.5, 1.0) };
-    let only = LightSet::with_all(Vec::new(), Vec::new(), Some(env), 1.0);
+    let env = EnvironmentLight::constant(Rgb::new(0.2, 0.5, 1.0));
+    let only = LightSet::with_all(Vec::new(), Vec::new(), Some(env.clone()), 1.0);
     let p = Vec3::new(0.3, 0.1, -2.0);
     check(
         "environment",
@@ -157,7 +157,7 @@ fn selection_by_power_counts_every_kind_of_light() {
     let quad = Quad::new(Vec3::ZERO, Vec3::X, Vec3::Z).unwrap();
     let area = AreaLight::new(LightShape::Quad(quad), Emission { radiance: Rgb::WHITE, two_sided: false });
     let point = PointLight { position: Vec3::Y, intensity: Rgb::WHITE };
-    let env = EnvironmentLight { radiance: Rgb::WHITE };
+    let env = EnvironmentLight::constant(Rgb::WHITE);
     let set = LightSet::with_all(vec![area], vec![point], Some(env), 1.0);
     let pi = std::f32::consts::PI;
     let total = pi + 4.0 * pi + 4.0 * pi * pi;

@@ -6,6 +6,15 @@ use std::path::PathBuf;
 /// Why an image file could not be read or written. Every variant names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum ImageIoError {
+    /// A Radiance `.hdr` file that could not be decoded.
+    #[error("{}: invalid Radiance HDR file: {reason}", .path.display())]
+    InvalidHdr {
+        /// The offending path.
+        path: PathBuf,
+        /// What the decoder reported.
+        reason: String,
+    },
+
     /// The file extension is not one of the supported formats.
     #[error(
         "{}: unsupported image format {extension:?}; supported extensions are {}",

@@ -658,7 +658,8 @@ impl<'a> Conv<'a, '_> {
         Ok(name)
     }
 
-    fn find_file(&self, e: &Element, file: &str) -> R<String> {
+    /// Finds `file` (a `what`: mesh, environment map) in the search folders.
+    fn find_file(&self, e: &Element, file: &str, what: &str) -> R<String> {
         for dir in &self.search {
             let p = dir.join(file);
             if p.is_file() {
@@ -669,7 +670,7 @@ impl<'a> Conv<'a, '_> {
             }
         }
         let at = self.prop(e, "filename").map_or(e.offset, |p| p.offset_of("value"));
-        Err(self.src.error(at, format!("mesh file `{file}` not found")))
+        Err(self.src.error(at, format!("{what} file `{file}` not found")))
     }
 
     fn shape(&mut self, e: &'a Element) -> R<()> {
@@ -683,7 +684,7 @@ impl<'a> Conv<'a, '_> {
                 if self.boolean(e, "flip_normals")? == Some(true) {
                     self.warn(e, "flip_normals is not supported and is ignored");
                 }
-                ShapeDef::Mesh { file: self.find_file(e, file)?, part: None }
+                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: None }
             }
             "serialized" => {
                 let Some(file) = self.string(e, "filename")? else {
@@ -692,7 +693,7 @@ impl<'a> Conv<'a, '_> {
                 let index = self.integer(e, "shape_index")?.unwrap_or(0);
                 let part = u32::try_from(index)
                     .map_err(|_| self.src.error(e.offset, format!("shape_index {index} must be ≥ 0")))?;
-                ShapeDef::Mesh { file: self.find_file(e, file)?, part: Some(part) }
+                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: Some(part) }
             }
             "rectangle" => ShapeDef::Quad {
                 q: n3(Vec3::new(-1.0, -1.0, 0.0)),
@@ -735,6 +736,22 @@ impl<'a> Conv<'a, '_> {
         Ok(())
     }
 
+    /// Adds the environment, or replaces an earlier one (the renderer has a single environment).
+    fn set_environment(&mut self, e: &'a Element, env: LightDef) {
+        let is_env = |l: &LightDef| matches!(l, LightDef::Constant { .. } | LightDef::Envmap { .. });
+        let existing = self.lights.iter().position(is_env);
+        let i = existing.unwrap_or(self.lights.len());
+        self.origins.push((ItemPath::root().field("lights").index(i), e.offset));
+        match existing {
+            Some(i) => {
+                let ty = e.attr("type").unwrap_or("");
+                self.warn(e, &format!("only one environment is supported: this `{ty}` emitter replaces the first"));
+                self.lights[i] = env;
+            }
+            None => self.lights.push(env),
+        }
+    }
+
     fn top_emitter(&mut self, e: &'a Element) -> R<()> {
         let ty = self.req_attr(e, "type")?;
         match ty {
@@ -756,17 +773,16 @@ impl<'a> Conv<'a, '_> {
             }
             "constant" => {
                 let radiance = self.color(e, "radiance")?.unwrap_or(Triple::Splat(num(1.0)));
-                let env = LightDef::Constant { radiance };
-                let existing = self.lights.iter().position(|l| matches!(l, LightDef::Constant { .. }));
-                let i = existing.unwrap_or(self.lights.len());
-                self.origins.push((ItemPath::root().field("lights").index(i), e.offset));
-                match existing {
-                    Some(i) => {
-                        self.warn(e, "only one environment is supported: this `constant` emitter replaces the first");
-                        self.lights[i] = env;
-                    }
-                    None => self.lights.push(env),
-                }
+                self.set_environment(e, LightDef::Constant { radiance });
+            }
+            "envmap" => {
+                let Some(file) = self.string(e, "filename")? else {
+                    return Err(self.src.error(e.offset, "an envmap emitter needs a `filename` string"));
+                };
+                let filename = self.find_file(e, file, "environment map")?;
+                let scale = self.float(e, "scale")?.map(num);
+                let transform = self.to_world(e)?;
+                self.set_environment(e, LightDef::Envmap { filename, scale, transform });
             }
             // Attached to shapes through <ref>.
             "area" if e.attr("id").is_some() => {}

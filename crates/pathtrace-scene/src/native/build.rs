@@ -5,14 +5,14 @@
 use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
 use super::model::{
-    CameraSection, FilterDef, FilterName, GroupDef, LightDef, MaterialDef, MaterialKind, MetalDef, ObjectDef,
+    CameraSection, FilterDef, FilterName, GroupDef, LightDef, MaterialDef, MaterialKind, MetalDef, Num, ObjectDef,
     RenderSection, RoughnessDef, SceneFile, ShapeDef,
 };
 use super::transform::compose;
 use super::values::vec3;
 use crate::{LoadedScene, RenderDefaults};
 use pathtrace::film::{GaussianFilter, PixelFilter};
-use pathtrace::light::{Emission, EnvironmentLight, PointLight};
+use pathtrace::light::{Emission, EnvMap, EnvironmentLight, PointLight};
 use pathtrace::material::{
     metal, Conductor, Dielectric, Diffuse, Glossy, Lambertian, Material, Microfacet, Mirror, Plastic, RoughConductor,
     RoughDielectric, RoughPlastic, ThinDielectric,
@@ -225,13 +225,32 @@ impl<L: Locate> Ctx<'_, L> {
     }
 
     fn add_light(&mut self, l: &LightDef, at: &ItemPath) -> Result<(), SceneError> {
-        let result = match *l {
+        let result = match l {
             LightDef::Point { position, intensity } => {
-                self.b.point_light(PointLight { position: vec3(&position), intensity: intensity.rgb() })
+                self.b.point_light(PointLight { position: vec3(position), intensity: intensity.rgb() })
             }
-            LightDef::Constant { radiance } => self.b.environment(EnvironmentLight { radiance: radiance.rgb() }),
+            LightDef::Constant { radiance } => self.b.environment(EnvironmentLight::constant(radiance.rgb())),
+            LightDef::Envmap { filename, scale, transform } => {
+                let map = self.env_map(filename, scale.map_or(1.0, Num::f32), transform, at)?;
+                self.b.environment(EnvironmentLight::map(map))
+            }
         };
         result.map_err(|e| self.src.error_at(at, e.to_string()))
+    }
+
+    /// Reads an environment map's image (relative to the scene file) and builds its sampler.
+    fn env_map(
+        &self,
+        file: &str,
+        scale: f32,
+        steps: &[super::model::TransformStep],
+        at: &ItemPath,
+    ) -> Result<EnvMap, SceneError> {
+        let to_world = self.transform(steps, at)?;
+        let dir = self.src.path().parent().unwrap_or(std::path::Path::new(""));
+        let image = crate::image_io::read_linear_image(&dir.join(file))
+            .map_err(|e| self.src.error_at(&at.field("filename"), format!("cannot load environment map: {e}")))?;
+        EnvMap::new(image.width, image.height, image.pixels, scale, to_world).map_err(|e| self.src.error_at(at, e))
     }
 
     fn add_group(&mut self, g: &GroupDef, outer: &Transform, at: &ItemPath) -> Result<(), SceneError> {

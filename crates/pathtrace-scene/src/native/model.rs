@@ -28,7 +28,7 @@ pub struct SceneFile {
     /// Groups of objects sharing a transform.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub groups: Vec<GroupDef>,
-    /// Lights that are not surfaces: point lights and the environment.
+    /// Lights that are not surfaces: point lights and the environment (constant or a map).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub lights: Vec<LightDef>,
 }
@@ -79,7 +79,7 @@ pub struct FilterDef {
 }
 
 /// `[[lights]]`: a light that is not a surface.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum LightDef {
     /// An isotropic point light at `position` with `intensity` in W/sr (seen only by the `mis`
@@ -87,6 +87,16 @@ pub enum LightDef {
     Point { position: Num3, intensity: Triple },
     /// A constant environment: `radiance` arrives from every direction that leaves the scene.
     Constant { radiance: Triple },
+    /// An environment map: a lat-long image (`filename`: EXR, HDR, PFM or PNG, relative to the
+    /// scene file) multiplied by `scale` (default 1) and oriented by `transform` (rotations; +y of
+    /// the image frame is up), with Mitsuba's `envmap` conventions.
+    Envmap {
+        filename: String,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        scale: Option<Num>,
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        transform: Vec<TransformStep>,
+    },
 }
 
 impl RenderSection {

@@ -1,42 +1,81 @@
 //! The environment: radiance arriving from infinitely far away along every direction that
-//! leaves the scene. Today it is constant (Mitsuba's `constant` emitter); an environment map
-//! only has to change [`EnvironmentLight::radiance`], [`EnvironmentLight::sample`] and
-//! [`EnvironmentLight::pdf`].
+//! leaves the scene — constant (Mitsuba's `constant` emitter) or an image ([`EnvMap`],
+//! Mitsuba's `envmap`).
 //!
-//! Sampling: directions uniform over the whole sphere, pdf 1/(4π) (Pharr et al., pbrt-v4
-//! §12.5.1 `UniformInfiniteLight`): it covers transmission through glass as well as reflection,
-//! and for a constant environment the bsdf-sampled direction is as good, which MIS exploits.
+//! Sampling: a constant environment samples directions uniformly over the whole sphere, pdf
+//! 1/(4π) (Pharr et al., pbrt-v4 §12.5.1 `UniformInfiniteLight`): it covers transmission through
+//! glass as well as reflection, and for a constant environment the bsdf-sampled direction is as
+//! good, which MIS exploits. A map samples in proportion to its luminance (see envmap.rs).
 
+use std::sync::Arc;
+
+use super::envmap::EnvMap;
 use crate::math::{Rgb, Vec2, Vec3, INV_4PI, PI};
 use crate::sampling::warp;
 
 /// Light arriving from infinity.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct EnvironmentLight {
-    /// Radiance of every direction (W·sr⁻¹·m⁻² per channel).
-    pub radiance: Rgb,
+    /// Radiance of every direction (W·sr⁻¹·m⁻² per channel) when there is no map.
+    radiance: Rgb,
+    /// The image, shared (cloning a scene's light set must not copy it).
+    map: Option<Arc<EnvMap>>,
 }
 
 impl EnvironmentLight {
-    /// Radiance arriving along `-dir`, i.e. seen when looking along the unit direction `dir`.
-    #[inline(always)]
-    pub fn radiance(&self, _dir: Vec3) -> Rgb {
-        self.radiance
+    /// The same radiance from every direction.
+    pub fn constant(radiance: Rgb) -> Self {
+        Self { radiance, map: None }
     }
 
-    /// A direction towards the environment, uniform over the sphere.
-    pub fn sample(&self, u: Vec2) -> Vec3 {
-        warp::square_to_uniform_sphere(u)
+    /// Radiance given by an environment map.
+    pub fn map(map: EnvMap) -> Self {
+        Self { radiance: Rgb::BLACK, map: Some(Arc::new(map)) }
+    }
+
+    /// The constant radiance, or `None` for a map.
+    pub fn constant_radiance(&self) -> Option<Rgb> {
+        self.map.is_none().then_some(self.radiance)
+    }
+
+    /// The environment map, if any.
+    pub fn env_map(&self) -> Option<&EnvMap> {
+        self.map.as_deref()
+    }
+
+    /// Radiance arriving along `-dir`, i.e. seen when looking along the unit direction `dir`.
+    #[inline(always)]
+    pub fn radiance(&self, dir: Vec3) -> Rgb {
+        match &self.map {
+            None => self.radiance,
+            Some(map) => map.radiance(dir),
+        }
+    }
+
+    /// A direction towards the environment and its solid-angle density (0: discard the sample).
+    pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
+        match &self.map {
+            None => (warp::square_to_uniform_sphere(u), INV_4PI),
+            Some(map) => map.sample(u),
+        }
     }
 
     /// Solid-angle density of [`EnvironmentLight::sample`].
-    pub fn pdf(&self, _dir: Vec3) -> f32 {
-        INV_4PI
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        match &self.map {
+            None => INV_4PI,
+            Some(map) => map.pdf(dir),
+        }
     }
 
     /// Power reaching a scene bounded by a sphere of radius `scene_radius`, in luminance
-    /// units: π r² · 4π · L (pbrt-v4 `UniformInfiniteLight::Phi`), used to pick it among lights.
+    /// units: π r² · ∫ L dω (pbrt-v4 `UniformInfiniteLight::Phi` and `ImageInfiniteLight::Phi`),
+    /// used to pick it among lights.
     pub fn power(&self, scene_radius: f32) -> f32 {
-        PI * scene_radius * scene_radius * 4.0 * PI * self.radiance.luminance()
+        let integral = match &self.map {
+            None => 4.0 * PI * self.radiance.luminance(),
+            Some(map) => map.luminance_integral(),
+        };
+        PI * scene_radius * scene_radius * integral
     }
 }

@@ -3,10 +3,12 @@
 
 mod area;
 mod environment;
+mod envmap;
 mod point;
 mod set;
 
 pub use area::{AreaLight, Emission, LightShape};
 pub use environment::EnvironmentLight;
+pub use envmap::EnvMap;
 pub use point::PointLight;
 pub use set::{LightSample, LightSet};

@@ -171,13 +171,16 @@ impl LightSet {
                 Some(LightSample { point: light.position, normal: -wi, wi, dist, pdf: pmf, radiance, delta: true })
             }
             Picked::Environment(env) => {
-                let wi = env.sample(u);
+                let (wi, pdf) = env.sample(u);
+                if pdf <= 0.0 {
+                    return None;
+                }
                 Some(LightSample {
                     point: ref_p + wi,
                     normal: -wi,
                     wi,
                     dist: f32::INFINITY,
-                    pdf: env.pdf(wi) * pmf,
+                    pdf: pdf * pmf,
                     radiance: env.radiance(wi),
                     delta: false,
                 })

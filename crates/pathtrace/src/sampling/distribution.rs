@@ -47,7 +47,20 @@ impl Distribution1D {
         let i = self.cdf.partition_point(|&c| c <= u).min(self.cdf.len() - 1);
         (i, self.pmf[i])
     }
+
+    /// Like [`Distribution1D::sample`], also returning `u` rescaled to `[0,1)` within the picked
+    /// item's cdf interval, so one random number can place a continuous sample inside the bin
+    /// (pbrt-v4 §A.4.2 `PiecewiseConstant1D::Sample`).
+    pub fn sample_remapped(&self, u: f32) -> (usize, f32, f32) {
+        let (i, p) = self.sample(u);
+        let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] };
+        let t = if p > 0.0 { ((u - lo) / p).clamp(0.0, ONE_BELOW) } else { 0.5 };
+        (i, p, t)
+    }
 }
+
+/// The largest f32 below 1, so a remapped sample never reaches the next bin.
+const ONE_BELOW: f32 = 1.0 - f32::EPSILON / 2.0;
 
 #[cfg(test)]
 mod tests {

@@ -2,6 +2,7 @@
 //! discrete distributions and the per-pixel samplers.
 
 mod distribution;
+mod distribution2d;
 pub mod hash;
 mod mis;
 mod pcg;
@@ -10,6 +11,7 @@ pub mod sobol;
 pub mod warp;
 
 pub use distribution::Distribution1D;
+pub use distribution2d::Distribution2D;
 pub use mis::{balance_heuristic, power_heuristic};
 pub use pcg::Pcg32;
 pub use sampler::{Sampler, SamplerKind};

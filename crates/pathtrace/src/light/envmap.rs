@@ -1,0 +1,179 @@
+//! An environment map: a latitude-longitude image of the radiance arriving from infinity,
+//! looked up bilinearly and importance-sampled in proportion to luminance × sin θ.
+//!
+//! Conventions follow Mitsuba 3's `envmap` emitter so its scenes look the same here: in the
+//! map's local frame +y is up; a direction d has u = atan2(d.x, −d.z) / 2π and
+//! v = acos(d.y) / π, i.e. d = (sin θ sin φ, cos θ, −sin θ cos φ) with φ = 2πu, θ = πv. Column
+//! i sits at u = (i + ½)/W and wraps around; row j sits at v = j/(H − 1), so the first and last
+//! rows are the poles. `to_world` takes the local frame to the world (rotations, possibly a
+//! mirror and a uniform scale, which directions ignore).
+//!
+//! Sampling (pbrt-v4 §12.5.2 `ImageInfiniteLight`): a [`Distribution2D`] over the cells between
+//! texels, each weighted by the mean luminance of its four corner texels times sin θ at its
+//! centre, so every direction with radiance has a positive density. A point (u, v) of density
+//! p_uv maps to a direction of solid-angle density p_uv / (2π² sin θ), since
+//! dω = sin θ dθ dφ = 2π² sin θ du dv.
+
+use crate::math::{Rgb, Transform, Vec2, Vec3, PI};
+use crate::sampling::Distribution2D;
+
+/// A lat-long radiance image with its sampling distribution.
+#[derive(Clone, Debug)]
+pub struct EnvMap {
+    width: usize,
+    height: usize,
+    /// Row-major linear RGB radiance, scale included, negatives clamped to 0.
+    pixels: Vec<Rgb>,
+    to_world: Transform,
+    /// Distribution over `width × cell_rows` cells (in u shifted by half a texel).
+    distribution: Distribution2D,
+    /// ∫ luminance dω over the sphere (of the piecewise-constant approximation the sampler uses).
+    luminance_integral: f32,
+}
+
+impl EnvMap {
+    /// A map of `width × height` linear RGB `pixels` (row-major, top row = up), multiplied by
+    /// `scale`. Errors: wrong sizes, non-finite values, a `to_world` that is not a rotation
+    /// (or mirror) times a uniform scale, or an image that is black everywhere.
+    pub fn new(width: u32, height: u32, pixels: Vec<Rgb>, scale: f32, to_world: Transform) -> Result<EnvMap, String> {
+        let (w, h) = (width as usize, height as usize);
+        if w == 0 || h == 0 || pixels.len() != w * h {
+            return Err(format!("an environment map of {width}×{height} needs {} pixels, got {}", w * h, pixels.len()));
+        }
+        if !(scale.is_finite() && scale >= 0.0) {
+            return Err(format!("an environment map's scale must be finite and ≥ 0, got {scale}"));
+        }
+        if pixels.iter().any(|p| !p.is_finite()) {
+            return Err("an environment map has non-finite pixels".into());
+        }
+        if to_world.uniform_scale().is_none() {
+            return Err("an environment map's to_world must be a rotation (times a uniform scale)".into());
+        }
+        // Negative radiance (ringing in some HDR files) has no meaning for a light.
+        let pixels: Vec<Rgb> =
+            pixels.into_iter().map(|p| Rgb::new(p.r.max(0.0), p.g.max(0.0), p.b.max(0.0)) * scale).collect();
+        let rows = cell_rows(h);
+        let mut weights = Vec::with_capacity(w * rows);
+        for j in 0..rows {
+            let sin_theta = (PI * (j as f32 + 0.5) / rows as f32).sin();
+            let (j0, j1) = (j.min(h - 1), (j + 1).min(h - 1));
+            for i in 0..w {
+                let i1 = (i + 1) % w;
+                let corners = [(i, j0), (i1, j0), (i, j1), (i1, j1)];
+                let mean = corners.iter().map(|&(x, y)| pixels[y * w + x].luminance().max(0.0)).sum::<f32>() / 4.0;
+                weights.push(mean * sin_theta);
+            }
+        }
+        let total: f64 = weights.iter().map(|&x| x as f64).sum();
+        let distribution = Distribution2D::new(&weights, w, rows)
+            .ok_or_else(|| "an environment map must have some positive radiance".to_string())?;
+        // Σ weight · (cell area in uv) · 2π² (the Jacobian above).
+        let luminance_integral = (total * 2.0 * (PI as f64).powi(2) / (w * rows) as f64) as f32;
+        Ok(EnvMap { width: w, height: h, pixels, to_world, distribution, luminance_integral })
+    }
+
+    /// Radiance seen looking along the unit world direction `dir` (bilinear between texels).
+    pub fn radiance(&self, dir: Vec3) -> Rgb {
+        let uv = direction_to_uv(self.to_local(dir));
+        let (w, h) = (self.width, self.height);
+        // Texel i at u = (i + ½)/W: shift by half a texel, wrap, then scale to texel units.
+        let x = wrap01(uv.x - 0.5 / w as f32) * w as f32;
+        let y = uv.y * (h - 1) as f32;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (i0, j0) = ((x0 as usize).min(w - 1), (y0 as usize).min(h - 1));
+        let (i1, j1) = ((i0 + 1) % w, (j0 + 1).min(h - 1));
+        let p = |i: usize, j: usize| self.pixels[j * w + i];
+        (p(i0, j0) * (1.0 - fx) + p(i1, j0) * fx) * (1.0 - fy) + (p(i0, j1) * (1.0 - fx) + p(i1, j1) * fx) * fy
+    }
+
+    /// A world direction drawn in proportion to luminance × sin θ, and its solid-angle density
+    /// (0 when the sample hits a pole, where the density is undefined).
+    pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
+        let (cell_uv, pdf_uv) = self.distribution.sample(u);
+        let uv = Vec2::new(wrap01(cell_uv.x + 0.5 / self.width as f32), cell_uv.y);
+        let (sin_theta, cos_theta) = (PI * uv.y).sin_cos();
+        let (sin_phi, cos_phi) = (2.0 * PI * uv.x).sin_cos();
+        let local = Vec3::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi);
+        let dir = self.to_world.vector(local).normalize();
+        (dir, solid_angle_pdf(pdf_uv, sin_theta))
+    }
+
+    /// Solid-angle density of [`EnvMap::sample`] for the unit world direction `dir`.
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        let local = self.to_local(dir);
+        let uv = direction_to_uv(local);
+        let cell_uv = Vec2::new(wrap01(uv.x - 0.5 / self.width as f32), uv.y);
+        let sin_theta = (1.0 - local.y * local.y).max(0.0).sqrt();
+        solid_angle_pdf(self.distribution.pdf(cell_uv), sin_theta)
+    }
+
+    /// ∫ luminance dω over the whole sphere.
+    pub fn luminance_integral(&self) -> f32 {
+        self.luminance_integral
+    }
+
+    fn to_local(&self, dir: Vec3) -> Vec3 {
+        self.to_world.inverse.transform_vector3(dir).normalize()
+    }
+}
+
+/// Rows of cells between texel rows: H − 1, or one row for a single-row image.
+fn cell_rows(height: usize) -> usize {
+    (height - 1).max(1)
+}
+
+fn wrap01(x: f32) -> f32 {
+    let f = x - x.floor();
+    if f >= 1.0 {
+        0.0
+    } else {
+        f
+    }
+}
+
+/// Mitsuba's lat-long coordinates of a local unit direction (see the module comment).
+fn direction_to_uv(d: Vec3) -> Vec2 {
+    let u = d.x.atan2(-d.z) / (2.0 * PI);
+    let v = d.y.clamp(-1.0, 1.0).acos() / PI;
+    Vec2::new(wrap01(u), v)
+}
+
+/// p_ω = p_uv / (2π² sin θ).
+fn solid_angle_pdf(pdf_uv: f32, sin_theta: f32) -> f32 {
+    if sin_theta <= 0.0 {
+        return 0.0;
+    }
+    pdf_uv / (2.0 * PI * PI * sin_theta)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uv_mapping_matches_mitsuba_axes() {
+        // u = 0 looks along −z, u = ¼ along +x; v = 0 is +y.
+        let c = |d: Vec3| direction_to_uv(d);
+        assert!((c(Vec3::new(0.0, 0.0, -1.0)) - Vec2::new(0.0, 0.5)).length() < 1e-6);
+        assert!((c(Vec3::X) - Vec2::new(0.25, 0.5)).length() < 1e-6);
+        assert!(c(Vec3::Y).y.abs() < 1e-6);
+    }
+
+    #[test]
+    fn texels_sit_where_mitsuba_puts_them() {
+        // 4×3: column i at u = (i+½)/4, row j at v = j/2; each texel a distinct colour.
+        let pixels: Vec<Rgb> = (0..12).map(|k| Rgb::new(k as f32, 1.0, 0.0)).collect();
+        let map = EnvMap::new(4, 3, pixels, 1.0, Transform::IDENTITY).unwrap();
+        let dir = |u: f32, v: f32| {
+            let (st, ct) = (PI * v).sin_cos();
+            let (sp, cp) = (2.0 * PI * u).sin_cos();
+            Vec3::new(st * sp, ct, -st * cp)
+        };
+        assert!((map.radiance(dir(1.5 / 4.0, 0.5)).r - 5.0).abs() < 1e-4);
+        // Halfway between columns 3 and 0 (wrapping) on the middle row: (7 + 4) / 2.
+        assert!((map.radiance(dir(0.0, 0.5)).r - 5.5).abs() < 1e-4);
+        // Top row is the pole.
+        assert!((map.radiance(Vec3::Y).r - map.radiance(dir(0.125, 0.0)).r).abs() < 1e-3);
+    }
+}
