@@ -40,4 +40,10 @@ for scene in scenes/gallery/*.toml; do
     } >> docs/gallery.md.new
     echo "rendered $image (${seconds}s)"
 done
+# Keep the hand-written sections (public scenes rendered with their own commands) after the marker.
+marker='<!-- Sections below this line are written by hand'
+if grep -q "$marker" docs/gallery.md; then
+    echo >> docs/gallery.md.new
+    sed -n "/$marker/,\$p" docs/gallery.md >> docs/gallery.md.new
+fi
 mv docs/gallery.md.new docs/gallery.md
