@@ -52,7 +52,8 @@ pub enum Action {
     PictureReset,
 }
 
-const STRATEGIES: [Strategy; 4] = [Strategy::Mis, Strategy::Bsdf, Strategy::Mixture, Strategy::Light];
+const STRATEGIES: [Strategy; 5] =
+    [Strategy::Mis, Strategy::MisBalance, Strategy::Bsdf, Strategy::Mixture, Strategy::Light];
 const SAMPLERS: [SamplerKind; 3] = [SamplerKind::Independent, SamplerKind::Stratified, SamplerKind::Sobol];
 /// Largest and smallest picture magnification.
 pub const PICTURE_ZOOM_LIMITS: (f32, f32) = (0.125, 64.0);
@@ -173,7 +174,7 @@ mod tests {
         let mut s = state();
         let mut strategies = vec![];
         let mut samplers = vec![];
-        for _ in 0..4 {
+        for _ in 0..STRATEGIES.len() {
             s = s.apply(Action::NextStrategy, 256);
             strategies.push(s.key.strategy);
         }
@@ -185,7 +186,7 @@ mod tests {
         strategies.dedup();
         samplers.sort_by_key(|x| x.to_string());
         samplers.dedup();
-        assert_eq!((strategies.len(), samplers.len()), (4, 3));
+        assert_eq!((strategies.len(), samplers.len()), (5, 3));
     }
 
     #[test]

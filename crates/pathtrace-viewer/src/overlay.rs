@@ -9,7 +9,7 @@ pub const SHORTCUTS: [(&str, &str); 22] = [
     ("scroll", "zoom: change the field of view"),
     ("W A S D / Q E", "fly forward, left, back, right / down, up"),
     ("R", "reset the camera to the scene's"),
-    ("M", "next strategy (mis, bsdf, mixture, light)"),
+    ("M", "next strategy (mis, mis-balance, bsdf, mixture, light)"),
     ("N", "next sampler (independent, stratified, sobol)"),
     ("[ ]", "maximum depth down / up (below 1: unlimited)"),
     ("- =", "exposure down / up by half a stop"),
