@@ -71,13 +71,7 @@ impl Plastic {
 
     /// Probability of sampling the coating for a viewer at cos θo.
     fn coating_probability(&self, f_o: f32) -> f32 {
-        let s = f_o * self.specular_weight;
-        let d = (1.0 - f_o) * (1.0 - self.specular_weight);
-        if s + d > 0.0 {
-            s / (s + d)
-        } else {
-            0.0
-        }
+        coating_pick_probability(f_o, 1.0 - f_o, self.specular_weight)
     }
 
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
@@ -116,6 +110,19 @@ impl Plastic {
         }
         let p_coat = self.coating_probability(fresnel_dielectric(wo.z, self.ior).0);
         (1.0 - p_coat) * warp::cosine_hemisphere_pdf(wi)
+    }
+}
+
+/// Mitsuba's lobe choice for both plastics: the coating's reflected fraction weighted by the
+/// specular sampling weight, against the transmitted (diffuse) fraction weighted by its
+/// complement; 0 when both vanish.
+pub(super) fn coating_pick_probability(reflected: f32, transmitted: f32, specular_weight: f32) -> f32 {
+    let s = reflected * specular_weight;
+    let d = transmitted * (1.0 - specular_weight);
+    if s + d > 0.0 {
+        s / (s + d)
+    } else {
+        0.0
     }
 }
 

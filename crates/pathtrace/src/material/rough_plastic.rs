@@ -87,13 +87,7 @@ impl RoughPlastic {
 
     fn coating_probability(&self, wo: Vec3) -> f32 {
         let t = self.transmittance(wo.z);
-        let s = (1.0 - t) * self.specular_weight;
-        let d = t * (1.0 - self.specular_weight);
-        if s + d > 0.0 {
-            s / (s + d)
-        } else {
-            0.0
-        }
+        super::plastic::coating_pick_probability(1.0 - t, t, self.specular_weight)
     }
 
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
