@@ -9,9 +9,9 @@ use crate::bvh_rays::{self, BruteTracer, BvhTracer, Query, RaySet, Tracer};
 use crate::cpu_clock::Clock;
 use crate::{bvh_plots, CliError};
 use pathtrace::accel::{BruteForce, BuildOptions, Bvh, Packable, SplitMethod};
-use pathtrace::math::{Aabb, Vec3};
-use pathtrace::scene::Primitive;
-use pathtrace::shape::{Shape, Triangle};
+use pathtrace::math::{Aabb, Transform, Vec3};
+use pathtrace::shape::{MeshGeometry, TriangleMesh};
+use std::collections::HashMap;
 use std::io::Write;
 use std::process::ExitCode;
 
@@ -32,9 +32,8 @@ pub const METRICS: &[Metric] = &[
     m("build_sah_parallel_ms", "SAH build on rayon (ms)"),
     m("build_median_ms", "median-split build, one thread (ms)"),
     m("bytes_per_tri", "mesh + BVH bytes per triangle"),
-    m("mesh_bytes_per_tri", "primitives (Vec<Primitive>) bytes per triangle"),
+    m("mesh_bytes_per_tri", "compact mesh (shared vertices + indices) bytes per triangle"),
     m("bvh_bytes_per_tri", "BVH bytes per triangle"),
-    m("binary_node_bytes_per_tri", "BVH binary nodes bytes per triangle"),
     m("wide_node_bytes_per_tri", "BVH four-wide nodes bytes per triangle"),
     m("leaf_bytes_per_tri", "BVH leaves and packets bytes per triangle"),
     m("sah_incoherent_closest_1t", "SAH, incoherent closest hit, 1 thread (Mrays/s)"),
@@ -105,31 +104,38 @@ fn counts(kind: MeshKind, a: &BvhBenchArgs) -> Vec<usize> {
         .collect()
 }
 
-/// Primitives (as the renderer stores them), their bounds and packet kinds. Degenerate
-/// triangles are dropped.
+/// The mesh as the renderer stores it (shared vertices and indices), its triangles' bounds and
+/// packet kinds. Degenerate triangles are dropped.
 pub struct Input {
-    pub prims: Vec<Primitive>,
+    pub mesh: MeshGeometry,
     pub bounds: Vec<Aabb>,
     pub kinds: Vec<Packable>,
     pub scene_bounds: Aabb,
 }
 
-pub fn input(tris: &[[Vec3; 3]]) -> Input {
-    let triangles: Vec<Triangle> =
-        tris.iter().filter_map(|&[a, b, c]| Triangle::new(a, b, c, Triangle::FLAT)).collect();
-    let bounds: Vec<Aabb> = triangles.iter().map(Triangle::bounds).collect();
-    let scene_bounds = bounds.iter().fold(Aabb::EMPTY, |a, b| a.union(*b));
-    let kinds = triangles.iter().map(|&t| Packable::Triangle(t)).collect();
-    let prims = triangles
-        .into_iter()
-        .map(|t| Primitive { shape: Shape::Triangle(t), material: 0, light: Primitive::NO_LIGHT })
-        .collect();
-    Input { prims, bounds, kinds, scene_bounds }
+/// An indexed mesh from a triangle list: corners with the same coordinates (bit for bit) become
+/// one shared vertex, as in the mesh files the triangles came from.
+pub fn indexed(tris: &[[Vec3; 3]]) -> TriangleMesh {
+    let mut ids: HashMap<[u32; 3], u32> = HashMap::with_capacity(tris.len());
+    let mut mesh = TriangleMesh::default();
+    for tri in tris {
+        mesh.indices.push(tri.map(|p| {
+            *ids.entry(p.to_array().map(f32::to_bits)).or_insert_with(|| {
+                mesh.positions.push(p);
+                mesh.positions.len() as u32 - 1
+            })
+        }));
+    }
+    mesh
 }
 
-/// The primitives in a tree's order.
-fn reorder(prims: &[Primitive], order: &[u32]) -> Vec<Primitive> {
-    order.iter().map(|&i| prims[i as usize].clone()).collect()
+pub fn input(tris: &[[Vec3; 3]]) -> Input {
+    let (mesh, _) = MeshGeometry::new(&indexed(tris), &Transform::IDENTITY).unwrap_or_default();
+    let ids = 0..mesh.len() as u32;
+    let bounds: Vec<Aabb> = ids.clone().map(|i| mesh.bounds(i)).collect();
+    let scene_bounds = bounds.iter().fold(Aabb::EMPTY, |a, b| a.union(*b));
+    let kinds = ids.map(|i| Packable::Triangle(mesh.triangle(i))).collect();
+    Input { mesh, bounds, kinds, scene_bounds }
 }
 
 pub fn mesh(kind: MeshKind, n: usize) -> Result<Vec<[Vec3; 3]>, String> {
@@ -142,7 +148,7 @@ pub fn mesh(kind: MeshKind, n: usize) -> Result<Vec<[Vec3; 3]>, String> {
 
 /// Median build time (seconds) of `runs` builds, and the last tree. Serial builds are timed
 /// by `clock`, parallel ones by the wall clock.
-pub fn timed_build(inp: &Input, opts: &BuildOptions, runs: u32, clock: Clock) -> (f64, Bvh, Vec<u32>) {
+pub fn timed_build(inp: &Input, opts: &BuildOptions, runs: u32, clock: Clock) -> (f64, Bvh) {
     let clock = if opts.parallel_above == usize::MAX { clock } else { Clock::Wall };
     let mut times = Vec::new();
     let mut last = None;
@@ -152,8 +158,7 @@ pub fn timed_build(inp: &Input, opts: &BuildOptions, runs: u32, clock: Clock) ->
         times.push(seconds);
         last = Some(built);
     }
-    let (bvh, order) = last.unwrap_or_default();
-    (median_of(times), bvh, order)
+    (median_of(times), last.unwrap_or_default())
 }
 
 /// Median Mrays/s of `runs` traces.
@@ -182,34 +187,32 @@ struct Settings<'a> {
 
 fn measure(s: &Settings, scene: &'static str, inp: &Input) -> Row {
     let (a, runs) = (s.a, s.a.runs);
-    let n = inp.prims.len();
+    let n = inp.mesh.len();
     let mut values = Vec::new();
-    let (serial_s, _, _) = timed_build(inp, &s.sah.serial(), runs, s.clock);
-    let (parallel_s, bvh, order) = s.pool.install(|| timed_build(inp, &s.sah, runs, s.clock));
+    let (serial_s, _) = timed_build(inp, &s.sah.serial(), runs, s.clock);
+    let (parallel_s, bvh) = s.pool.install(|| timed_build(inp, &s.sah, runs, s.clock));
     let median_opts = BuildOptions { method: SplitMethod::Median, ..s.sah }.serial();
-    let (median_s, median_bvh, median_order) = timed_build(inp, &median_opts, runs, s.clock);
+    let (median_s, median_bvh) = timed_build(inp, &median_opts, runs, s.clock);
     values.extend([
         ("build_sah_serial_ms", serial_s * 1e3),
         ("build_sah_parallel_ms", parallel_s * 1e3),
         ("build_median_ms", median_s * 1e3),
     ]);
 
-    let prims = reorder(&inp.prims, &order);
     let mem = bvh.memory();
-    let mesh_bytes = prims.capacity() * std::mem::size_of::<Primitive>();
+    let mesh_bytes = inp.mesh.memory_bytes();
     let per = |b: usize| b as f64 / n as f64;
     values.extend([
         ("bytes_per_tri", per(mesh_bytes + mem.total())),
         ("mesh_bytes_per_tri", per(mesh_bytes)),
         ("bvh_bytes_per_tri", per(mem.total())),
-        ("binary_node_bytes_per_tri", per(mem.binary_nodes)),
         ("wide_node_bytes_per_tri", per(mem.wide_nodes)),
         ("leaf_bytes_per_tri", per(mem.leaves)),
     ]);
 
     let coherent = bvh_rays::coherent(&inp.scene_bounds, a.rays);
     let incoherent = bvh_rays::incoherent(&inp.scene_bounds, a.rays, 7);
-    let sah = BvhTracer { bvh: &bvh, prims: &prims };
+    let sah = BvhTracer { bvh: &bvh, prims: &inp.mesh };
     let sets = [("incoherent", &incoherent), ("coherent", &coherent)];
     let all = a.rays;
     for (set_name, set) in sets {
@@ -220,15 +223,14 @@ fn measure(s: &Settings, scene: &'static str, inp: &Input) -> Row {
             }
         }
     }
-    let median_prims = reorder(&inp.prims, &median_order);
-    let med = BvhTracer { bvh: &median_bvh, prims: &median_prims };
+    let med = BvhTracer { bvh: &median_bvh, prims: &inp.mesh };
     for (set_name, set) in sets {
         let name = metric_name(&format!("median_{set_name}_closest_1t"));
         values.push((name, timed_trace(&s.pool, s.clock, &med, set, all, Query::Closest, false, runs)));
     }
     if n <= a.brute_max {
         let brute = BruteForce::new(&inp.kinds);
-        let bt = BruteTracer { brute: &brute, prims: &inp.prims };
+        let bt = BruteTracer { brute: &brute, prims: &inp.mesh };
         // O(n) per ray: about 5·10⁷ ray–triangle pairs per pass, at least 1,000 rays.
         let count = (5e7 as usize / n).clamp(1_000, all);
         for (set_name, set) in sets {

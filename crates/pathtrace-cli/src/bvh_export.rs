@@ -34,10 +34,10 @@ pub fn run(
         .filter(|&[a, b, c]| Triangle::new(a, b, c, Triangle::FLAT).is_some())
         .collect();
     let inp = input(&tris);
-    let (build_s, bvh, order) = pool.install(|| timed_build(&inp, &sah.serial(), runs, clock));
-    let prims: Vec<_> = order.iter().map(|&i| inp.prims[i as usize].clone()).collect();
+    let (build_s, bvh) = pool.install(|| timed_build(&inp, &sah.serial(), runs, clock));
+    let prims = &inp.mesh;
     let set = bvh_rays::incoherent(&inp.scene_bounds, rays, 7);
-    let tracer = BvhTracer { bvh: &bvh, prims: &prims };
+    let tracer = BvhTracer { bvh: &bvh, prims };
     let rate = |parallel: bool| {
         let r: Vec<f64> = (0..runs)
             .map(|_| pool.install(|| bvh_rays::trace(&tracer, &set, rays, Query::Closest, parallel, clock)).0)
@@ -48,7 +48,7 @@ pub fn run(
     let hits: Vec<f32> = set
         .rays
         .iter()
-        .map(|r| bvh.intersect(&prims, r, 0.0, f32::INFINITY).map_or(f32::INFINITY, |(h, _)| h.t))
+        .map(|r| bvh.intersect(prims, r, 0.0, f32::INFINITY).map_or(f32::INFINITY, |(h, _)| h.t))
         .collect();
 
     let write = || -> std::io::Result<()> {

@@ -5,7 +5,7 @@ use crate::cpu_clock::Clock;
 use pathtrace::accel::{BruteForce, Bvh};
 use pathtrace::math::{Aabb, Ray, Vec3};
 use pathtrace::sampling::Pcg32;
-use pathtrace::scene::Primitive;
+use pathtrace::shape::MeshGeometry;
 use rayon::prelude::*;
 
 /// Rays with the `t_max` their any-hit query uses (closest-hit queries use `t_max = ∞`).
@@ -69,10 +69,10 @@ pub trait Tracer: Sync {
     fn occluded(&self, ray: &Ray, t_max: f32) -> bool;
 }
 
-/// A BVH with its primitives in build order.
+/// A BVH over a mesh's triangles.
 pub struct BvhTracer<'a> {
     pub bvh: &'a Bvh,
-    pub prims: &'a [Primitive],
+    pub prims: &'a MeshGeometry,
 }
 
 impl Tracer for BvhTracer<'_> {
@@ -86,7 +86,7 @@ impl Tracer for BvhTracer<'_> {
 
 pub struct BruteTracer<'a> {
     pub brute: &'a BruteForce,
-    pub prims: &'a [Primitive],
+    pub prims: &'a MeshGeometry,
 }
 
 impl Tracer for BruteTracer<'_> {

@@ -8,6 +8,7 @@ pub mod film;
 pub mod light;
 pub mod material;
 pub mod math;
+mod primitive_store;
 pub mod sampling;
 pub mod scene;
 pub mod shape;

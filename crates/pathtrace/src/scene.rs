@@ -1,12 +1,13 @@
 //! The renderable scene (primitives in a BVH, materials, lights, camera) and the
 //! [`SceneBuilder`] that every front end — files, built-in scenes, tests — goes through.
 
-use crate::accel::{Bvh, Intersectable, Packable};
+use crate::accel::{Bvh, Intersectable, Packable, PrimitiveSet};
 use crate::camera::CameraDesc;
 use crate::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight};
 use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
-use crate::shape::{MeshError, PrimHit, Quad, Shape, SurfacePoint, Triangle, TriangleMesh};
+use crate::primitive_store::{PrimitiveStore, SceneMesh};
+use crate::shape::{MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
 
 /// Index of a material in the scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -39,7 +40,8 @@ pub struct Hit {
     pub hit: PrimHit,
 }
 
-/// A primitive: in the BVH, or one of the unbounded shapes kept beside it.
+/// A primitive: in the BVH (shapes first, then each mesh's triangles), or one of the unbounded
+/// shapes kept beside it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PrimRef {
     Bounded(u32),
@@ -82,13 +84,12 @@ pub enum BuildError {
 /// A scene ready to render.
 #[derive(Clone, Debug)]
 pub struct Scene {
-    prims: Vec<Primitive>,
+    prims: PrimitiveStore,
     unbounded: Vec<Primitive>,
     bvh: Bvh,
     materials: Vec<Material>,
     pub lights: LightSet,
     pub camera: CameraDesc,
-    vertex_normals: Vec<[Vec3; 3]>,
 }
 
 impl Scene {
@@ -113,22 +114,17 @@ impl Scene {
             || self.bvh.occluded(&self.prims, ray, 0.0, t_max)
     }
 
-    fn primitive(&self, r: PrimRef) -> &Primitive {
-        match r {
-            PrimRef::Bounded(i) => &self.prims[i as usize],
-            PrimRef::Unbounded(i) => &self.unbounded[i as usize],
-        }
-    }
-
     /// Surface details of a hit found with `ray`.
     #[inline(always)]
     pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction<'_> {
-        let prim = self.primitive(hit.prim);
-        Interaction {
-            surface: prim.shape.surface(ray, &hit.hit, &self.vertex_normals),
-            material: &self.materials[prim.material as usize],
-            light: prim.light,
-        }
+        let (surface, material, light) = match hit.prim {
+            PrimRef::Bounded(i) => self.prims.surface(i, ray, &hit.hit),
+            PrimRef::Unbounded(i) => {
+                let p = &self.unbounded[i as usize];
+                (p.shape.surface(ray, &hit.hit, &[]), p.material, p.light)
+            }
+        };
+        Interaction { surface, material: &self.materials[material as usize], light }
     }
 
     /// The BVH's nodes, one per line.
@@ -141,16 +137,15 @@ impl Scene {
         self.bvh.stats()
     }
 
-    /// Bytes held by the geometry: primitives, vertex normals and the BVH (from capacities;
-    /// materials, lights and the camera are not counted).
+    /// Bytes held by the geometry: shapes, meshes (vertices and indices) and the BVH (from
+    /// capacities; materials, lights and the camera are not counted).
     pub fn memory_bytes(&self) -> usize {
-        use std::mem::size_of;
-        (self.prims.capacity() + self.unbounded.capacity()) * size_of::<Primitive>()
-            + self.vertex_normals.capacity() * size_of::<[Vec3; 3]>()
+        self.prims.memory_bytes()
+            + self.unbounded.capacity() * std::mem::size_of::<Primitive>()
             + self.bvh.memory_bytes()
     }
 
-    /// Number of primitives (bounded and unbounded).
+    /// Number of primitives (shapes, mesh triangles and unbounded shapes).
     pub fn primitive_count(&self) -> usize {
         self.prims.len() + self.unbounded.len()
     }
@@ -158,28 +153,34 @@ impl Scene {
     /// Brute-force closest hit (every primitive tested), for checking the BVH.
     pub fn intersect_brute_force(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let mut best: Option<Hit> = None;
-        let all = self
-            .prims
-            .iter()
-            .enumerate()
-            .map(|(i, p)| (PrimRef::Bounded(i as u32), p))
-            .chain(self.unbounded.iter().enumerate().map(|(i, p)| (PrimRef::Unbounded(i as u32), p)));
-        for (r, p) in all {
+        for i in 0..self.prims.len() as u32 {
+            let limit = best.map_or(t_max, |b| b.hit.t);
+            if let Some(hit) = self.prims.intersect_one(i, ray, 0.0, limit) {
+                best = Some(Hit { prim: PrimRef::Bounded(i), hit });
+            }
+        }
+        for (i, p) in self.unbounded.iter().enumerate() {
             let limit = best.map_or(t_max, |b| b.hit.t);
             if let Some(hit) = p.shape.intersect(ray, 0.0, limit) {
-                best = Some(Hit { prim: r, hit });
+                best = Some(Hit { prim: PrimRef::Unbounded(i as u32), hit });
             }
         }
         best
     }
 }
 
+/// What the builder has been given, in order (lights are numbered in this order).
+#[derive(Clone, Debug)]
+enum Entry {
+    Shape(Shape, u32),
+    Mesh(MeshGeometry, u32),
+}
+
 /// Assembles a [`Scene`] from shapes, materials, lights and a camera.
 #[derive(Clone, Debug, Default)]
 pub struct SceneBuilder {
     materials: Vec<(Material, Option<Emission>)>,
-    shapes: Vec<(Shape, u32)>,
-    vertex_normals: Vec<[Vec3; 3]>,
+    entries: Vec<Entry>,
     camera: CameraDesc,
     allow_no_lights: bool,
     point_lights: Vec<PointLight>,
@@ -254,7 +255,7 @@ impl SceneBuilder {
     pub fn shape(&mut self, shape: Shape, material: MaterialId, transform: &Transform) -> Result<(), BuildError> {
         self.check_material(material)?;
         let placed = shape.transformed(transform).ok_or(BuildError::Degenerate(shape_name(&shape)))?;
-        self.shapes.push((placed, material.0));
+        self.entries.push(Entry::Shape(placed, material.0));
         Ok(())
     }
 
@@ -268,12 +269,13 @@ impl SceneBuilder {
     ) -> Result<(), BuildError> {
         self.check_material(material)?;
         let faces = Quad::box_faces(min, max, transform).ok_or(BuildError::Degenerate("box"))?;
-        self.shapes.extend(faces.into_iter().map(|q| (Shape::Quad(q), material.0)));
+        self.entries.extend(faces.into_iter().map(|q| Entry::Shape(Shape::Quad(q), material.0)));
         Ok(())
     }
 
-    /// Adds every triangle of a mesh, placed by `transform`. Degenerate triangles are skipped
-    /// (meshes often contain a few); returns how many were skipped.
+    /// Adds a mesh placed by `transform`, kept in compact form (shared vertices and indices).
+    /// Degenerate triangles are skipped (meshes often contain a few); returns how many were
+    /// skipped.
     pub fn mesh(
         &mut self,
         mesh: &TriangleMesh,
@@ -281,85 +283,87 @@ impl SceneBuilder {
         transform: &Transform,
     ) -> Result<usize, BuildError> {
         self.check_material(material)?;
-        mesh.validate()?;
-        let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| transform.point(p)).collect();
-        let normals: Option<Vec<Vec3>> =
-            mesh.normals.as_ref().map(|ns| ns.iter().map(|&n| transform.normal(n)).collect());
-        let mut skipped = 0;
-        for tri in &mesh.indices {
-            let [a, b, c] = tri.map(|i| positions[i as usize]);
-            let shading = match &normals {
-                Some(ns) => {
-                    self.vertex_normals.push(tri.map(|i| ns[i as usize]));
-                    self.vertex_normals.len() as u32 - 1
-                }
-                None => Triangle::FLAT,
-            };
-            match Triangle::new(a, b, c, shading) {
-                Some(t) => self.shapes.push((Shape::Triangle(t), material.0)),
-                None => skipped += 1,
-            }
+        let (geometry, skipped) = MeshGeometry::new(mesh, transform)?;
+        if !geometry.is_empty() {
+            self.entries.push(Entry::Mesh(geometry, material.0));
         }
         Ok(skipped)
     }
 
     /// Builds the BVH and the light set.
     pub fn build(self) -> Result<Scene, BuildError> {
-        if self.shapes.is_empty() {
+        if self.entries.is_empty() {
             return Err(BuildError::Empty);
         }
         for (m, _) in &self.materials {
             validate_material(m)?;
         }
-        let mut bounded = Vec::new();
+        let mut shapes = Vec::new();
+        let mut meshes = Vec::new();
         let mut unbounded = Vec::new();
         let mut lights = Vec::new();
-        for (shape, material) in self.shapes {
-            let emission = self.materials[material as usize].1;
-            let light = match emission {
-                Some(e) if !e.radiance.is_black() => {
-                    let light_shape = match &shape {
-                        Shape::Quad(q) => LightShape::Quad(*q),
-                        Shape::Triangle(t) => LightShape::Triangle(*t),
-                        Shape::Sphere(s) => LightShape::Sphere(*s),
-                        Shape::Disk(d) => LightShape::Disk(*d),
-                        Shape::Plane(_) => return Err(BuildError::EmissivePlane),
-                        Shape::Ellipsoid(_) => return Err(BuildError::EmissiveEllipsoid),
+        for entry in self.entries {
+            let (Entry::Shape(_, material) | Entry::Mesh(_, material)) = entry;
+            let emission = self.materials[material as usize].1.filter(|e| !e.radiance.is_black());
+            match entry {
+                Entry::Shape(shape, _) => {
+                    let light = match emission {
+                        Some(e) => {
+                            let light_shape = match &shape {
+                                Shape::Quad(q) => LightShape::Quad(*q),
+                                Shape::Triangle(t) => LightShape::Triangle(*t),
+                                Shape::Sphere(s) => LightShape::Sphere(*s),
+                                Shape::Disk(d) => LightShape::Disk(*d),
+                                Shape::Plane(_) => return Err(BuildError::EmissivePlane),
+                                Shape::Ellipsoid(_) => return Err(BuildError::EmissiveEllipsoid),
+                            };
+                            lights.push(AreaLight::new(light_shape, e));
+                            lights.len() as u32 - 1
+                        }
+                        None => Primitive::NO_LIGHT,
                     };
-                    lights.push(AreaLight::new(light_shape, e));
-                    lights.len() as u32 - 1
+                    let prim = Primitive { shape, material, light };
+                    if prim.shape.bounds().is_some() {
+                        shapes.push(prim);
+                    } else {
+                        unbounded.push(prim);
+                    }
                 }
-                _ => Primitive::NO_LIGHT,
-            };
-            let prim = Primitive { shape, material, light };
-            if prim.shape.bounds().is_some() {
-                bounded.push(prim);
-            } else {
-                unbounded.push(prim);
+                Entry::Mesh(geometry, _) => {
+                    // An emissive mesh is one area light per triangle, sampled by area.
+                    let first_light = match emission {
+                        Some(e) => {
+                            let first = lights.len() as u32;
+                            let tris = (0..geometry.len() as u32).map(|i| geometry.triangle(i));
+                            lights.extend(tris.map(|t| AreaLight::new(LightShape::Triangle(t), e)));
+                            first
+                        }
+                        None => Primitive::NO_LIGHT,
+                    };
+                    meshes.push(SceneMesh { geometry, material, first_light });
+                }
             }
         }
+        let prims = PrimitiveStore::new(shapes, meshes);
+        let bounds = prims.bounds();
         // The environment's selection power needs the scene's size: its bounding sphere.
-        let scene_box = bounded
-            .iter()
-            .filter_map(|p| p.shape.bounds())
-            .fold(None, |acc: Option<Aabb>, b| Some(acc.map_or(b, |a| a.union(b))));
+        let scene_box = bounds.iter().fold(None, |acc: Option<Aabb>, &b| Some(acc.map_or(b, |a| a.union(b))));
         let scene_radius = scene_box.map_or(1.0, |b| 0.5 * b.extent().length());
         let lights = LightSet::with_all(lights, self.point_lights, self.environment, scene_radius);
         if lights.is_empty() && !self.allow_no_lights {
             return Err(BuildError::NoLights);
         }
-        let bounds: Vec<_> = bounded.iter().map(|p| p.shape.bounds().unwrap_or_default()).collect();
-        let kinds: Vec<_> = bounded
+        let shape_kinds = prims.shapes().iter().map(|p| match p.shape {
+            Shape::Quad(q) => Packable::Quad(q),
+            Shape::Triangle(t) => Packable::Triangle(t),
+            _ => Packable::No,
+        });
+        let mesh_kinds = prims
+            .meshes()
             .iter()
-            .map(|p| match p.shape {
-                Shape::Quad(q) => Packable::Quad(q),
-                Shape::Triangle(t) => Packable::Triangle(t),
-                _ => Packable::No,
-            })
-            .collect();
-        let (bvh, order) = Bvh::build(&bounds, &kinds);
-        let mut slots: Vec<Option<Primitive>> = bounded.into_iter().map(Some).collect();
-        let prims = order.iter().filter_map(|&i| slots[i as usize].take()).collect();
+            .flat_map(|m| (0..m.geometry.len() as u32).map(|i| Packable::Triangle(m.geometry.triangle(i))));
+        let kinds: Vec<Packable> = shape_kinds.chain(mesh_kinds).collect();
+        let bvh = Bvh::build(&bounds, &kinds);
         Ok(Scene {
             prims,
             unbounded,
@@ -367,7 +371,6 @@ impl SceneBuilder {
             materials: self.materials.into_iter().map(|(m, _)| m).collect(),
             lights,
             camera: self.camera,
-            vertex_normals: self.vertex_normals,
         })
     }
 }

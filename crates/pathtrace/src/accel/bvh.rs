@@ -18,7 +18,30 @@ pub trait Intersectable {
     fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit>;
 }
 
-/// One node: 32 bytes. Leaves have `count > 0` primitives and `offset` indexes their leaf
+/// The primitives a BVH was built over, addressed by the indices given to the build: a slice,
+/// or a scene's mix of shapes and compact meshes. The BVH only asks for the primitives it does
+/// not keep in SIMD packets (spheres, disks, …); packed quads and triangles are tested from
+/// the packets alone.
+pub trait PrimitiveSet {
+    fn intersect_one(&self, index: u32, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit>;
+}
+
+impl<P: Intersectable> PrimitiveSet for [P] {
+    #[inline(always)]
+    fn intersect_one(&self, index: u32, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        self[index as usize].intersect(ray, t_min, t_max)
+    }
+}
+
+impl<P: Intersectable> PrimitiveSet for Vec<P> {
+    #[inline(always)]
+    fn intersect_one(&self, index: u32, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        self[index as usize].intersect(ray, t_min, t_max)
+    }
+}
+
+/// One node of the binary tree the build makes (and the collapse into [`Node4`]s consumes):
+/// 32 bytes. Leaves have `count > 0` primitives and `offset` indexes their leaf
 /// record; interior nodes have their left child at `index + 1` and their right child at
 /// `offset`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,8 +64,6 @@ pub struct BvhStats {
 /// Bytes held by a [`Bvh`], per structure.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BvhMemory {
-    /// The binary tree (kept for statistics, dumps and the bounds).
-    pub binary_nodes: usize,
     /// The four-wide tree that rays traverse.
     pub wide_nodes: usize,
     /// Leaf records, SIMD packets of quads and triangles, indices of other shapes.
@@ -51,16 +72,20 @@ pub struct BvhMemory {
 
 impl BvhMemory {
     pub fn total(&self) -> usize {
-        self.binary_nodes + self.wide_nodes + self.leaves
+        self.wide_nodes + self.leaves
     }
 }
 
-/// The hierarchy. Primitive indices in leaves refer to the order returned by [`Bvh::build`].
+/// The hierarchy. Leaves name primitives by their index in the arrays given to [`Bvh::build`]
+/// (the caller's primitives need not be reordered). The binary tree the build makes is
+/// dropped after the collapse into four-wide nodes (it cost 16 bytes per triangle); its
+/// bounds and statistics are kept.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
-    nodes: Vec<Node>,
-    /// The same tree, four children per node, for traversal.
+    /// The tree, four children per node, for traversal.
     wide: Vec<Node4>,
+    bounds: Aabb,
+    stats: BvhStats,
     leaves: Leaves,
     /// Traversal stack slots needed: a four-wide node visit pushes at most four children and
     /// pops one, so 3 per level of the four-wide tree, plus 1.
@@ -78,14 +103,13 @@ const MEDIUM_STACK: usize = 64;
 impl Bvh {
     /// Builds over the given primitive bounds with the production options (binned SAH, on
     /// rayon for large inputs); `kinds[i]` says whether primitive `i` goes into a SIMD packet.
-    /// Returns the tree and the primitive order it expects (position `i` in the reordered array
-    /// holds original primitive `order[i]`).
-    pub fn build(bounds: &[Aabb], kinds: &[Packable]) -> (Bvh, Vec<u32>) {
+    /// Hits name primitives by their index `i` in these arrays.
+    pub fn build(bounds: &[Aabb], kinds: &[Packable]) -> Bvh {
         Self::build_with(bounds, kinds, &BuildOptions::default())
     }
 
     /// [`Bvh::build`] with explicit options (split method, bins, leaf size, parallelism).
-    pub fn build_with(bounds: &[Aabb], kinds: &[Packable], opts: &BuildOptions) -> (Bvh, Vec<u32>) {
+    pub fn build_with(bounds: &[Aabb], kinds: &[Packable], opts: &BuildOptions) -> Bvh {
         assert_eq!(bounds.len(), kinds.len());
         let opts = opts.clamped();
         let item = |(i, b): (usize, &Aabb)| BuildItem { bounds: b.padded().into(), index: i as u32 };
@@ -95,24 +119,28 @@ impl Bvh {
             bounds.iter().enumerate().map(item).collect()
         };
         let mut nodes = build_tree(&mut items, &opts);
-        let order: Vec<u32> = items.iter().map(|it| it.index).collect();
         let mut leaves = Leaves::default();
         for node in nodes.iter_mut().filter(|n| n.count > 0) {
             let start = node.offset as usize;
-            node.offset = leaves.push(|i| kinds[order[i] as usize], start..start + node.count as usize);
+            let ids = items[start..start + node.count as usize].iter().map(|it| (it.index, kinds[it.index as usize]));
+            node.offset = leaves.push(ids);
         }
         leaves.shrink_to_fit();
-        let wide = collapse(&nodes);
-        let mut bvh = Bvh { nodes, wide, leaves, stack_need: 0 };
-        bvh.stack_need = 3 * wide_depth(&bvh.wide) + 1;
-        (bvh, order)
+        let mut wide = collapse(&nodes);
+        wide.shrink_to_fit();
+        let stack_need = 3 * wide_depth(&wide) + 1;
+        let bounds = nodes.first().map_or(Aabb::EMPTY, |n| n.bounds);
+        let stats = binary_stats(&nodes);
+        Bvh { wide, bounds, stats, leaves, stack_need }
     }
 
-    /// True if both trees have the same nodes (bounds, split axes, leaf ranges) in the same
-    /// layout. Packets and four-wide nodes are derived from these deterministically, so with
-    /// the same primitive order the whole structure is the same.
+    /// True if both trees have the same four-wide nodes (boxes and children) and the same
+    /// leaves (the same primitives in the same packets). Packet contents are derived from the
+    /// primitives deterministically, so the whole structure is then the same.
     pub fn same_structure(&self, other: &Bvh) -> bool {
-        self.nodes == other.nodes
+        self.wide.len() == other.wide.len()
+            && self.wide.iter().zip(&other.wide).all(|(a, b)| a.same_as(b))
+            && self.leaves.same_layout(&other.leaves)
     }
 
     /// Bytes held by the tree (see [`Bvh::memory`]).
@@ -123,22 +151,21 @@ impl Bvh {
     /// Bytes held by the tree, per structure, from the vectors' capacities.
     pub fn memory(&self) -> BvhMemory {
         BvhMemory {
-            binary_nodes: self.nodes.capacity() * std::mem::size_of::<Node>(),
             wide_nodes: self.wide.capacity() * std::mem::size_of::<Node4>(),
             leaves: self.leaves.memory_bytes() + std::mem::size_of_val(self),
         }
     }
 
-    /// Closest hit among `prims` (in build order) with `t ∈ [t_min, t_max]`.
+    /// Closest hit among `prims` (indexed as given to the build) with `t ∈ [t_min, t_max]`.
     #[inline(always)]
-    pub fn intersect<P: Intersectable>(
+    pub fn intersect<P: PrimitiveSet + ?Sized>(
         &self,
-        prims: &[P],
+        prims: &P,
         ray: &Ray,
         t_min: f32,
         t_max: f32,
     ) -> Option<(PrimHit, u32)> {
-        if self.nodes.is_empty() {
+        if self.wide.is_empty() {
             return None;
         }
         if self.stack_need <= SMALL_STACK {
@@ -155,9 +182,9 @@ impl Bvh {
     /// distances, so the nearest is visited next and a popped child that starts beyond the
     /// closest hit so far is skipped without loading it.
     #[inline(always)]
-    fn closest<P: Intersectable, const N: usize>(
+    fn closest<P: PrimitiveSet + ?Sized, const N: usize>(
         &self,
-        prims: &[P],
+        prims: &P,
         ray: &Ray,
         t_min: f32,
         mut t_max: f32,
@@ -210,8 +237,8 @@ impl Bvh {
 
     /// True if anything blocks the ray within `[t_min, t_max]` (stops at the first blocker).
     #[inline(always)]
-    pub fn occluded<P: Intersectable>(&self, prims: &[P], ray: &Ray, t_min: f32, t_max: f32) -> bool {
-        if self.nodes.is_empty() {
+    pub fn occluded<P: PrimitiveSet + ?Sized>(&self, prims: &P, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        if self.wide.is_empty() {
             return false;
         }
         if self.stack_need <= SMALL_STACK {
@@ -224,7 +251,7 @@ impl Bvh {
     }
 
     #[inline(always)]
-    fn any_hit<P: Intersectable, const N: usize>(&self, prims: &[P], ray: &Ray, t_min: f32, t_max: f32) -> bool {
+    fn any_hit<P: PrimitiveSet + ?Sized, const N: usize>(&self, prims: &P, ray: &Ray, t_min: f32, t_max: f32) -> bool {
         let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
         let mut stack = [0u32; N];
@@ -254,56 +281,60 @@ impl Bvh {
 
     /// Bounds of everything in the tree.
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
+        self.bounds
     }
 
-    /// One line per node, indented by depth (for debugging and the docs).
+    /// One line per four-wide node or leaf, indented by depth (for debugging and the docs).
     pub fn dump(&self) -> String {
         let mut out = String::new();
-        self.dump_node(0, 0, &mut out);
+        if !self.wide.is_empty() {
+            self.dump_node(0, 0, &mut out);
+        }
         out
     }
 
-    fn dump_node(&self, index: usize, depth: usize, out: &mut String) {
-        let Some(n) = self.nodes.get(index) else {
-            return;
-        };
-        let kind = if n.count > 0 {
-            let (packets, scalar) = self.leaves.sizes(n.offset);
-            format!("leaf {} prims ({packets} packets + {scalar} single)", n.count)
-        } else {
-            format!("split axis {}", n.axis)
-        };
-        out.push_str(&format!(
-            "{:indent$}{kind} [{:.0?} – {:.0?}]\n",
-            "",
-            n.bounds.min.to_array(),
-            n.bounds.max.to_array(),
-            indent = 2 * depth
-        ));
-        if n.count == 0 {
-            self.dump_node(index + 1, depth + 1, out);
-            self.dump_node(n.offset as usize, depth + 1, out);
+    fn dump_node(&self, index: u32, depth: usize, out: &mut String) {
+        let node = &self.wide[index as usize];
+        out.push_str(&format!("{:indent$}node\n", "", indent = 2 * depth));
+        for (lane, &child) in node.children.iter().enumerate().filter(|(_, &c)| c != EMPTY) {
+            let b = node.child_bounds(lane);
+            if child & LEAF == 0 {
+                self.dump_node(child, depth + 1, out);
+            } else {
+                let (packets, scalar) = self.leaves.sizes(child & !LEAF);
+                out.push_str(&format!(
+                    "{:indent$}leaf ({packets} packets + {scalar} single) [{:.0?} – {:.0?}]\n",
+                    "",
+                    b.min.to_array(),
+                    b.max.to_array(),
+                    indent = 2 * depth + 2
+                ));
+            }
         }
     }
 
+    /// Shape statistics of the binary tree the build made.
     pub fn stats(&self) -> BvhStats {
-        let mut stats = BvhStats { nodes: self.nodes.len(), ..Default::default() };
-        if !self.nodes.is_empty() {
-            self.walk_stats(0, 1, &mut stats);
-        }
-        stats
+        self.stats
     }
+}
 
-    fn walk_stats(&self, index: usize, depth: usize, stats: &mut BvhStats) {
-        let node = &self.nodes[index];
+/// Node count, leaves, depth and largest leaf of a binary tree (root at 0).
+fn binary_stats(nodes: &[Node]) -> BvhStats {
+    fn walk(nodes: &[Node], index: usize, depth: usize, stats: &mut BvhStats) {
+        let node = &nodes[index];
         stats.max_depth = stats.max_depth.max(depth);
         if node.count > 0 {
             stats.leaves += 1;
             stats.max_leaf_size = stats.max_leaf_size.max(node.count as usize);
         } else {
-            self.walk_stats(index + 1, depth + 1, stats);
-            self.walk_stats(node.offset as usize, depth + 1, stats);
+            walk(nodes, index + 1, depth + 1, stats);
+            walk(nodes, node.offset as usize, depth + 1, stats);
         }
     }
+    let mut stats = BvhStats { nodes: nodes.len(), ..Default::default() };
+    if !nodes.is_empty() {
+        walk(nodes, 0, 1, &mut stats);
+    }
+    stats
 }

@@ -4,7 +4,7 @@
 use super::lanes::{HitX4, RayX4};
 use super::quad4::Quad4;
 use super::tri4::Tri4;
-use super::Intersectable;
+use super::PrimitiveSet;
 use crate::math::Ray;
 use crate::shape::{PrimHit, Quad, Triangle};
 
@@ -13,7 +13,7 @@ use crate::shape::{PrimHit, Quad, Triangle};
 pub enum Packable {
     Quad(Quad),
     Triangle(Triangle),
-    /// Tested with [`Intersectable::intersect`].
+    /// Tested with [`PrimitiveSet::intersect_one`].
     No,
 }
 
@@ -108,10 +108,36 @@ fn part<T>(v: &[T], start: u32, n: u8) -> &[T] {
     }
 }
 
+/// A leaf is named by a 31-bit reference (the four-wide nodes store it under their leaf tag).
+/// A leaf of one to eight triangle packets and nothing else — nearly every leaf of a mesh — is
+/// named directly by its packet range: `DIRECT | (packets − 1) << COUNT_SHIFT | first packet`,
+/// so it needs no leaf record (16 bytes, about 4 bytes per triangle) and traversal skips one
+/// dependent load. Other leaves are named by the index of their record (below `DIRECT`).
+const DIRECT: u32 = 1 << 30;
+const COUNT_SHIFT: u32 = 27;
+const START_MASK: u32 = (1 << COUNT_SHIFT) - 1;
+const MAX_DIRECT_PACKETS: u8 = 8;
+
+/// What a leaf reference names.
+enum LeafRef<'a> {
+    Triangles(&'a [Packed<Tri4>]),
+    Record(&'a Leaf),
+}
+
 impl Leaves {
-    /// Adds a leaf over the primitives at positions `range` (`kind(i)` says how position `i`
-    /// is stored); returns its index.
-    pub fn push(&mut self, kind: impl Fn(usize) -> Packable, range: std::ops::Range<usize>) -> u32 {
+    #[inline(always)]
+    fn resolve(&self, reference: u32) -> LeafRef<'_> {
+        if reference & DIRECT != 0 {
+            let start = reference & START_MASK;
+            let n = ((reference >> COUNT_SHIFT) & 7) as u8 + 1;
+            LeafRef::Triangles(part(&self.tris, start, n))
+        } else {
+            LeafRef::Record(&self.leaves[reference as usize])
+        }
+    }
+
+    /// Adds a leaf over the primitives `items` (index, how it is stored); returns its reference.
+    pub fn push(&mut self, items: impl Iterator<Item = (u32, Packable)>) -> u32 {
         let (mut quads, mut tris) = (Vec::new(), Vec::new());
         let mut leaf = Leaf {
             quads: self.quads.len() as u32,
@@ -119,40 +145,50 @@ impl Leaves {
             scalar: self.scalar.len() as u32,
             ..Default::default()
         };
-        for i in range {
-            match kind(i) {
-                Packable::Quad(q) => quads.push((i as u32, q)),
-                Packable::Triangle(t) => tris.push((i as u32, t)),
+        for (i, kind) in items {
+            match kind {
+                Packable::Quad(q) => quads.push((i, q)),
+                Packable::Triangle(t) => tris.push((i, t)),
                 Packable::No => {
-                    self.scalar.push(i as u32);
+                    self.scalar.push(i);
                     leaf.n_scalar += 1;
                 }
             }
         }
         leaf.n_quads = pack(&quads, Quad4::new, &mut self.quads);
         leaf.n_tris = pack(&tris, Tri4::new, &mut self.tris);
+        // A start below START_MASK keeps every direct reference apart from the EMPTY slot.
+        let direct = leaf.n_quads == 0 && leaf.n_scalar == 0 && (1..=MAX_DIRECT_PACKETS).contains(&leaf.n_tris);
+        if direct && leaf.tris < START_MASK {
+            return DIRECT | ((leaf.n_tris as u32 - 1) << COUNT_SHIFT) | leaf.tris;
+        }
         self.leaves.push(leaf);
-        self.leaves.len() as u32 - 1
+        let index = self.leaves.len() as u32 - 1;
+        assert!(index < DIRECT, "more than 2^30 BVH leaf records");
+        index
     }
 
     /// Closest hit in leaf `index` with `t ≤ *t_max`; shrinks `t_max` and updates `best`.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    pub fn intersect<P: Intersectable>(
+    pub fn intersect<P: PrimitiveSet + ?Sized>(
         &self,
         index: u32,
-        prims: &[P],
+        prims: &P,
         ray: &Ray,
         rx4: &RayX4,
         t_min: f32,
         t_max: &mut f32,
         best: &mut Option<(PrimHit, u32)>,
     ) {
-        let leaf = &self.leaves[index as usize];
+        let leaf = match self.resolve(index) {
+            LeafRef::Triangles(tris) => return closest_in(tris, rx4, t_min, t_max, best),
+            LeafRef::Record(leaf) => leaf,
+        };
         closest_in(part(&self.quads, leaf.quads, leaf.n_quads), rx4, t_min, t_max, best);
         closest_in(part(&self.tris, leaf.tris, leaf.n_tris), rx4, t_min, t_max, best);
         for &i in part(&self.scalar, leaf.scalar, leaf.n_scalar) {
-            if let Some(hit) = prims[i as usize].intersect(ray, t_min, *t_max) {
+            if let Some(hit) = prims.intersect_one(i, ray, t_min, *t_max) {
                 *t_max = hit.t;
                 *best = Some((hit, i));
             }
@@ -161,26 +197,33 @@ impl Leaves {
 
     /// True if anything in leaf `index` is hit within `[t_min, t_max]`.
     #[inline(always)]
-    pub fn occluded<P: Intersectable>(
+    pub fn occluded<P: PrimitiveSet + ?Sized>(
         &self,
         index: u32,
-        prims: &[P],
+        prims: &P,
         ray: &Ray,
         rx4: &RayX4,
         t_min: f32,
         t_max: f32,
     ) -> bool {
-        let leaf = &self.leaves[index as usize];
+        let leaf = match self.resolve(index) {
+            LeafRef::Triangles(tris) => return any_in(tris, rx4, t_min, t_max),
+            LeafRef::Record(leaf) => leaf,
+        };
         any_in(part(&self.quads, leaf.quads, leaf.n_quads), rx4, t_min, t_max)
             || any_in(part(&self.tris, leaf.tris, leaf.n_tris), rx4, t_min, t_max)
             || part(&self.scalar, leaf.scalar, leaf.n_scalar)
                 .iter()
-                .any(|&i| prims[i as usize].intersect(ray, t_min, t_max).is_some())
+                .any(|&i| prims.intersect_one(i, ray, t_min, t_max).is_some())
     }
 
-    /// Number of leaves.
-    pub fn len(&self) -> usize {
-        self.leaves.len()
+    /// Same leaf records, holding the same primitives in the same packets and order.
+    pub fn same_layout(&self, o: &Leaves) -> bool {
+        let key = |l: &Leaf| (l.quads, l.tris, l.scalar, l.n_quads, l.n_tris, l.n_scalar);
+        self.leaves.iter().map(key).eq(o.leaves.iter().map(key))
+            && self.quads.iter().map(|p| p.ids).eq(o.quads.iter().map(|p| p.ids))
+            && self.tris.iter().map(|p| p.ids).eq(o.tris.iter().map(|p| p.ids))
+            && self.scalar == o.scalar
     }
 
     pub fn shrink_to_fit(&mut self) {
@@ -201,7 +244,9 @@ impl Leaves {
 
     /// Number of SIMD packets and of primitives tested one by one in leaf `index`.
     pub fn sizes(&self, index: u32) -> (usize, usize) {
-        let l = &self.leaves[index as usize];
-        (l.n_quads as usize + l.n_tris as usize, l.n_scalar as usize)
+        match self.resolve(index) {
+            LeafRef::Triangles(tris) => (tris.len(), 0),
+            LeafRef::Record(l) => (l.n_quads as usize + l.n_tris as usize, l.n_scalar as usize),
+        }
     }
 }

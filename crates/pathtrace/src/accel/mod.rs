@@ -12,5 +12,5 @@ mod wide;
 
 pub use brute::BruteForce;
 pub use build::{BuildOptions, SplitMethod, MAX_BINS, MAX_LEAF_LIMIT};
-pub use bvh::{Bvh, BvhMemory, BvhStats, Intersectable};
+pub use bvh::{Bvh, BvhMemory, BvhStats, Intersectable, PrimitiveSet};
 pub use leaf::Packable;

@@ -13,7 +13,7 @@ pub(super) const LEAF: u32 = 1 << 31;
 pub(super) const EMPTY: u32 = u32::MAX;
 
 /// Four children: their boxes (min x, y, z, max x, y, z; one child per lane) and indices (an
-/// interior node, `LEAF | leaf record`, or `EMPTY`). Empty lanes have the box `[+∞, +∞]`,
+/// interior node, `LEAF | leaf reference` (see `leaf.rs`), or `EMPTY`). Empty lanes have the box `[+∞, +∞]`,
 /// whose slab distances all have one sign, so it is never hit. 112 bytes, aligned to 64 so
 /// that a node spans exactly two cache lines (at 16-byte alignment half of them touch three).
 #[derive(Clone, Copy, Debug)]
@@ -42,6 +42,22 @@ impl RayBox4 {
 }
 
 impl Node4 {
+    /// Same boxes (bit for bit) and children.
+    pub fn same_as(&self, o: &Node4) -> bool {
+        self.children == o.children
+            && self
+                .bounds
+                .iter()
+                .zip(&o.bounds)
+                .all(|(a, b)| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits))
+    }
+
+    /// The box of child `lane`.
+    pub fn child_bounds(&self, lane: usize) -> crate::math::Aabb {
+        let axis = |k: usize| glam::Vec3::new(self.bounds[k][lane], self.bounds[k + 1][lane], self.bounds[k + 2][lane]);
+        crate::math::Aabb { min: axis(0), max: axis(3) }
+    }
+
     /// Lanes whose box overlaps the ray within `[t_min, t_max]`, and each lane's entry
     /// distance (meaningful where the lane hits).
     #[inline(always)]

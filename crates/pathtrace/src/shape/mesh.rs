@@ -1,6 +1,6 @@
 //! Indexed triangle meshes: shared vertex positions (and optional normals and texture
 //! coordinates) with index triples.
-//! The scene builder expands a mesh into triangle primitives.
+//! The scene builder keeps a mesh as a [`super::MeshGeometry`] (shared vertex buffer + indices).
 
 use crate::math::{Vec2, Vec3};
 

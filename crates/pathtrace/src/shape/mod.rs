@@ -3,6 +3,7 @@
 
 mod disk;
 mod mesh;
+mod mesh_geometry;
 mod plane;
 mod quad;
 mod sphere;
@@ -10,6 +11,7 @@ mod triangle;
 
 pub use disk::Disk;
 pub use mesh::{MeshError, TriangleMesh};
+pub use mesh_geometry::MeshGeometry;
 pub use plane::Plane;
 pub use quad::Quad;
 pub use sphere::{Ellipsoid, Sphere};

@@ -64,12 +64,21 @@ impl Triangle {
     }
 
     pub fn surface(&self, hit: &PrimHit, vertex_normals: &[[Vec3; 3]]) -> SurfacePoint {
+        self.surface_with(hit, vertex_normals.get(self.shading as usize).copied(), None)
+    }
+
+    /// The surface at a hit, given the corners' vertex normals and texture coordinates (each
+    /// optional, as in the mesh the triangle came from). `uv` interpolates the texture
+    /// coordinates; without them it is the barycentric pair (b1, b2) of the second and third
+    /// corners, as in Mitsuba 3.
+    #[inline(always)]
+    pub fn surface_with(&self, hit: &PrimHit, normals: Option<[Vec3; 3]>, uvs: Option<[Vec2; 3]>) -> SurfacePoint {
         let (b1, b2) = (hit.u.max(0.0), hit.v.max(0.0));
         let p = self.p0 + b1 * self.e1 + b2 * self.e2;
         let n = self.e1.cross(self.e2).normalize();
-        let n_shading = match vertex_normals.get(self.shading as usize) {
+        let n_shading = match normals {
             Some([n0, n1, n2]) => {
-                let s = ((1.0 - b1 - b2) * *n0 + b1 * *n1 + b2 * *n2).normalize_or(n);
+                let s = ((1.0 - b1 - b2) * n0 + b1 * n1 + b2 * n2).normalize_or(n);
                 // Keep the shading normal on the geometric normal's side.
                 if s.dot(n) < 0.0 {
                     -s
@@ -79,7 +88,11 @@ impl Triangle {
             }
             None => n,
         };
-        SurfacePoint { p, n_geometric: n, n_shading, uv: Vec2::new(b1, b2) }
+        let uv = match uvs {
+            Some([t0, t1, t2]) => (1.0 - b1 - b2) * t0 + b1 * t1 + b2 * t2,
+            None => Vec2::new(b1, b2),
+        };
+        SurfacePoint { p, n_geometric: n, n_shading, uv }
     }
 
     pub fn bounds(&self) -> Aabb {

@@ -1,0 +1,119 @@
+//! Where a scene keeps its bounded primitives: single shapes (quads, spheres, disks, lone
+//! triangles) as [`Primitive`]s, and meshes in compact form ([`MeshGeometry`]: shared vertices
+//! plus an index triple per triangle, with one material and light range per mesh). The BVH
+//! names every bounded primitive by one index: shapes first, then each mesh's triangles in turn.
+
+use crate::accel::PrimitiveSet;
+use crate::math::{Aabb, Ray};
+use crate::scene::Primitive;
+use crate::shape::{MeshGeometry, PrimHit, SurfacePoint};
+
+/// A mesh in a scene.
+#[derive(Clone, Debug)]
+pub(crate) struct SceneMesh {
+    pub geometry: MeshGeometry,
+    pub material: u32,
+    /// Light of triangle 0 (triangle `i` has light `first_light + i`), or
+    /// [`Primitive::NO_LIGHT`] for a mesh that does not emit.
+    pub first_light: u32,
+}
+
+/// Which stored item a primitive index names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Item {
+    Shape(u32),
+    MeshTriangle { mesh: u32, triangle: u32 },
+}
+
+/// The bounded primitives, indexed as the BVH was built over them.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PrimitiveStore {
+    shapes: Vec<Primitive>,
+    meshes: Vec<SceneMesh>,
+    /// Index of each mesh's first triangle (after all shapes).
+    mesh_starts: Vec<u32>,
+    len: u32,
+}
+
+impl PrimitiveStore {
+    pub fn new(shapes: Vec<Primitive>, meshes: Vec<SceneMesh>) -> Self {
+        let mut next = shapes.len() as u32;
+        let mesh_starts = meshes
+            .iter()
+            .map(|m| {
+                let start = next;
+                next += m.geometry.len() as u32;
+                start
+            })
+            .collect();
+        Self { shapes, meshes, mesh_starts, len: next }
+    }
+
+    /// Number of bounded primitives (shapes and mesh triangles).
+    pub fn len(&self) -> usize {
+        self.len as usize
+    }
+
+    #[inline(always)]
+    fn item(&self, index: u32) -> Item {
+        if (index as usize) < self.shapes.len() {
+            return Item::Shape(index);
+        }
+        // Meshes are few; a binary search over their starts.
+        let mesh = self.mesh_starts.partition_point(|&s| s <= index) - 1;
+        Item::MeshTriangle { mesh: mesh as u32, triangle: index - self.mesh_starts[mesh] }
+    }
+
+    /// Bounding boxes of all primitives, in index order (`None` never occurs: unbounded shapes
+    /// are kept elsewhere; a missing box becomes the empty box).
+    pub fn bounds(&self) -> Vec<Aabb> {
+        let shapes = self.shapes.iter().map(|p| p.shape.bounds().unwrap_or_default());
+        let tris = self.meshes.iter().flat_map(|m| (0..m.geometry.len() as u32).map(|i| m.geometry.bounds(i)));
+        shapes.chain(tris).collect()
+    }
+
+    pub fn shapes(&self) -> &[Primitive] {
+        &self.shapes
+    }
+
+    pub fn meshes(&self) -> &[SceneMesh] {
+        &self.meshes
+    }
+
+    /// Surface, material and light of primitive `index` at a hit.
+    #[inline(always)]
+    pub fn surface(&self, index: u32, ray: &Ray, hit: &PrimHit) -> (SurfacePoint, u32, u32) {
+        match self.item(index) {
+            Item::Shape(i) => {
+                let p = &self.shapes[i as usize];
+                (p.shape.surface(ray, hit, &[]), p.material, p.light)
+            }
+            Item::MeshTriangle { mesh, triangle } => {
+                let m = &self.meshes[mesh as usize];
+                let light = if m.first_light == Primitive::NO_LIGHT { m.first_light } else { m.first_light + triangle };
+                (m.geometry.surface(triangle, hit), m.material, light)
+            }
+        }
+    }
+
+    /// Heap bytes, from the vectors' capacities.
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.shapes.capacity() * size_of::<Primitive>()
+            + self.meshes.capacity() * size_of::<SceneMesh>()
+            + self.meshes.iter().map(|m| m.geometry.memory_bytes()).sum::<usize>()
+            + self.mesh_starts.capacity() * size_of::<u32>()
+    }
+}
+
+impl PrimitiveSet for PrimitiveStore {
+    #[inline(always)]
+    fn intersect_one(&self, index: u32, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        match self.item(index) {
+            Item::Shape(i) => self.shapes[i as usize].shape.intersect(ray, t_min, t_max),
+            Item::MeshTriangle { mesh, triangle } => {
+                self.meshes[mesh as usize].geometry.intersect(triangle, ray, t_min, t_max)
+            }
+        }
+    }
+}

@@ -1,0 +1,169 @@
+//! The compact form in which a scene keeps a mesh: one shared vertex buffer (positions and the
+//! optional normals and texture coordinates, already placed in the world) and one index triple
+//! per triangle — 12 bytes of indices plus the triangle's share of the vertices, instead of a
+//! full shape per triangle. Triangles are rebuilt from their corners when they are needed (for
+//! the BVH's packets, for shading a hit, for the brute-force reference).
+
+use super::{MeshError, PrimHit, SurfacePoint, Triangle, TriangleMesh};
+use crate::math::{Aabb, Ray, Transform, Vec2, Vec3};
+
+/// A placed mesh without degenerate triangles.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshGeometry {
+    positions: Vec<Vec3>,
+    normals: Option<Vec<Vec3>>,
+    uvs: Option<Vec<Vec2>>,
+    indices: Vec<[u32; 3]>,
+}
+
+impl MeshGeometry {
+    /// Validates `mesh`, places it by `transform` (normals by its inverse transpose) and drops
+    /// its degenerate triangles (meshes often contain a few); returns the geometry and how many
+    /// were dropped.
+    pub fn new(mesh: &TriangleMesh, transform: &Transform) -> Result<(MeshGeometry, usize), MeshError> {
+        mesh.validate()?;
+        let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| transform.point(p)).collect();
+        let normals: Option<Vec<Vec3>> =
+            mesh.normals.as_ref().map(|ns| ns.iter().map(|&n| transform.normal(n)).collect());
+        let corners = |tri: &[u32; 3]| tri.map(|i| positions[i as usize]);
+        // The same test (and arithmetic) as `Triangle::new`, so the kept triangles are exactly
+        // those the per-triangle storage kept.
+        let indices: Vec<[u32; 3]> = mesh
+            .indices
+            .iter()
+            .filter(|tri| {
+                let [a, b, c] = corners(tri);
+                Triangle::new(a, b, c, Triangle::FLAT).is_some()
+            })
+            .copied()
+            .collect();
+        let skipped = mesh.indices.len() - indices.len();
+        let mut geometry = MeshGeometry { positions, normals, uvs: mesh.uvs.clone(), indices };
+        geometry.shrink_to_fit();
+        Ok((geometry, skipped))
+    }
+
+    /// Number of (non-degenerate) triangles.
+    pub fn len(&self) -> usize {
+        self.indices.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.indices.is_empty()
+    }
+
+    /// Triangle `i` (flat: its vertex normals stay in the mesh).
+    #[inline(always)]
+    pub fn triangle(&self, i: u32) -> Triangle {
+        let [a, b, c] = self.indices[i as usize].map(|v| self.positions[v as usize]);
+        // Same corners as when the mesh was checked, so never degenerate; the fallback only
+        // keeps this function total.
+        Triangle::new(a, b, c, Triangle::FLAT).unwrap_or(Triangle {
+            p0: a,
+            e1: b - a,
+            e2: c - a,
+            shading: Triangle::FLAT,
+        })
+    }
+
+    /// Bounding box of triangle `i`.
+    pub fn bounds(&self, i: u32) -> Aabb {
+        Aabb::from_points(&self.indices[i as usize].map(|v| self.positions[v as usize]))
+    }
+
+    /// Ray test of triangle `i` (the scalar Möller–Trumbore test the packets agree with).
+    #[inline(always)]
+    pub fn intersect(&self, i: u32, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        self.triangle(i).intersect(ray, t_min, t_max)
+    }
+
+    /// The surface of triangle `i` at a hit: interpolated vertex normals and texture
+    /// coordinates when the mesh has them.
+    #[inline(always)]
+    pub fn surface(&self, i: u32, hit: &PrimHit) -> SurfacePoint {
+        let tri = self.indices[i as usize];
+        let normals = self.normals.as_ref().map(|ns| tri.map(|v| ns[v as usize]));
+        let uvs = self.uvs.as_ref().map(|uv| tri.map(|v| uv[v as usize]));
+        self.triangle(i).surface_with(hit, normals, uvs)
+    }
+
+    /// Releases spare capacity (the memory accounting counts capacities).
+    pub fn shrink_to_fit(&mut self) {
+        self.positions.shrink_to_fit();
+        self.indices.shrink_to_fit();
+        if let Some(n) = &mut self.normals {
+            n.shrink_to_fit();
+        }
+        if let Some(uv) = &mut self.uvs {
+            uv.shrink_to_fit();
+        }
+    }
+
+    /// Heap bytes, from the vectors' capacities.
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.positions.capacity() * size_of::<Vec3>()
+            + self.normals.as_ref().map_or(0, |n| n.capacity() * size_of::<Vec3>())
+            + self.uvs.as_ref().map_or(0, |n| n.capacity() * size_of::<Vec2>())
+            + self.indices.capacity() * size_of::<[u32; 3]>()
+    }
+}
+
+/// The BVH asks a mesh for the triangles it does not keep in packets (none, when built with
+/// `Packable::Triangle` kinds), by triangle index.
+impl crate::accel::PrimitiveSet for MeshGeometry {
+    #[inline(always)]
+    fn intersect_one(&self, index: u32, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
+        self.intersect(index, ray, t_min, t_max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad_mesh() -> TriangleMesh {
+        TriangleMesh {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y, 2.0 * Vec3::X],
+            // The last triangle is degenerate (three collinear corners).
+            indices: vec![[0, 1, 2], [0, 2, 3], [0, 1, 4]],
+            normals: Some(vec![Vec3::Z, Vec3::Z, Vec3::new(0.0, 0.6, 0.8), Vec3::Z, Vec3::Z]),
+            uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y, Vec2::X]),
+        }
+    }
+
+    #[test]
+    fn degenerate_triangles_are_dropped_and_counted() {
+        let (m, skipped) = MeshGeometry::new(&quad_mesh(), &Transform::IDENTITY).unwrap();
+        assert_eq!((m.len(), skipped), (2, 1));
+    }
+
+    #[test]
+    fn hits_report_interpolated_uv_and_normal() {
+        let (m, _) = MeshGeometry::new(&quad_mesh(), &Transform::IDENTITY).unwrap();
+        let ray = Ray::new(Vec3::new(0.75, 0.25, 1.0), -Vec3::Z);
+        let hit = m.intersect(0, &ray, 0.0, 10.0).unwrap();
+        let s = m.surface(0, &hit);
+        // Barycentrics (b1, b2) = (0.5, 0.25) on corners 0, 1, 2: uv = 0.5·(1,0) + 0.25·(1,1).
+        assert!((s.uv - Vec2::new(0.75, 0.25)).length() < 1e-6, "{:?}", s.uv);
+        assert!((s.p - Vec3::new(0.75, 0.25, 0.0)).length() < 1e-6);
+        assert!(s.n_shading.y > 0.0 && (s.n_shading.length() - 1.0).abs() < 1e-5);
+        assert_eq!(s.n_geometric, Vec3::Z);
+    }
+
+    #[test]
+    fn without_uvs_the_barycentrics_are_the_uv() {
+        let mut mesh = quad_mesh();
+        mesh.uvs = None;
+        let (m, _) = MeshGeometry::new(&mesh, &Transform::IDENTITY).unwrap();
+        let hit = PrimHit { t: 1.0, u: 0.5, v: 0.25 };
+        assert_eq!(m.surface(0, &hit).uv, Vec2::new(0.5, 0.25));
+    }
+
+    #[test]
+    fn invalid_meshes_are_rejected() {
+        let mut mesh = quad_mesh();
+        mesh.indices.push([0, 1, 9]);
+        assert!(matches!(MeshGeometry::new(&mesh, &Transform::IDENTITY), Err(MeshError::IndexOutOfRange { .. })));
+    }
+}
