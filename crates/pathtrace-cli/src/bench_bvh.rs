@@ -347,12 +347,12 @@ fn print_tables(rows: &[Row], threads: usize, a: &BvhBenchArgs) {
     );
     println!();
     println!(
-        "{:<7} {:>9} | {:>11} {:>11} {:>11} | {:>8} {:>8} {:>8} ({:>6} {:>6} {:>6})",
-        "mesh", "triangles", "SAH 1t ms", "SAH mt ms", "median ms", "B/tri", "mesh", "BVH", "binary", "wide", "leaves"
+        "{:<7} {:>9} | {:>11} {:>11} {:>11} | {:>8} {:>8} {:>8} ({:>6} {:>6})",
+        "mesh", "triangles", "SAH 1t ms", "SAH mt ms", "median ms", "B/tri", "mesh", "BVH", "wide", "leaves"
     );
     for r in rows {
         println!(
-            "{:<7} {:>9} | {:>11} {:>11} {:>11} | {:>8} {:>8} {:>8} ({:>6} {:>6} {:>6})",
+            "{:<7} {:>9} | {:>11} {:>11} {:>11} | {:>8} {:>8} {:>8} ({:>6} {:>6})",
             r.scene,
             r.triangles,
             cell(r, "build_sah_serial_ms", 2),
@@ -361,7 +361,6 @@ fn print_tables(rows: &[Row], threads: usize, a: &BvhBenchArgs) {
             cell(r, "bytes_per_tri", 1),
             cell(r, "mesh_bytes_per_tri", 1),
             cell(r, "bvh_bytes_per_tri", 1),
-            cell(r, "binary_node_bytes_per_tri", 1),
             cell(r, "wide_node_bytes_per_tri", 1),
             cell(r, "leaf_bytes_per_tri", 1),
         );

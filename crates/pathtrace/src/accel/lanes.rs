@@ -23,6 +23,16 @@ impl Vec3x4 {
         Self { x: axis(|v| v.x), y: axis(|v| v.y), z: axis(|v| v.z) }
     }
 
+    /// Packs `f` of up to four items; missing lanes are zero (no allocation).
+    #[inline]
+    pub fn gather_with<T>(items: &[T], f: impl Fn(&T) -> Vec3) -> Self {
+        let mut v = [Vec3::ZERO; 4];
+        for (slot, item) in v.iter_mut().zip(items) {
+            *slot = f(item);
+        }
+        Self::gather(&v[..items.len().min(4)])
+    }
+
     pub fn splat(v: Vec3) -> Self {
         Self { x: Vec4::splat(v.x), y: Vec4::splat(v.y), z: Vec4::splat(v.z) }
     }

@@ -87,13 +87,42 @@ pub(super) struct Leaves {
     scalar: Vec<u32>,
 }
 
-fn pack<S: Copy, G>(items: &[(u32, S)], make: fn(&[S]) -> G, out: &mut Vec<Packed<G>>) -> u8 {
-    for chunk in items.chunks(4) {
-        let shapes: Vec<S> = chunk.iter().map(|&(_, s)| s).collect();
-        let ids = [0, 1, 2, 3].map(|k| chunk[k.min(chunk.len() - 1)].0);
-        out.push(Packed { geom: make(&shapes), ids });
+/// Up to four primitives of one kind waiting to become a packet (no allocation per leaf or
+/// packet: the build packs hundreds of thousands of them).
+struct Pending<S> {
+    ids: [u32; 4],
+    shapes: [Option<S>; 4],
+    n: usize,
+    packets: u8,
+}
+
+impl<S: Copy> Pending<S> {
+    fn new() -> Self {
+        Self { ids: [0; 4], shapes: [None; 4], n: 0, packets: 0 }
     }
-    items.len().div_ceil(4) as u8
+
+    fn add<G>(&mut self, id: u32, shape: S, make: fn(&[S]) -> G, out: &mut Vec<Packed<G>>) {
+        self.ids[self.n] = id;
+        self.shapes[self.n] = Some(shape);
+        self.n += 1;
+        if self.n == 4 {
+            self.flush(make, out);
+        }
+    }
+
+    /// Packs what is pending; unused lanes repeat the last id.
+    fn flush<G>(&mut self, make: fn(&[S]) -> G, out: &mut Vec<Packed<G>>) {
+        if self.n == 0 {
+            return;
+        }
+        let n = self.n;
+        let first = self.shapes[0].expect("a pending shape");
+        let shapes = self.shapes.map(|s| s.unwrap_or(first));
+        let ids = [0, 1, 2, 3].map(|k| self.ids[k.min(n - 1)]);
+        out.push(Packed { geom: make(&shapes[..n]), ids });
+        self.n = 0;
+        self.packets += 1;
+    }
 }
 
 /// `v[start..start + n]`, skipping the bounds checks when the range is empty (most leaves
@@ -138,7 +167,7 @@ impl Leaves {
 
     /// Adds a leaf over the primitives `items` (index, how it is stored); returns its reference.
     pub fn push(&mut self, items: impl Iterator<Item = (u32, Packable)>) -> u32 {
-        let (mut quads, mut tris) = (Vec::new(), Vec::new());
+        let (mut quads, mut tris) = (Pending::new(), Pending::new());
         let mut leaf = Leaf {
             quads: self.quads.len() as u32,
             tris: self.tris.len() as u32,
@@ -147,16 +176,17 @@ impl Leaves {
         };
         for (i, kind) in items {
             match kind {
-                Packable::Quad(q) => quads.push((i, q)),
-                Packable::Triangle(t) => tris.push((i, t)),
+                Packable::Quad(q) => quads.add(i, q, Quad4::new, &mut self.quads),
+                Packable::Triangle(t) => tris.add(i, t, Tri4::new, &mut self.tris),
                 Packable::No => {
                     self.scalar.push(i);
                     leaf.n_scalar += 1;
                 }
             }
         }
-        leaf.n_quads = pack(&quads, Quad4::new, &mut self.quads);
-        leaf.n_tris = pack(&tris, Tri4::new, &mut self.tris);
+        quads.flush(Quad4::new, &mut self.quads);
+        tris.flush(Tri4::new, &mut self.tris);
+        (leaf.n_quads, leaf.n_tris) = (quads.packets, tris.packets);
         // A start below START_MASK keeps every direct reference apart from the EMPTY slot.
         let direct = leaf.n_quads == 0 && leaf.n_scalar == 0 && (1..=MAX_DIRECT_PACKETS).contains(&leaf.n_tris);
         if direct && leaf.tris < START_MASK {

@@ -21,7 +21,7 @@ impl Quad4 {
     /// Packs one to four quads.
     pub fn new(quads: &[Quad]) -> Self {
         debug_assert!((1..=4).contains(&quads.len()));
-        let field = |k: usize| Vec3x4::gather(&quads.iter().map(|q| q.intersection_data()[k]).collect::<Vec<_>>());
+        let field = |k: usize| Vec3x4::gather_with(quads, |q| q.intersection_data()[k]);
         Self { q: field(0), n: field(1), u_dual: field(2), v_dual: field(3) }
     }
 

@@ -20,7 +20,7 @@ impl Tri4 {
     /// Packs one to four triangles.
     pub fn new(tris: &[Triangle]) -> Self {
         debug_assert!((1..=4).contains(&tris.len()));
-        let field = |f: fn(&Triangle) -> glam::Vec3| Vec3x4::gather(&tris.iter().map(f).collect::<Vec<_>>());
+        let field = |f: fn(&Triangle) -> glam::Vec3| Vec3x4::gather_with(tris, f);
         Self { p0: field(|t| t.p0), e1: field(|t| t.e1), e2: field(|t| t.e2) }
     }
 
