@@ -75,3 +75,41 @@ fn vertex_normals_are_interpolated_and_placed() {
     assert!((s.n_shading - want).length() < 1e-4, "{:?} vs {want:?}", s.n_shading);
     assert!((s.n_geometric - Vec3::Z).length() < 1e-6);
 }
+
+/// A UV sphere of `2 · stacks · slices` triangles (minus the degenerate ones at the poles) with
+/// shared vertices.
+fn uv_sphere(stacks: u32, slices: u32) -> TriangleMesh {
+    let mut mesh = TriangleMesh::default();
+    for i in 0..=stacks {
+        let theta = std::f32::consts::PI * i as f32 / stacks as f32;
+        for j in 0..slices {
+            let phi = 2.0 * std::f32::consts::PI * j as f32 / slices as f32;
+            mesh.positions.push(Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin()));
+        }
+    }
+    let v = |i: u32, j: u32| i * slices + j % slices;
+    for i in 0..stacks {
+        for j in 0..slices {
+            mesh.indices.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+            mesh.indices.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+        }
+    }
+    mesh
+}
+
+#[test]
+fn a_mesh_and_its_bvh_take_under_80_bytes_per_triangle() {
+    // Issue 5's memory target, counted from the vectors' capacities (deterministic).
+    let mut b = SceneBuilder::new();
+    b.allow_no_lights(true);
+    let m = b.material(Material::Black);
+    let skipped = b.mesh(&uv_sphere(100, 200), m, &Transform::IDENTITY).unwrap();
+    let scene = b.build().unwrap();
+    let triangles = scene.primitive_count();
+    assert_eq!(triangles + skipped, 40_000);
+    let per_triangle = scene.memory_bytes() as f64 / triangles as f64;
+    eprintln!("sphere of {triangles} triangles: {per_triangle:.1} bytes per triangle (mesh + BVH)");
+    assert!(per_triangle < 80.0, "{per_triangle:.1} bytes per triangle");
+    // Not trivially small either: 12 bytes of indices and 40 of packet per triangle at least.
+    assert!(per_triangle > 52.0, "{per_triangle:.1} bytes per triangle");
+}
