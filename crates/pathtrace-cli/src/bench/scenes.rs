@@ -77,8 +77,10 @@ pub const SUITE: [SuiteScene; 6] = [
             include_str!("../../../../scenes/bench/glass-metal-spheres.toml"),
         ),
         max_depth: Some(-1),
-        spp: 512,
-        quick_spp: 16,
+        spp: 1024,
+        // The glass sphere's caustic is a heavy tail (rare light hits through the glass): at
+        // 16–64 spp a region's variance estimate misses it and the check fails falsely.
+        quick_spp: 256,
         reference_spp: 8192,
     },
     SuiteScene {
@@ -104,7 +106,8 @@ pub const SUITE: [SuiteScene; 6] = [
         description: "Veach's MIS scene (Mitsuba remake, direct lighting)",
         source: Source::Shared("veach-mis/docs/scenes/integrator_direct_both.xml"),
         max_depth: None,
-        spp: 256,
+        // Near-specular plates lit by small spheres: relative MSE 0.04 at 256 spp.
+        spp: 2048,
         quick_spp: 16,
         reference_spp: 8192,
     },
