@@ -24,8 +24,9 @@ pub enum Command {
     ///
     /// Ctrl-C stops early and still writes what was rendered so far.
     Render(RenderArgs),
-    /// Measure rendering speed (samples/s, rays/s) on the built-in Cornell box; `bench bvh`
-    /// measures the BVH alone (build time, memory, rays/s) on meshes of 10² to 10⁷ triangles.
+    /// Run the benchmark suite: samples/s, rays/s, path length, peak memory and time to a target
+    /// error on six scenes, each checked against its stored reference; `bench bvh` measures the
+    /// BVH alone (build time, memory, rays/s) on meshes of 10² to 10⁷ triangles.
     Bench(BenchArgs),
     /// Compare an image with a reference: MSE, RMSE, relative MSE, PSNR (8-bit and linear), SSIM.
     ///
@@ -267,17 +268,48 @@ pub struct RenderArgs {
 pub struct BenchArgs {
     #[command(subcommand)]
     pub target: Option<BenchTarget>,
-    /// Samples per pixel per run
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
-    pub spp: u32,
-    /// Number of timed runs (the median is reported)
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
-    pub runs: u32,
-    #[command(flatten)]
-    pub quality: QualityArgs,
+    /// Comma-separated suite scenes, or all: cornell-d8, cornell-inf, spheres, bunny-env,
+    /// mesh-1m, veach-mis (bunny-env and veach-mis need ../shared/scenes; skipped without)
+    #[arg(long, default_value = "all")]
+    pub scenes: String,
+    /// Few samples per pixel and one run: a quick smoke test (CI)
+    #[arg(long)]
+    pub quick: bool,
+    /// Samples per pixel per run, for every scene [default: each scene's]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub spp: Option<u32>,
+    /// Timed runs per scene; medians are reported [default: 3, 1 with --quick]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub runs: Option<u32>,
+    /// Worker threads [default: one per core]
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Also run each scene on one thread and print all threads' samples/s over one thread's
+    #[arg(long)]
+    pub scaling: bool,
+    /// The relative MSE whose time-to-reach is measured against the stored references
+    #[arg(long, value_name = "E", default_value_t = 1e-2, value_parser = parse_positive)]
+    pub target_rel_mse: f64,
+    /// Folder of the reference images [default: benches/references of the source tree]
+    #[arg(long, value_name = "DIR")]
+    pub references: Option<PathBuf>,
+    /// Render the references of the selected scenes (at many samples per pixel) instead of
+    /// benchmarking; they are written to the references folder
+    #[arg(long, conflicts_with_all = ["compare", "json"])]
+    pub make_references: bool,
+    /// Samples per pixel of --make-references [default: each scene's]
+    #[arg(long, value_name = "N", requires = "make_references", value_parser = clap::value_parser!(u32).range(1..))]
+    pub reference_spp: Option<u32>,
     /// Print the results as JSON instead of a table
     #[arg(long)]
     pub json: bool,
+    /// Compare two `bench --json` reports: per-scene ratios of speed, time to quality, memory
+    #[arg(long, num_args = 2, value_names = ["OLD", "NEW"])]
+    pub compare: Option<Vec<PathBuf>>,
+    /// Measure the scenes in this process instead of one child process per scene (used by the
+    /// parent; the peak memory is then cumulative)
+    #[arg(long, hide = true)]
+    pub in_process: bool,
 }
 
 #[derive(Debug, Subcommand)]

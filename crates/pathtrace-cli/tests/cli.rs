@@ -168,13 +168,55 @@ fn ctrl_c_writes_the_image_rendered_so_far() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The bench suite's quick mode on the Cornell box: the JSON report's fields, the check against
+/// the stored reference (PASS), and `--compare` of two reports.
 #[test]
-fn bench_reports_speed_as_json() {
-    let o = run(&["bench", "--size", "32x32", "--spp", "2", "--runs", "1", "--json"]);
+fn bench_suite_reports_checks_and_compares() {
+    let dir = temp_dir("bench");
+    let o = run(&["bench", "--quick", "--scenes", "cornell-d8", "--json"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert!(json["median_samples_per_second"].as_f64().unwrap() > 0.0);
-    assert_eq!(json["runs"][0]["max_depth"], 8);
+    assert_eq!(json["schema"], "pathtrace-bench-suite/1");
+    assert!(json["machine"]["logical_cpus"].as_u64().unwrap() >= 1);
+    assert!(json["date_utc"].as_str().unwrap().ends_with('Z'));
+    let scene = &json["scenes"][0];
+    assert_eq!(scene["name"], "cornell-d8");
+    let m = &scene["result"];
+    assert_eq!(m["max_depth"], 8);
+    assert_eq!((m["width"].as_u64(), m["height"].as_u64()), (Some(128), Some(128)));
+    assert!(m["samples_per_second"].as_f64().unwrap() > 0.0);
+    assert_eq!(m["camera_rays_per_sample"].as_f64().unwrap(), 1.0);
+    let ext = m["extension_rays_per_sample"].as_f64().unwrap();
+    assert!(ext > 0.5 && ext < 7.0, "{ext}");
+    assert!((m["mean_path_length"].as_f64().unwrap() - 1.0 - ext).abs() < 1e-9);
+    assert!(m["peak_rss_mib"].as_f64().unwrap() > 1.0);
+    assert_eq!(m["peak_rss_scope"], "child process");
+    assert!(m["final_rel_mse"].as_f64().unwrap() > 0.0);
+    assert_eq!(m["check"]["status"], "PASS", "{}", m["check"]);
+    let a = dir.join("a.json");
+    std::fs::write(&a, &o.stdout).unwrap();
+    let o = run(&["bench", "--compare", a.to_str().unwrap(), a.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(table.lines().any(|l| l.starts_with("cornell-d8") && l.contains("1.000×")), "{table}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A wrong reference (the Cornell box 5% too bright) fails the check with a non-zero exit code.
+#[test]
+fn bench_check_fails_against_a_wrong_reference() {
+    let dir = temp_dir("bench-wrong");
+    let refs = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../benches/references");
+    let mut img = pathtrace_scene::image_io::read_linear_image(&refs.join("cornell-d8.exr")).unwrap();
+    img.pixels.iter_mut().for_each(|p| *p *= 1.05);
+    let settings = pathtrace::film::ToneMapSettings::default();
+    pathtrace_scene::image_io::write_image(&dir.join("cornell-d8.exr"), &img, &settings).unwrap();
+    std::fs::copy(refs.join("references.json"), dir.join("references.json")).unwrap();
+    let o = run(&["bench", "--quick", "--scenes", "cornell-d8", "--references", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(table.contains("FAIL"), "{table}");
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
