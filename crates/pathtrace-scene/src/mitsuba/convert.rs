@@ -82,7 +82,16 @@ pub fn convert_located(src: &XmlSource, root: &Element, warnings: &mut Vec<Strin
         return Err(src.error(root.offset, "the scene has no <sensor>: a perspective sensor is required"));
     };
     let file =
-        SceneFile { render, camera, materials: c.materials, objects: c.objects, groups: Vec::new(), lights: c.lights };
+        SceneFile {
+            render,
+            camera,
+            materials: c.materials,
+            objects: c.objects,
+            groups: Vec::new(),
+            shape_groups: BTreeMap::new(),
+            instances: Vec::new(),
+            lights: c.lights,
+        };
     Ok((file, c.origins))
 }
 
