@@ -101,7 +101,8 @@ fn error(text: &str) -> String {
 
 #[test]
 fn instancing_errors_name_file_line_and_column() {
-    let e = error(&SCENE.replacen("group = \"ball\"\ntransform = [{ scale", "group = \"bal\"\ntransform = [{ scale", 1));
+    let e =
+        error(&SCENE.replacen("group = \"ball\"\ntransform = [{ scale", "group = \"bal\"\ntransform = [{ scale", 1));
     assert!(e.starts_with("s.toml:35:9:") && e.contains("unknown shape group `bal` (shape groups: ball)"), "{e}");
     let e = error(&SCENE.replacen("material = \"red\"", "material = \"lamp\"", 1));
     assert!(e.starts_with("s.toml:40:12:") && e.contains("instanced shapes cannot be lights"), "{e}");
@@ -109,7 +110,11 @@ fn instancing_errors_name_file_line_and_column() {
     assert!(e.starts_with("s.toml:26:") && e.contains("objects of a shape group cannot be lights"), "{e}");
     let e = error(&SCENE.replacen("material = \"red\"", "material = \"blue\"", 1));
     assert!(e.starts_with("s.toml:40:12:") && e.contains("unknown material `blue`"), "{e}");
-    let e = error(&SCENE.replacen("{ type = \"sphere\"", "{ type = \"plane\", point = [0, 0, 0], normal = [0, 1, 0], material = \"white\" },\n  { type = \"sphere\"", 1));
+    let e = error(&SCENE.replacen(
+        "{ type = \"sphere\"",
+        "{ type = \"plane\", point = [0, 0, 0], normal = [0, 1, 0], material = \"white\" },\n  { type = \"sphere\"",
+        1,
+    ));
     assert!(e.starts_with("s.toml:26:") && e.contains("plane"), "{e}");
     let e = error(&SCENE.replacen("group = \"ball\"\nmaterial", "grup = \"ball\"\nmaterial", 1));
     assert!(e.starts_with("s.toml:39:1:") && e.contains("unknown field `grup`"), "{e}");
@@ -159,7 +164,11 @@ fn mitsuba_shapegroups_and_instances_are_imported() {
     let e = pathtrace_scene::mitsuba::load_str(&bad, "s.xml".as_ref(), &[]).err().unwrap().to_string();
     assert!(e.starts_with("s.xml:10:") && e.contains("cannot be lights"), "{e}");
     // An instance must name a shape group.
-    let bad = XML.replacen("<ref id=\"ball\"/>\n        <transform name=\"to_world\"><translate", "<ref id=\"nope\"/>\n        <transform name=\"to_world\"><translate", 1);
+    let bad = XML.replacen(
+        "<ref id=\"ball\"/>\n        <transform name=\"to_world\"><translate",
+        "<ref id=\"nope\"/>\n        <transform name=\"to_world\"><translate",
+        1,
+    );
     let e = pathtrace_scene::mitsuba::load_str(&bad, "s.xml".as_ref(), &[]).err().unwrap().to_string();
     assert!(e.starts_with("s.xml:16:") && e.contains("unknown ref id `nope`"), "{e}");
 }

@@ -57,8 +57,13 @@ fn test_group() -> Group {
             (
                 Item::Shape(
                     Shape::Triangle(
-                        Triangle::new(Vec3::new(0.2, -0.9, -0.3), Vec3::new(0.9, -0.9, -0.2), Vec3::new(0.5, -0.2, -0.6), Triangle::FLAT)
-                            .unwrap(),
+                        Triangle::new(
+                            Vec3::new(0.2, -0.9, -0.3),
+                            Vec3::new(0.9, -0.9, -0.2),
+                            Vec3::new(0.5, -0.2, -0.6),
+                            Triangle::FLAT,
+                        )
+                        .unwrap(),
                     ),
                     Transform::IDENTITY,
                 ),
@@ -79,7 +84,9 @@ fn random_transform(rng: &mut TestRng, k: usize) -> Transform {
         2 => Vec3::new(-s, s, s),
         _ => Vec3::new(s, s, -0.6 - 1.2 * r()),
     };
-    let rot = Transform::rotate_x(360.0 * r()).then(&Transform::rotate_y(360.0 * r())).then(&Transform::rotate_z(360.0 * r()));
+    let rot = Transform::rotate_x(360.0 * r())
+        .then(&Transform::rotate_y(360.0 * r()))
+        .then(&Transform::rotate_z(360.0 * r()));
     let t = Vec3::new(12.0 * r() - 6.0, 12.0 * r() - 6.0, 12.0 * r() - 6.0);
     Transform::scale(scale).unwrap().then(&rot).then(&Transform::translate(t))
 }
@@ -212,7 +219,12 @@ fn two_level_hits_equal_the_flattened_scenes_hits() {
     assert!(instance_hits > 50_000 && misses > 100_000, "the rays exercise both hits and misses");
     // Rays that graze an edge or a crossing of two instances could go either way under the
     // rounding of the object-space transform: a handful in 300,000 at most (0 measured).
-    assert!(disagreements.len() <= 10, "{}:\n{}", disagreements.len(), disagreements[..disagreements.len().min(10)].join("\n"));
+    assert!(
+        disagreements.len() <= 10,
+        "{}:\n{}",
+        disagreements.len(),
+        disagreements[..disagreements.len().min(10)].join("\n")
+    );
 }
 
 #[test]
@@ -241,7 +253,10 @@ fn lit_scenes() -> (Arc<Scene>, Arc<Scene>) {
     let group = test_group();
     let placements = [
         Transform::rotate_x(-90.0).then(&Transform::translate(Vec3::new(-1.2, 0.5, 0.0))),
-        Transform::scale(Vec3::new(0.7, 1.2, 0.8)).unwrap().then(&Transform::rotate_y(40.0)).then(&Transform::translate(Vec3::new(1.3, 1.0, 0.5))),
+        Transform::scale(Vec3::new(0.7, 1.2, 0.8))
+            .unwrap()
+            .then(&Transform::rotate_y(40.0))
+            .then(&Transform::translate(Vec3::new(1.3, 1.0, 0.5))),
         Transform::scale(Vec3::new(-0.8, 0.8, 0.8)).unwrap().then(&Transform::translate(Vec3::new(0.0, 1.5, 2.0))),
     ];
     let build = |instanced: bool| {
@@ -250,7 +265,8 @@ fn lit_scenes() -> (Arc<Scene>, Arc<Scene>) {
             .map(|k| b.material(Material::Diffuse(Diffuse { albedo: Rgb::new(0.8, 0.3 + 0.2 * k as f32, 0.2) })))
             .collect();
         let lamp = b.emissive(Emission { radiance: Rgb::splat(6.0), two_sided: false });
-        let floor = Quad::new(Vec3::new(-6.0, -0.5, -6.0), Vec3::new(0.0, 0.0, 12.0), Vec3::new(12.0, 0.0, 0.0)).unwrap();
+        let floor =
+            Quad::new(Vec3::new(-6.0, -0.5, -6.0), Vec3::new(0.0, 0.0, 12.0), Vec3::new(12.0, 0.0, 0.0)).unwrap();
         b.shape(Shape::Quad(floor), mats[0], &Transform::IDENTITY).unwrap();
         let light = Quad::new(Vec3::new(-1.5, 5.0, -1.5), Vec3::new(3.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 3.0)).unwrap();
         b.shape(Shape::Quad(light), lamp, &Transform::IDENTITY).unwrap();
@@ -276,7 +292,11 @@ fn lit_scenes() -> (Arc<Scene>, Arc<Scene>) {
                 }
             }
         }
-        b.camera(CameraDesc { look_from: Vec3::new(0.0, 3.0, -7.0), look_at: Vec3::new(0.0, 0.8, 0.5), ..Default::default() });
+        b.camera(CameraDesc {
+            look_from: Vec3::new(0.0, 3.0, -7.0),
+            look_at: Vec3::new(0.0, 0.8, 0.5),
+            ..Default::default()
+        });
         Arc::new(b.build().unwrap())
     };
     (build(true), build(false))

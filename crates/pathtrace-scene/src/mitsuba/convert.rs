@@ -85,17 +85,16 @@ pub fn convert_located(src: &XmlSource, root: &Element, warnings: &mut Vec<Strin
     let Some(camera) = camera else {
         return Err(src.error(root.offset, "the scene has no <sensor>: a perspective sensor is required"));
     };
-    let file =
-        SceneFile {
-            render,
-            camera,
-            materials: c.materials,
-            objects: c.objects,
-            groups: Vec::new(),
-            shape_groups: c.shape_groups,
-            instances: c.instances,
-            lights: c.lights,
-        };
+    let file = SceneFile {
+        render,
+        camera,
+        materials: c.materials,
+        objects: c.objects,
+        groups: Vec::new(),
+        shape_groups: c.shape_groups,
+        instances: c.instances,
+        lights: c.lights,
+    };
     Ok((file, c.origins))
 }
 

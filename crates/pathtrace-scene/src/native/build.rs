@@ -5,8 +5,8 @@
 use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
 use super::model::{
-    CameraSection, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind, MetalDef, Num, ObjectDef,
-    RenderSection, RoughnessDef, SceneFile, ShapeDef,
+    CameraSection, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind, MetalDef, Num,
+    ObjectDef, RenderSection, RoughnessDef, SceneFile, ShapeDef,
 };
 use super::transform::compose;
 use super::values::vec3;
@@ -19,16 +19,15 @@ use pathtrace::material::{
 };
 use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::scene::{validate_material, BuildError};
-use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
 use pathtrace::shape::TriangleMesh;
+use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
 use pathtrace::{Camera, CameraDesc, GroupId, MaterialId, SceneBuilder, ShapeGroup};
 use std::collections::BTreeMap;
 
 /// Builds the scene a file describes; `src` locates errors and resolves relative mesh paths.
 pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneError> {
     let defaults = render_defaults(&file.render, &file.camera, src)?;
-    let mut ctx =
-        Ctx { src, b: SceneBuilder::new(), ids: BTreeMap::new(), materials: &file.materials, group: None };
+    let mut ctx = Ctx { src, b: SceneBuilder::new(), ids: BTreeMap::new(), materials: &file.materials, group: None };
     for (name, def) in &file.materials {
         let id = ctx.add_material(name, def)?;
         ctx.ids.insert(name.clone(), id);

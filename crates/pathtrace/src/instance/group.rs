@@ -51,7 +51,12 @@ impl ShapeGroup {
 
     /// Adds a mesh placed in the group's space by `transform`; returns how many degenerate
     /// triangles were skipped (as [`crate::SceneBuilder::mesh`]).
-    pub fn mesh(&mut self, mesh: &TriangleMesh, material: MaterialId, transform: &Transform) -> Result<usize, BuildError> {
+    pub fn mesh(
+        &mut self,
+        mesh: &TriangleMesh,
+        material: MaterialId,
+        transform: &Transform,
+    ) -> Result<usize, BuildError> {
         let (geometry, skipped) = MeshGeometry::new(mesh, transform)?;
         if !geometry.is_empty() {
             self.entries.push(GroupEntry::Mesh(geometry, material.0));
@@ -60,7 +65,13 @@ impl ShapeGroup {
     }
 
     /// Adds the six quads of the box `[min, max]`, placed in the group's space by `transform`.
-    pub fn add_box(&mut self, min: Vec3, max: Vec3, material: MaterialId, transform: &Transform) -> Result<(), BuildError> {
+    pub fn add_box(
+        &mut self,
+        min: Vec3,
+        max: Vec3,
+        material: MaterialId,
+        transform: &Transform,
+    ) -> Result<(), BuildError> {
         let faces = Quad::box_faces(min, max, transform).ok_or(BuildError::Degenerate("box"))?;
         self.entries.extend(faces.into_iter().map(|q| GroupEntry::Shape(Shape::Quad(q), material.0)));
         Ok(())
@@ -114,11 +125,7 @@ impl Prototype {
         }
         let corners: [_; 8] = std::array::from_fn(|i| {
             let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
-            to_world.point(Vec3::new(
-                pick(1, b.min.x, b.max.x),
-                pick(2, b.min.y, b.max.y),
-                pick(4, b.min.z, b.max.z),
-            ))
+            to_world.point(Vec3::new(pick(1, b.min.x, b.max.x), pick(2, b.min.y, b.max.y), pick(4, b.min.z, b.max.z)))
         });
         Aabb::from_points(&corners)
     }

@@ -8,8 +8,8 @@
 
 mod group;
 
-pub use group::ShapeGroup;
 pub(crate) use group::Prototype;
+pub use group::ShapeGroup;
 
 use std::cell::Cell;
 
@@ -87,8 +87,7 @@ impl PrimitiveSet for Blocker<'_> {
 impl Instances {
     /// Builds the top level over `instances` of `groups`.
     pub fn new(groups: Vec<Prototype>, instances: Vec<Instance>) -> Self {
-        let bounds: Vec<Aabb> =
-            instances.iter().map(|i| groups[i.group as usize].world_bounds(&i.to_world)).collect();
+        let bounds: Vec<Aabb> = instances.iter().map(|i| groups[i.group as usize].world_bounds(&i.to_world)).collect();
         let top = Bvh::build(&bounds, &vec![Packable::No; bounds.len()]);
         Self { groups, instances, top }
     }
