@@ -181,7 +181,8 @@ impl Scene {
         self.instances.len()
     }
 
-    /// Brute-force closest hit (every primitive tested), for checking the BVH.
+    /// Brute-force closest hit (every primitive tested; every instance tested through its
+    /// group's BVH, without the top level), for checking the BVHs.
     pub fn intersect_brute_force(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         for i in 0..self.prims.len() as u32 {

@@ -2,14 +2,13 @@
 //! by instances (see `mod.rs`).
 //!
 //! ```toml
-//! [[groups]]
-//! name = "tree"
+//! [shape_groups.tree]
 //! objects = [{ type = "mesh", file = "tree.ply", material = "bark" }]
 //!
-//! [[objects]]
-//! type = "instance"
+//! [[instances]]
 //! group = "tree"
 //! transform = [{ translate = [4, 0, 0] }]
+//! material = "grey"   # optional: replaces every material of the group
 //! ```
 
 use crate::accel::Bvh;
