@@ -371,6 +371,10 @@ pub struct BvhBenchArgs {
     /// closest hits to FILE for benches/peers/bvh_embree.py (prints our speed as JSON)
     #[arg(long, value_name = "FILE")]
     pub export: Option<PathBuf>,
+    /// Instead of the size sweep: a unit-sphere mesh of --max-tris triangles placed N times as
+    /// instances (a two-level BVH) against the mesh alone (build, memory, incoherent rays/s)
+    #[arg(long, value_name = "N", value_parser = parse_count)]
+    pub instances: Option<usize>,
 }
 
 /// A count such as `1000`, `1e6` or `2.5e5`, from 1 to 10⁷.

@@ -259,6 +259,9 @@ pub fn run(a: BvhBenchArgs) -> Result<ExitCode, CliError> {
     let sah = BuildOptions { bins: a.bins as usize, max_leaf: a.max_leaf as usize, ..BuildOptions::default() };
     let clock = if a.cpu_time { Clock::ThreadCpu } else { Clock::Wall };
     let settings = Settings { a: &a, clock, sah, pool };
+    if let Some(n) = a.instances {
+        return crate::bench_instances::run(&a, n, clock);
+    }
     if let Some(path) = &a.export {
         return crate::bvh_export::run(&settings.pool, clock, kinds[0], a.max_tris, a.rays, a.runs, &sah, path);
     }

@@ -3,6 +3,7 @@
 mod args;
 mod bench;
 mod bench_bvh;
+mod bench_instances;
 mod bvh_export;
 mod bvh_meshes;
 mod bvh_plots;

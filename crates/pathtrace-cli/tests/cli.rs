@@ -350,3 +350,22 @@ fn render_stops_at_a_target_error_and_reports_it() {
     assert_eq!(o.status.code(), Some(2));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `bench bvh --instances`: the mesh alone, its instances and flattened copies, with the
+/// instances' memory a small multiple of one mesh (here 8 copies of a 200-triangle sphere).
+#[test]
+fn bench_bvh_instances_compares_with_the_mesh_and_its_copies() {
+    let o = run(&["bench", "bvh", "--instances", "8", "--max-tris", "200", "--rays", "2000", "--runs", "1"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for row in ["| mesh alone |", "| instances |", "| copies (flattened) |"] {
+        assert!(out.lines().any(|l| l.starts_with(row)), "{row} missing:\n{out}");
+    }
+    let ratio: f64 = out
+        .split("instances use ")
+        .nth(1)
+        .and_then(|s| s.split('×').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no memory ratio in:\n{out}"));
+    assert!(ratio > 1.0 && ratio < 8.0, "{ratio}");
+}

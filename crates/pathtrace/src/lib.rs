@@ -5,6 +5,7 @@
 pub mod accel;
 pub mod camera;
 pub mod film;
+pub mod instance;
 pub mod light;
 pub mod material;
 pub mod math;
@@ -14,6 +15,7 @@ pub mod scene;
 pub mod shape;
 
 pub use camera::{Camera, CameraDesc};
+pub use instance::{GroupId, ShapeGroup};
 pub use scene::{MaterialId, Scene, SceneBuilder};
 pub mod integrator;
 pub mod render;

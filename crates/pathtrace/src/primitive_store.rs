@@ -3,10 +3,10 @@
 //! plus an index triple per triangle, with one material and light range per mesh). The BVH
 //! names every bounded primitive by one index: shapes first, then each mesh's triangles in turn.
 
-use crate::accel::PrimitiveSet;
+use crate::accel::{Packable, PrimitiveSet};
 use crate::math::{Aabb, Ray};
 use crate::scene::Primitive;
-use crate::shape::{MeshGeometry, PrimHit, SurfacePoint};
+use crate::shape::{MeshGeometry, PrimHit, Shape, SurfacePoint};
 
 /// A mesh in a scene.
 #[derive(Clone, Debug)]
@@ -54,6 +54,10 @@ impl PrimitiveStore {
         self.len as usize
     }
 
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
     #[inline(always)]
     fn item(&self, index: u32) -> Item {
         if (index as usize) < self.shapes.len() {
@@ -72,12 +76,29 @@ impl PrimitiveStore {
         shapes.chain(tris).collect()
     }
 
-    pub fn shapes(&self) -> &[Primitive] {
-        &self.shapes
+    /// How the BVH stores each primitive, in index order: quads and triangles in SIMD
+    /// packets, other shapes tested one by one.
+    pub fn packables(&self) -> Vec<Packable> {
+        let shape_kinds = self.shapes.iter().map(|p| match p.shape {
+            Shape::Quad(q) => Packable::Quad(q),
+            Shape::Triangle(t) => Packable::Triangle(t),
+            _ => Packable::No,
+        });
+        let mesh_kinds = self
+            .meshes
+            .iter()
+            .flat_map(|m| (0..m.geometry.len() as u32).map(|i| Packable::Triangle(m.geometry.triangle(i))));
+        shape_kinds.chain(mesh_kinds).collect()
     }
 
-    pub fn meshes(&self) -> &[SceneMesh] {
-        &self.meshes
+    /// True if primitive `index`'s front is defined by its winding or edge order (triangles,
+    /// quads, disks), so a mirroring transform turns it over; false for spheres and
+    /// ellipsoids, whose front is their outside.
+    pub fn front_follows_winding(&self, index: u32) -> bool {
+        match self.item(index) {
+            Item::Shape(i) => !matches!(self.shapes[i as usize].shape, Shape::Sphere(_) | Shape::Ellipsoid(_)),
+            Item::MeshTriangle { .. } => true,
+        }
     }
 
     /// Surface, material and light of primitive `index` at a hit.

@@ -1,8 +1,9 @@
 //! The renderable scene (primitives in a BVH, materials, lights, camera) and the
 //! [`SceneBuilder`] that every front end — files, built-in scenes, tests — goes through.
 
-use crate::accel::{Bvh, Intersectable, Packable, PrimitiveSet};
+use crate::accel::{Bvh, Intersectable, PrimitiveSet};
 use crate::camera::CameraDesc;
+use crate::instance::{GroupId, Instance, Instances, ShapeGroup};
 use crate::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight};
 use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
@@ -40,12 +41,13 @@ pub struct Hit {
     pub hit: PrimHit,
 }
 
-/// A primitive: in the BVH (shapes first, then each mesh's triangles), or one of the unbounded
-/// shapes kept beside it.
+/// A primitive: in the BVH (shapes first, then each mesh's triangles), one of the unbounded
+/// shapes kept beside it, or primitive `prim` of the group placed by `instance`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PrimRef {
     Bounded(u32),
     Unbounded(u32),
+    Instance { instance: u32, prim: u32 },
 }
 
 /// Everything the integrator needs to know about a hit point.
@@ -79,6 +81,8 @@ pub enum BuildError {
     Material(String),
     #[error("invalid light: {0}")]
     Light(String),
+    #[error("invalid instance: {0}")]
+    Instance(String),
 }
 
 /// A scene ready to render.
@@ -87,6 +91,8 @@ pub struct Scene {
     prims: PrimitiveStore,
     unbounded: Vec<Primitive>,
     bvh: Bvh,
+    /// Placed shape groups (two-level); empty in scenes without instances.
+    instances: Instances,
     materials: Vec<Material>,
     pub lights: LightSet,
     pub camera: CameraDesc,
@@ -104,6 +110,12 @@ impl Scene {
                 best = Some(Hit { prim: PrimRef::Unbounded(i as u32), hit });
             }
         }
+        if !self.instances.is_empty() {
+            let limit = best.map_or(t_max, |b| b.hit.t);
+            if let Some((hit, instance, prim)) = self.instances.intersect(ray, 0.0, limit) {
+                best = Some(Hit { prim: PrimRef::Instance { instance, prim }, hit });
+            }
+        }
         best
     }
 
@@ -112,6 +124,7 @@ impl Scene {
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.unbounded.iter().any(|p| p.shape.intersect(ray, 0.0, t_max).is_some())
             || self.bvh.occluded(&self.prims, ray, 0.0, t_max)
+            || (!self.instances.is_empty() && self.instances.occluded(ray, 0.0, t_max))
     }
 
     /// Surface details of a hit found with `ray`.
@@ -122,6 +135,10 @@ impl Scene {
             PrimRef::Unbounded(i) => {
                 let p = &self.unbounded[i as usize];
                 (p.shape.surface(ray, &hit.hit, &[]), p.material, p.light)
+            }
+            PrimRef::Instance { instance, prim } => {
+                let (surface, material) = self.instances.surface(instance, prim, ray, &hit.hit);
+                (surface, material, Primitive::NO_LIGHT)
             }
         };
         Interaction { surface, material: &self.materials[material as usize], light }
@@ -137,20 +154,35 @@ impl Scene {
         self.bvh.stats()
     }
 
-    /// Bytes held by the geometry: shapes, meshes (vertices and indices) and the BVH (from
-    /// capacities; materials, lights and the camera are not counted).
+    /// Bytes held by the geometry: shapes, meshes (vertices and indices), the BVH, and the
+    /// instances with their groups (each group once) and top-level BVH (from capacities;
+    /// materials, lights and the camera are not counted).
     pub fn memory_bytes(&self) -> usize {
         self.prims.memory_bytes()
             + self.unbounded.capacity() * std::mem::size_of::<Primitive>()
             + self.bvh.memory_bytes()
+            + self.instances.memory_bytes()
     }
 
-    /// Number of primitives (shapes, mesh triangles and unbounded shapes).
+    /// Bytes held by the instances alone: their groups (each once), the instance records and
+    /// the top-level BVH (included in [`Scene::memory_bytes`]).
+    pub fn instance_memory_bytes(&self) -> usize {
+        self.instances.memory_bytes()
+    }
+
+    /// Number of primitives stored outside groups (shapes, mesh triangles and unbounded
+    /// shapes); instanced primitives are counted by [`Scene::instance_count`].
     pub fn primitive_count(&self) -> usize {
         self.prims.len() + self.unbounded.len()
     }
 
-    /// Brute-force closest hit (every primitive tested), for checking the BVH.
+    /// Number of placed shape groups.
+    pub fn instance_count(&self) -> usize {
+        self.instances.len()
+    }
+
+    /// Brute-force closest hit (every primitive tested; every instance tested through its
+    /// group's BVH, without the top level), for checking the BVHs.
     pub fn intersect_brute_force(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         for i in 0..self.prims.len() as u32 {
@@ -164,6 +196,10 @@ impl Scene {
             if let Some(hit) = p.shape.intersect(ray, 0.0, limit) {
                 best = Some(Hit { prim: PrimRef::Unbounded(i as u32), hit });
             }
+        }
+        let limit = best.map_or(t_max, |b| b.hit.t);
+        if let Some((hit, instance, prim)) = self.instances.intersect_brute_force(ray, 0.0, limit) {
+            best = Some(Hit { prim: PrimRef::Instance { instance, prim }, hit });
         }
         best
     }
@@ -185,6 +221,9 @@ pub struct SceneBuilder {
     allow_no_lights: bool,
     point_lights: Vec<PointLight>,
     environment: Option<EnvironmentLight>,
+    groups: Vec<ShapeGroup>,
+    /// (group, transform, material override or [`Instance::OWN_MATERIALS`]).
+    instances: Vec<(u32, Transform, u32)>,
 }
 
 impl SceneBuilder {
@@ -290,14 +329,90 @@ impl SceneBuilder {
         Ok(skipped)
     }
 
+    /// Adds a shape group to be placed by [`SceneBuilder::instance`]; its materials must
+    /// exist.
+    pub fn group(&mut self, group: ShapeGroup) -> Result<GroupId, BuildError> {
+        for m in group.materials() {
+            self.check_material(MaterialId(m))?;
+        }
+        self.groups.push(group);
+        Ok(GroupId(self.groups.len() as u32 - 1))
+    }
+
+    /// Places `group` by `transform`, with its own materials or every primitive in `material`.
+    /// The group is stored (and its BVH built) once however many instances place it.
+    pub fn instance(
+        &mut self,
+        group: GroupId,
+        transform: &Transform,
+        material: Option<MaterialId>,
+    ) -> Result<(), BuildError> {
+        if group.0 as usize >= self.groups.len() {
+            return Err(BuildError::Instance(format!("shape group {} does not exist", group.0)));
+        }
+        if !transform.matrix.is_finite() || !transform.inverse.is_finite() {
+            return Err(BuildError::Instance("the transform must be finite and invertible".into()));
+        }
+        if let Some(m) = material {
+            self.check_material(m)?;
+        }
+        self.instances.push((group.0, *transform, material.map_or(Instance::OWN_MATERIALS, |m| m.0)));
+        Ok(())
+    }
+
+    /// Builds each instanced group's BVH and the top level over the instances. Instanced
+    /// primitives cannot emit: their materials (or an instance's override) must not be
+    /// emissive.
+    fn build_instances(&mut self) -> Result<Instances, BuildError> {
+        if self.instances.is_empty() {
+            return Ok(Instances::default());
+        }
+        let emits = |m: u32| self.materials[m as usize].1.is_some_and(|e| !e.radiance.is_black());
+        // Only groups that are placed are built; they are renumbered densely.
+        let mut new_index = vec![u32::MAX; self.groups.len()];
+        let mut used = Vec::new();
+        for &(g, _, material) in &self.instances {
+            let emissive = if material == Instance::OWN_MATERIALS {
+                self.groups[g as usize].materials().any(emits)
+            } else {
+                emits(material)
+            };
+            if emissive {
+                return Err(BuildError::Instance(
+                    "an instanced shape's material cannot be emissive (instanced shapes are not lights; \
+                     override the material or add the emitter as an ordinary object)"
+                        .into(),
+                ));
+            }
+            if new_index[g as usize] == u32::MAX {
+                new_index[g as usize] = used.len() as u32;
+                used.push(g);
+            }
+        }
+        let groups: Vec<_> = used.iter().map(|&g| std::mem::take(&mut self.groups[g as usize]).build()).collect();
+        let instances = self
+            .instances
+            .iter()
+            .filter(|&&(g, ..)| !groups[new_index[g as usize] as usize].prims.is_empty())
+            .map(|&(g, to_world, material)| Instance {
+                group: new_index[g as usize],
+                to_world,
+                material,
+                mirrors: to_world.matrix.determinant() < 0.0,
+            })
+            .collect();
+        Ok(Instances::new(groups, instances))
+    }
+
     /// Builds the BVH and the light set.
-    pub fn build(self) -> Result<Scene, BuildError> {
-        if self.entries.is_empty() {
+    pub fn build(mut self) -> Result<Scene, BuildError> {
+        if self.entries.is_empty() && self.instances.is_empty() {
             return Err(BuildError::Empty);
         }
         for (m, _) in &self.materials {
             validate_material(m)?;
         }
+        let instances = self.build_instances()?;
         let mut shapes = Vec::new();
         let mut meshes = Vec::new();
         let mut unbounded = Vec::new();
@@ -347,27 +462,21 @@ impl SceneBuilder {
         let prims = PrimitiveStore::new(shapes, meshes);
         let bounds = prims.bounds();
         // The environment's selection power needs the scene's size: its bounding sphere.
-        let scene_box = bounds.iter().fold(None, |acc: Option<Aabb>, &b| Some(acc.map_or(b, |a| a.union(b))));
+        let mut scene_box = bounds.iter().fold(None, |acc: Option<Aabb>, &b| Some(acc.map_or(b, |a| a.union(b))));
+        if !instances.is_empty() {
+            scene_box = Some(scene_box.map_or(instances.bounds(), |a| a.union(instances.bounds())));
+        }
         let scene_radius = scene_box.map_or(1.0, |b| 0.5 * b.extent().length());
         let lights = LightSet::with_all(lights, self.point_lights, self.environment, scene_radius);
         if lights.is_empty() && !self.allow_no_lights {
             return Err(BuildError::NoLights);
         }
-        let shape_kinds = prims.shapes().iter().map(|p| match p.shape {
-            Shape::Quad(q) => Packable::Quad(q),
-            Shape::Triangle(t) => Packable::Triangle(t),
-            _ => Packable::No,
-        });
-        let mesh_kinds = prims
-            .meshes()
-            .iter()
-            .flat_map(|m| (0..m.geometry.len() as u32).map(|i| Packable::Triangle(m.geometry.triangle(i))));
-        let kinds: Vec<Packable> = shape_kinds.chain(mesh_kinds).collect();
-        let bvh = Bvh::build(&bounds, &kinds);
+        let bvh = Bvh::build(&bounds, &prims.packables());
         Ok(Scene {
             prims,
             unbounded,
             bvh,
+            instances,
             materials: self.materials.into_iter().map(|(m, _)| m).collect(),
             lights,
             camera: self.camera,

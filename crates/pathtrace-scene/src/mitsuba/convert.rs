@@ -4,8 +4,8 @@
 use super::parse::{Element, XmlSource};
 use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
-    CameraSection, EmissionDef, FilterDef, FilterName, LightDef, LookAtDef, MaterialDef, MaterialKind, Num, Num3,
-    ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep, Triple,
+    CameraSection, EmissionDef, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, LookAtDef, MaterialDef,
+    MaterialKind, Num, Num3, ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep, Triple,
 };
 use crate::native::{ItemPath, SceneError};
 use pathtrace::math::{Transform, Vec3};
@@ -14,6 +14,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 mod bsdf;
+mod instance;
 
 type R<T> = Result<T, SceneError>;
 
@@ -36,6 +37,9 @@ pub fn convert_located(src: &XmlSource, root: &Element, warnings: &mut Vec<Strin
         materials: BTreeMap::new(),
         bsdf_names: BTreeMap::new(),
         objects: Vec::new(),
+        objects_at: ItemPath::root().field("objects"),
+        shape_groups: BTreeMap::new(),
+        instances: Vec::new(),
         lights: Vec::new(),
         origins: vec![(ItemPath::root(), root.offset)],
     };
@@ -81,8 +85,16 @@ pub fn convert_located(src: &XmlSource, root: &Element, warnings: &mut Vec<Strin
     let Some(camera) = camera else {
         return Err(src.error(root.offset, "the scene has no <sensor>: a perspective sensor is required"));
     };
-    let file =
-        SceneFile { render, camera, materials: c.materials, objects: c.objects, groups: Vec::new(), lights: c.lights };
+    let file = SceneFile {
+        render,
+        camera,
+        materials: c.materials,
+        objects: c.objects,
+        groups: Vec::new(),
+        shape_groups: c.shape_groups,
+        instances: c.instances,
+        lights: c.lights,
+    };
     Ok((file, c.origins))
 }
 
@@ -106,6 +118,11 @@ struct Conv<'a, 'w> {
     /// Material names already made for `<bsdf id>` elements (by offset).
     bsdf_names: BTreeMap<usize, String>,
     objects: Vec<ObjectDef>,
+    /// Where `objects` will sit in the model (the top level, or a shape group's objects).
+    objects_at: ItemPath,
+    /// `<shape type="shapegroup">` by id, and `<shape type="instance">` placements.
+    shape_groups: BTreeMap<String, GroupDef>,
+    instances: Vec<InstanceDef>,
     /// Point lights and the environment.
     lights: Vec<LightDef>,
     origins: Origins,
@@ -675,6 +692,11 @@ impl<'a> Conv<'a, '_> {
 
     fn shape(&mut self, e: &'a Element) -> R<()> {
         let ty = self.req_attr(e, "type")?;
+        match ty {
+            "shapegroup" => return self.shapegroup(e),
+            "instance" => return self.instance(e),
+            _ => {}
+        }
         let label = e.attr("id").map_or_else(|| format!("{ty}{}", self.objects.len()), str::to_string);
         let shape = match ty {
             "obj" | "ply" => {
@@ -720,7 +742,7 @@ impl<'a> Conv<'a, '_> {
         };
         let transform = self.to_world(e)?;
         let material = self.shape_material(e, &label)?;
-        let item = ItemPath::root().field("objects").index(self.objects.len());
+        let item = self.objects_at.index(self.objects.len());
         self.origins.push((item.clone(), e.offset));
         for (field, prop) in [("file", "filename"), ("part", "shape_index")] {
             if let Some(p) = self.prop(e, prop) {

@@ -5,8 +5,8 @@
 use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
 use super::model::{
-    CameraSection, FilterDef, FilterName, GroupDef, LightDef, MaterialDef, MaterialKind, MetalDef, Num, ObjectDef,
-    RenderSection, RoughnessDef, SceneFile, ShapeDef,
+    CameraSection, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind, MetalDef, Num,
+    ObjectDef, RenderSection, RoughnessDef, SceneFile, ShapeDef,
 };
 use super::transform::compose;
 use super::values::vec3;
@@ -19,14 +19,15 @@ use pathtrace::material::{
 };
 use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::scene::{validate_material, BuildError};
+use pathtrace::shape::TriangleMesh;
 use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
-use pathtrace::{Camera, CameraDesc, MaterialId, SceneBuilder};
+use pathtrace::{Camera, CameraDesc, GroupId, MaterialId, SceneBuilder, ShapeGroup};
 use std::collections::BTreeMap;
 
 /// Builds the scene a file describes; `src` locates errors and resolves relative mesh paths.
 pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneError> {
     let defaults = render_defaults(&file.render, &file.camera, src)?;
-    let mut ctx = Ctx { src, b: SceneBuilder::new(), ids: BTreeMap::new(), materials: &file.materials };
+    let mut ctx = Ctx { src, b: SceneBuilder::new(), ids: BTreeMap::new(), materials: &file.materials, group: None };
     for (name, def) in &file.materials {
         let id = ctx.add_material(name, def)?;
         ctx.ids.insert(name.clone(), id);
@@ -37,6 +38,13 @@ pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneEr
     }
     for (i, g) in file.groups.iter().enumerate() {
         ctx.add_group(g, &Transform::IDENTITY, &root.field("groups").index(i))?;
+    }
+    let mut group_ids = BTreeMap::new();
+    for (name, g) in &file.shape_groups {
+        group_ids.insert(name.as_str(), ctx.add_shape_group(name, g)?);
+    }
+    for (i, inst) in file.instances.iter().enumerate() {
+        ctx.add_instance(inst, &group_ids, &root.field("instances").index(i))?;
     }
     for (i, l) in file.lights.iter().enumerate() {
         ctx.add_light(l, &root.field("lights").index(i))?;
@@ -160,6 +168,8 @@ struct Ctx<'a, L: Locate> {
     b: SceneBuilder,
     ids: BTreeMap<String, MaterialId>,
     materials: &'a BTreeMap<String, MaterialDef>,
+    /// The shape group being filled, while one is read: objects go there, not into the scene.
+    group: Option<ShapeGroup>,
 }
 
 impl<L: Locate> Ctx<'_, L> {
@@ -264,19 +274,94 @@ impl<L: Locate> Ctx<'_, L> {
         Ok(())
     }
 
+    /// Reads `[shape_groups.NAME]` (its objects and nested groups, under its own transform)
+    /// into a shape group of the builder.
+    fn add_shape_group(&mut self, name: &str, g: &GroupDef) -> Result<GroupId, SceneError> {
+        let at = ItemPath::root().field("shape_groups").field(name);
+        self.group = Some(ShapeGroup::new());
+        let filled = self.add_group(g, &Transform::IDENTITY, &at);
+        let group = self.group.take().unwrap_or_default();
+        filled?;
+        if group.is_empty() {
+            return Err(self.src.error_at(&at, format!("shape group `{name}` holds no objects")));
+        }
+        self.b.group(group).map_err(|e| self.src.error_at(&at, e.to_string()))
+    }
+
+    /// Places a shape group (`[[instances]]`).
+    fn add_instance(
+        &mut self,
+        inst: &InstanceDef,
+        groups: &BTreeMap<&str, GroupId>,
+        at: &ItemPath,
+    ) -> Result<(), SceneError> {
+        let Some(&group) = groups.get(inst.group.as_str()) else {
+            let known: Vec<&str> = groups.keys().copied().collect();
+            let known = if known.is_empty() { "none are defined".to_string() } else { known.join(", ") };
+            let msg = format!("unknown shape group `{}` (shape groups: {known})", inst.group);
+            return Err(self.src.error_at(&at.field("group"), msg));
+        };
+        let t = self.transform(&inst.transform, at)?;
+        let material = match &inst.material {
+            None => None,
+            Some(name) => {
+                let id = self.material_id(name, &at.field("material"))?;
+                if self.emits(name) {
+                    let msg = format!("material `{name}` emits: instanced shapes cannot be lights");
+                    return Err(self.src.error_at(&at.field("material"), msg));
+                }
+                Some(id)
+            }
+        };
+        self.b.instance(group, &t, material).map_err(|e| self.src.error_at(at, e.to_string()))
+    }
+
+    fn material_id(&self, name: &str, at: &ItemPath) -> Result<MaterialId, SceneError> {
+        self.ids.get(name).copied().ok_or_else(|| {
+            let known: Vec<&str> = self.ids.keys().map(String::as_str).collect();
+            let known = if known.is_empty() { "none are defined".to_string() } else { known.join(", ") };
+            self.src.error_at(at, format!("unknown material `{name}` (materials: {known})"))
+        })
+    }
+
+    fn emits(&self, material: &str) -> bool {
+        self.materials.get(material).and_then(|m| m.emission).is_some_and(|e| !e.radiance.rgb().is_black())
+    }
+
+    /// Adds a shape to the scene, or to the shape group being read.
+    fn put_shape(&mut self, shape: Shape, id: MaterialId, t: &Transform) -> Result<(), BuildError> {
+        match &mut self.group {
+            Some(g) => g.shape(shape, id, t),
+            None => self.b.shape(shape, id, t),
+        }
+    }
+
+    fn put_box(&mut self, min: Vec3, max: Vec3, id: MaterialId, t: &Transform) -> Result<(), BuildError> {
+        match &mut self.group {
+            Some(g) => g.add_box(min, max, id, t),
+            None => self.b.add_box(min, max, id, t),
+        }
+    }
+
+    fn put_mesh(&mut self, mesh: &TriangleMesh, id: MaterialId, t: &Transform) -> Result<usize, BuildError> {
+        match &mut self.group {
+            Some(g) => g.mesh(mesh, id, t),
+            None => self.b.mesh(mesh, id, t),
+        }
+    }
+
     fn transform(&self, steps: &[super::model::TransformStep], at: &ItemPath) -> Result<Transform, SceneError> {
         compose(steps).map_err(|(i, e)| self.src.error_at(&at.field("transform").index(i), e))
     }
 
     fn add_object(&mut self, o: &ObjectDef, outer: &Transform, at: &ItemPath) -> Result<(), SceneError> {
         let t = self.transform(&o.transform, at)?.then(outer);
-        let Some(&id) = self.ids.get(&o.material) else {
-            let known: Vec<&str> = self.ids.keys().map(String::as_str).collect();
-            let known = if known.is_empty() { "none are defined".to_string() } else { known.join(", ") };
-            let msg = format!("unknown material `{}` (materials: {known})", o.material);
+        let id = self.material_id(&o.material, &at.field("material"))?;
+        let emits = self.emits(&o.material);
+        if emits && self.group.is_some() {
+            let msg = format!("material `{}` emits: objects of a shape group cannot be lights", o.material);
             return Err(self.src.error_at(&at.field("material"), msg));
-        };
-        let emits = self.materials[&o.material].emission.is_some_and(|e| !e.radiance.rgb().is_black());
+        }
         let err = |e: &dyn std::fmt::Display| self.src.error_at(at, e.to_string());
         let degenerate = |what: &str| self.src.error_at(at, format!("degenerate {what}"));
         let shape = match &o.shape {
@@ -305,13 +390,13 @@ impl<L: Locate> Ctx<'_, L> {
                     .ok_or_else(|| degenerate("triangle: its corners are on one line"))?,
             ),
             ShapeDef::Box { min, max } => {
-                return self.b.add_box(vec3(min), vec3(max), id, &t).map_err(|_| {
+                return self.put_box(vec3(min), vec3(max), id, &t).map_err(|_| {
                     degenerate("box: `max` must exceed `min` on every axis and the transform keep it solid")
                 });
             }
             ShapeDef::Mesh { file, part } => return self.add_mesh(file, *part, id, &t, at),
         };
-        self.b.shape(shape, id, &t).map_err(|e| err(&e))
+        self.put_shape(shape, id, &t).map_err(|e| err(&e))
     }
 
     fn add_mesh(
@@ -336,7 +421,7 @@ impl<L: Locate> Ctx<'_, L> {
             })?,
         };
         for (_, mesh) in chosen {
-            self.b.mesh(mesh, id, t).map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
+            self.put_mesh(mesh, id, t).map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
         }
         Ok(())
     }

@@ -28,9 +28,30 @@ pub struct SceneFile {
     /// Groups of objects sharing a transform.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub groups: Vec<GroupDef>,
+    /// Shape groups by name: objects (and nested groups) defined once, in their own space, to
+    /// be placed many times by `[[instances]]` without copying their geometry.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub shape_groups: BTreeMap<String, GroupDef>,
+    /// Placements of shape groups.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub instances: Vec<InstanceDef>,
     /// Lights that are not surfaces: point lights and the environment (constant or a map).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub lights: Vec<LightDef>,
+}
+
+/// `[[instances]]`: one placement of a `[shape_groups.NAME]`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct InstanceDef {
+    /// Name of the shape group placed.
+    pub group: String,
+    /// Steps applied in order to the whole group (empty: identity).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub transform: Vec<TransformStep>,
+    /// A material for every object of the group, instead of their own (must not emit).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
 }
 
 /// `[render]`: every field optional; the defaults are the `DEFAULT_*` constants.
