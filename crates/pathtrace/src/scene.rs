@@ -3,7 +3,7 @@
 
 use crate::accel::{Bvh, Intersectable, Packable, PrimitiveSet};
 use crate::camera::CameraDesc;
-use crate::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight};
+use crate::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight, SpotLight};
 use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
@@ -184,6 +184,7 @@ pub struct SceneBuilder {
     camera: CameraDesc,
     allow_no_lights: bool,
     point_lights: Vec<PointLight>,
+    spot_lights: Vec<SpotLight>,
     environment: Option<EnvironmentLight>,
 }
 
@@ -222,6 +223,12 @@ impl SceneBuilder {
         }
         self.point_lights.push(light);
         Ok(())
+    }
+
+    /// Adds a spot light ([`SpotLight::new`] has checked its values).
+    pub fn spot_light(&mut self, light: SpotLight) -> &mut Self {
+        self.spot_lights.push(light);
+        self
     }
 
     /// Sets the environment (radiance arriving from every direction that leaves the scene);
@@ -349,7 +356,7 @@ impl SceneBuilder {
         // The environment's selection power needs the scene's size: its bounding sphere.
         let scene_box = bounds.iter().fold(None, |acc: Option<Aabb>, &b| Some(acc.map_or(b, |a| a.union(b))));
         let scene_radius = scene_box.map_or(1.0, |b| 0.5 * b.extent().length());
-        let lights = LightSet::with_all(lights, self.point_lights, self.environment, scene_radius);
+        let lights = LightSet::with_spots(lights, self.point_lights, self.spot_lights, self.environment, scene_radius);
         if lights.is_empty() && !self.allow_no_lights {
             return Err(BuildError::NoLights);
         }
