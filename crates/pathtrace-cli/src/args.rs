@@ -3,6 +3,7 @@
 use clap::{Args, Parser, Subcommand};
 use pathtrace::film::{PixelFilter, ToneMap};
 use pathtrace::integrator::Strategy;
+use pathtrace::light::LightSelection;
 use pathtrace::sampling::SamplerKind;
 use std::path::PathBuf;
 use std::process::ExitCode;
