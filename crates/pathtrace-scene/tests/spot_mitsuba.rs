@@ -37,8 +37,14 @@ fn spot_lights_match_mitsuba() {
         let (ours, theirs) = (est.mean[k], MITSUBA[k]);
         let sigma = (est.variance_of_mean[k] + MITSUBA_SE[k] * MITSUBA_SE[k]).sqrt();
         let z = (ours - theirs) / sigma;
-        eprintln!("channel {k}: ours {ours:.6} vs Mitsuba {theirs:.6} ({:+.2}%, z = {z:.2})", 100.0 * (ours / theirs - 1.0));
-        assert!((ours - theirs).abs() < 0.005 * theirs, "channel {k}: ours {ours:.6} vs Mitsuba {theirs:.6} (z = {z:.2})");
+        eprintln!(
+            "channel {k}: ours {ours:.6} vs Mitsuba {theirs:.6} ({:+.2}%, z = {z:.2})",
+            100.0 * (ours / theirs - 1.0)
+        );
+        assert!(
+            (ours - theirs).abs() < 0.005 * theirs,
+            "channel {k}: ours {ours:.6} vs Mitsuba {theirs:.6} (z = {z:.2})"
+        );
         assert!(sigma < 0.002 * theirs, "too noisy to judge");
     }
 }

@@ -69,10 +69,8 @@ fn continuous_directions_follow_pdf_direction_in_both_modes() {
         assert!((integral - 1.0).abs() < 5e-3, "{mode}: pdf integrates to {integral}");
         let mut rng = TestRng::new(9);
         let test = ChiSquareTest { theta_bins: 20, phi_bins: 40, samples: 400_000, ..Default::default() };
-        let outcome = test.run(
-            |u| set.sample_continuous(p, rng.next_f32(), Vec2::new(u[0] as f32, u[1] as f32)).map(|s| s.wi),
-            pdf,
-        );
+        let outcome = test
+            .run(|u| set.sample_continuous(p, rng.next_f32(), Vec2::new(u[0] as f32, u[1] as f32)).map(|s| s.wi), pdf);
         assert!(outcome.passed, "{mode}: chi-square rejected\n{}", outcome.summary());
     }
 }
@@ -165,9 +163,10 @@ fn emissive_meshes_are_one_light_per_triangle_picked_by_area_and_sampled_by_area
     let integral = integrate_over_sphere(pdf, 96, 192);
     assert!((integral - 1.0).abs() < 5e-3, "pdf integrates to {integral}");
     let mut rng = TestRng::new(3);
-    let test = ChiSquareTest { theta_bins: 30, phi_bins: 60, samples: 400_000, integration_res: 16, ..Default::default() };
-    let outcome =
-        test.run(|u| lights.sample_continuous(p, rng.next_f32(), Vec2::new(u[0] as f32, u[1] as f32)).map(|s| s.wi), pdf);
+    let test =
+        ChiSquareTest { theta_bins: 30, phi_bins: 60, samples: 400_000, integration_res: 16, ..Default::default() };
+    let outcome = test
+        .run(|u| lights.sample_continuous(p, rng.next_f32(), Vec2::new(u[0] as f32, u[1] as f32)).map(|s| s.wi), pdf);
     assert!(outcome.passed, "chi-square rejected\n{}", outcome.summary());
     // Area sampling of the whole mesh: the density towards any point of the fan is
     // r²/(cos θ · A_total), whichever triangle the point lies on.

@@ -13,8 +13,12 @@ use std::sync::Arc;
 
 /// A 4×4 square in the xz-plane (normal +y) whose u axis runs at 30° from +x.
 fn square(uvs: bool) -> TriangleMesh {
-    let positions =
-        vec![Vec3::new(-2.0, 0.0, -2.0), Vec3::new(2.0, 0.0, -2.0), Vec3::new(2.0, 0.0, 2.0), Vec3::new(-2.0, 0.0, 2.0)];
+    let positions = vec![
+        Vec3::new(-2.0, 0.0, -2.0),
+        Vec3::new(2.0, 0.0, -2.0),
+        Vec3::new(2.0, 0.0, 2.0),
+        Vec3::new(-2.0, 0.0, 2.0),
+    ];
     let (s, c) = 30f32.to_radians().sin_cos();
     // u = (x cos 30° + z sin 30°)/4, v = (−x sin 30° + z cos 30°)/4: ∂p/∂u ∥ (cos 30°, 0, sin 30°).
     let uv = |p: Vec3| Vec2::new((p.x * c + p.z * s) / 4.0, (-p.x * s + p.z * c) / 4.0);
@@ -135,7 +139,8 @@ fn bumpy_sphere(tilt: f32, rng: &mut TestRng) -> TriangleMesh {
     let mut normals = Vec::new();
     for j in 0..=nv {
         for i in 0..=nu {
-            let (theta, phi) = (std::f32::consts::PI * j as f32 / nv as f32, std::f32::consts::TAU * i as f32 / nu as f32);
+            let (theta, phi) =
+                (std::f32::consts::PI * j as f32 / nv as f32, std::f32::consts::TAU * i as f32 / nu as f32);
             let p = Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
             positions.push(p);
             let f = Frame::from_normal(p.normalize());
@@ -209,5 +214,21 @@ fn perturbed_vertex_normals_give_no_nans_and_no_energy_gain() {
             // the tilted shading hemisphere; not asserted: see docs/materials.md.)
             assert!(darkest > 0.5 * albedo as f64, "{name}: a black spot ({darkest:.3})");
         }
+    }
+}
+
+#[test]
+fn disk_tangents_point_outwards() {
+    let disk = pathtrace::shape::Disk::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)).unwrap();
+    let shape = Shape::Disk(disk);
+    for target in [Vec3::new(1.0, 0.0, 0.3), Vec3::new(-0.5, 0.0, -0.6)] {
+        let ray = Ray::new(target + Vec3::Y, -Vec3::Y);
+        let sp = shape.surface(&ray, &shape.intersect(&ray, 0.0, f32::INFINITY).unwrap(), &[]);
+        // Along ∂p/∂u the radius u grows: a small step along it increases uv.x.
+        let step = sp.p + 0.01 * sp.dpdu.normalize();
+        let ray2 = Ray::new(step + Vec3::Y, -Vec3::Y);
+        let sp2 = shape.surface(&ray2, &shape.intersect(&ray2, 0.0, f32::INFINITY).unwrap(), &[]);
+        assert!(sp2.uv.x > sp.uv.x, "{target}: u does not grow along dpdu");
+        assert!((sp2.uv.y - sp.uv.y).abs() < 1e-3, "{target}: the angle changes along dpdu");
     }
 }

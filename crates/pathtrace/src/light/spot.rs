@@ -125,7 +125,8 @@ mod tests {
         for k in 0..n {
             let theta = (k as f64 + 0.5) / n as f64 * std::f64::consts::PI;
             let w = axis * theta.cos() as f32 + perp * theta.sin() as f32;
-            sum += spot.falloff(w) as f64 * 2.0 * std::f64::consts::PI * theta.sin() * (std::f64::consts::PI / n as f64);
+            sum +=
+                spot.falloff(w) as f64 * 2.0 * std::f64::consts::PI * theta.sin() * (std::f64::consts::PI / n as f64);
         }
         assert!((spot.power() as f64 - sum).abs() < 1e-3 * sum, "{} vs {sum}", spot.power());
         assert!(spot.power() < 2.0 * std::f32::consts::PI * (1.0 - 40f32.to_radians().cos()));
