@@ -106,10 +106,10 @@ fn irradiance_under_a_spot_light_matches_the_closed_form() {
             let est = out.film.region_estimate(x, y, x + 1, y + 1);
             let c = &mut classes[class];
             c.0 += 1;
-            for k in 0..3 {
+            for (k, e) in exp.iter().enumerate() {
                 c.1[k] += est.mean[k];
                 c.2[k] += est.variance_of_mean[k];
-                c.3[k] += exp[k];
+                c.3[k] += e;
             }
             if class == 2 {
                 assert_eq!(est.mean, [0.0; 3], "pixel ({x}, {y}) lies outside the cutoff");

@@ -28,7 +28,9 @@ impl Frame {
     pub fn from_normal_tangent(n: Vec3, tangent: Vec3) -> Self {
         let s = tangent - n * n.dot(tangent);
         let len2 = s.length_squared();
-        if !(len2 > 1e-12 * tangent.length_squared().max(f32::MIN_POSITIVE)) || !len2.is_finite() {
+        // Also catches NaN: the comparison is false, so the fallback is taken.
+        let usable = len2 > 1e-12 * tangent.length_squared().max(f32::MIN_POSITIVE) && len2.is_finite();
+        if !usable {
             return Self::from_normal(n);
         }
         let s = s / len2.sqrt();
