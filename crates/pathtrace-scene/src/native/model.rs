@@ -28,7 +28,7 @@ pub struct SceneFile {
     /// Groups of objects sharing a transform.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub groups: Vec<GroupDef>,
-    /// Lights that are not surfaces: point lights and the environment (constant or a map).
+    /// Lights that are not surfaces: point and spot lights and the environment (constant or a map).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub lights: Vec<LightDef>,
 }

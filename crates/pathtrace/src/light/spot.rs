@@ -5,11 +5,11 @@
 //! ```toml
 //! [[lights]]
 //! type = "spot"
-//! position = [0, 4, 0]
-//! look_at = [0, 0, 0]        # the axis points from `position` towards `look_at`
 //! intensity = [10, 10, 10]   # W·sr⁻¹ on the axis
 //! cutoff_angle = 30          # degrees; default 20
 //! beam_width = 20            # degrees; default 3/4 of cutoff_angle
+//! # At the transform's origin, pointing along its local +z: here from (0, 4, 0) down.
+//! transform = [{ look_at = { from = [0, 4, 0], to = [0, 0, 0], up = [0, 0, 1] } }]
 //! ```
 //!
 //! Like a point light it is a Dirac delta in position: only next-event estimation sees it.
