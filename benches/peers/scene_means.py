@@ -56,8 +56,11 @@ def mean_and_se(np, means):
     return m, se
 
 
+DIGITS = 4
+
+
 def fmt(v):
-    return "(" + ", ".join(f"{x:.4f}" for x in v) + ")"
+    return "(" + ", ".join(f"{x:.{DIGITS}f}" for x in v) + ")"
 
 
 def reference_means(a, mi, np):
@@ -140,7 +143,10 @@ def main(argv=None):
     p.add_argument("--runs", type=int, default=2, help="renders per renderer (different seeds), for the s.e.")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME=VALUE")
+    p.add_argument("--digits", type=int, default=4, help="decimals printed for means (mode 2)")
     a = p.parse_args(argv)
+    global DIGITS
+    DIGITS = a.digits
 
     import numpy as np
     import mitsuba as mi

@@ -3,6 +3,7 @@
 use clap::{Args, Parser, Subcommand};
 use pathtrace::film::{PixelFilter, ToneMap};
 use pathtrace::integrator::Strategy;
+use pathtrace::light::LightSelection;
 use pathtrace::sampling::SamplerKind;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -198,6 +199,10 @@ pub struct QualityArgs {
     /// or gaussian (stddev 0.5, as Mitsuba) [default: the scene's, else box]
     #[arg(long, value_parser = PixelFilter::by_name)]
     pub filter: Option<PixelFilter>,
+    /// How next-event estimation picks a light: power (in proportion to emitted power) or uniform
+    /// (every light equally) [default: the scene's, else power]
+    #[arg(long, value_name = "MODE", value_parser = parse_from_str::<LightSelection>)]
+    pub light_selection: Option<LightSelection>,
     /// Random seed: the same seed, scene and settings give the same image [default: the scene's, else 0]
     #[arg(long)]
     pub seed: Option<u64>,

@@ -68,12 +68,15 @@ fn spp_image(film: &Film, spp_max: u32) -> Image {
 }
 
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
-    let loaded = scene_arg::load_with(&a.scene, &a.defines)?;
+    let mut loaded = scene_arg::load_with(&a.scene, &a.defines)?;
+    if let Some(mode) = a.quality.light_selection {
+        loaded.scene.lights.set_selection(mode);
+    }
     let settings =
         with_adaptive(settings_from(&a.quality, a.spp, a.time, &loaded.defaults), &a.adaptive, a.spp.is_some());
-    if !loaded.scene.lights.points().is_empty() && !settings.path.strategy.is_mis() {
+    if loaded.scene.lights.has_delta() && !settings.path.strategy.is_mis() {
         eprintln!(
-            "warning: the scene has point lights, which only the mis strategy (or mis-balance) can see (next-event \
+            "warning: the scene has point or spot lights, which only the mis strategy (or mis-balance) can see (next-event \
              estimation); with --strategy {} they render black",
             settings.path.strategy
         );

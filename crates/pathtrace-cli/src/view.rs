@@ -22,7 +22,10 @@ pub fn run(a: ViewArgs) -> Result<ExitCode, CliError> {
     if !pathtrace_viewer::display_available() {
         return Err(CliError::usage(ViewerError::NoDisplay("no display".into()).to_string()));
     }
-    let loaded = scene_arg::load_with(&a.scene, &a.defines)?;
+    let mut loaded = scene_arg::load_with(&a.scene, &a.defines)?;
+    if let Some(mode) = a.quality.light_selection {
+        loaded.scene.lights.set_selection(mode);
+    }
     let mut settings = settings_from(&a.quality, a.spp, None, &loaded.defaults);
     if settings.spp == 0 {
         // --spp 0: render until the window closes, as an open-ended (time-limited) session whose

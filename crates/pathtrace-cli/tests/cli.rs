@@ -90,6 +90,7 @@ fn bad_arguments_give_one_line_and_exit_code_2() {
         vec!["render".into(), "--spp".into(), "0".into()],
         vec!["render".into(), "--strategy".into(), "magic".into()],
         vec!["render".into(), "--sampler".into(), "sobol9".into()],
+        vec!["render".into(), "--light-selection".into(), "random".into()],
         vec!["render".into(), "--max-depth".into(), "-5".into()],
         vec!["render".into(), "--time".into(), "-1".into()],
         vec!["render".into(), "--spp".into(), "4".into(), "--time".into(), "2".into()],
@@ -108,6 +109,31 @@ fn bad_arguments_give_one_line_and_exit_code_2() {
         assert!(err.starts_with("error"), "{args:?}: {err}");
     }
     assert!(std::fs::read_dir(&dir).unwrap().next().is_none(), "no output may be written on error");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn light_selection_is_an_option() {
+    let dir = temp_dir("selection");
+    for mode in ["power", "uniform"] {
+        let out = dir.join(format!("{mode}.pfm"));
+        let o = run(&[
+            "render",
+            "--size",
+            "16x16",
+            "--spp",
+            "2",
+            "--light-selection",
+            mode,
+            "-q",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{mode}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(pathtrace_scene::image_io::read_image(&out).unwrap().mean().g > 0.01, "{mode}: black image");
+    }
+    let o = run(&["render", "--help"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("--light-selection"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -28,6 +28,8 @@ pub struct RenderDefaults {
     pub seed: Option<u64>,
     /// Pixel reconstruction filter, if the scene names one.
     pub filter: Option<pathtrace::film::PixelFilter>,
+    /// How lights are picked, if the scene says.
+    pub light_selection: Option<pathtrace::light::LightSelection>,
 }
 
 /// A built scene with its suggested render settings.

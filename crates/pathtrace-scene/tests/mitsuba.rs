@@ -110,11 +110,13 @@ fn fov_axis_becomes_a_vertical_fov() {
 #[test]
 fn unsupported_plugins_warn_and_fall_back() {
     let xml = scene(&format!(
-        r#"<emitter type="spot"/><shape type="cylinder"/>
+        r#"<emitter type="directional"/><shape type="cylinder"/>
+        <emitter type="spot"><texture type="bitmap" name="texture"/></emitter>
         <shape type="sphere"><bsdf type="blendbsdf"/></shape>{LIGHT}"#
     ));
     let (f, w) = conv(&xml, &[]);
-    assert!(w.iter().any(|w| w.contains("spot")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("directional")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("spot light's projected `texture`")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("cylinder")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("blendbsdf") && w.starts_with("t.xml:")), "{w:?}");
     assert_eq!(f.objects.len(), 2);

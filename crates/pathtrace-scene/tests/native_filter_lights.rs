@@ -101,7 +101,7 @@ fn mistakes_are_located() {
         ),
         ("radius = 0.5", "radius = 0", 22..=27, "degenerate disk"),
         ("intensity = 5", "intensity = -5", 34..=37, "point light"),
-        ("type = \"point\"", "type = \"spot\"", 34..=37, "unknown variant"),
+        ("type = \"point\"", "type = \"spotlight\"", 34..=37, "unknown variant"),
         ("ior = 1.4", "ior = -1", 8..=10, "index of refraction must be a positive number"),
     ];
     for (from, to, lines, what) in cases {

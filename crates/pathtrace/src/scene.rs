@@ -4,7 +4,7 @@
 use crate::accel::{Bvh, Intersectable, PrimitiveSet};
 use crate::camera::CameraDesc;
 use crate::instance::{GroupId, Instance, Instances, ShapeGroup};
-use crate::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight};
+use crate::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight, SpotLight};
 use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
@@ -220,6 +220,7 @@ pub struct SceneBuilder {
     camera: CameraDesc,
     allow_no_lights: bool,
     point_lights: Vec<PointLight>,
+    spot_lights: Vec<SpotLight>,
     environment: Option<EnvironmentLight>,
     groups: Vec<ShapeGroup>,
     /// (group, transform, material override or [`Instance::OWN_MATERIALS`]).
@@ -261,6 +262,12 @@ impl SceneBuilder {
         }
         self.point_lights.push(light);
         Ok(())
+    }
+
+    /// Adds a spot light ([`SpotLight::new`] has checked its values).
+    pub fn spot_light(&mut self, light: SpotLight) -> &mut Self {
+        self.spot_lights.push(light);
+        self
     }
 
     /// Sets the environment (radiance arriving from every direction that leaves the scene);
@@ -467,7 +474,7 @@ impl SceneBuilder {
             scene_box = Some(scene_box.map_or(instances.bounds(), |a| a.union(instances.bounds())));
         }
         let scene_radius = scene_box.map_or(1.0, |b| 0.5 * b.extent().length());
-        let lights = LightSet::with_all(lights, self.point_lights, self.environment, scene_radius);
+        let lights = LightSet::with_spots(lights, self.point_lights, self.spot_lights, self.environment, scene_radius);
         if lights.is_empty() && !self.allow_no_lights {
             return Err(BuildError::NoLights);
         }

@@ -212,6 +212,7 @@ fn mesh_scene(triangles: usize) -> Result<LoadedScene, CliError> {
         sampler: None,
         seed: None,
         filter: None,
+        light_selection: None,
     };
     Ok(LoadedScene { scene, defaults })
 }

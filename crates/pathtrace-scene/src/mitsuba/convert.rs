@@ -793,6 +793,17 @@ impl<'a> Conv<'a, '_> {
                 self.origins.push((ItemPath::root().field("lights").index(self.lights.len()), e.offset));
                 self.lights.push(LightDef::Point { position: n3(position), intensity });
             }
+            "spot" => {
+                let intensity = self.color(e, "intensity")?.unwrap_or(Triple::Splat(num(1.0)));
+                let cutoff_angle = self.float(e, "cutoff_angle")?.map(num);
+                let beam_width = self.float(e, "beam_width")?.map(num);
+                if self.prop(e, "texture").is_some() {
+                    self.warn(e, "a spot light's projected `texture` is not supported and is ignored");
+                }
+                let transform = self.to_world(e)?;
+                self.origins.push((ItemPath::root().field("lights").index(self.lights.len()), e.offset));
+                self.lights.push(LightDef::Spot { intensity, cutoff_angle, beam_width, transform });
+            }
             "constant" => {
                 let radiance = self.color(e, "radiance")?.unwrap_or(Triple::Splat(num(1.0)));
                 self.set_environment(e, LightDef::Constant { radiance });

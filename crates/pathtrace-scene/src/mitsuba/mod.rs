@@ -94,7 +94,7 @@ pub fn build_model(file: &SceneFile, path: &Path) -> Result<LoadedScene, SceneEr
 fn build_located(file: &SceneFile, locator: &XmlLocator) -> Result<LoadedScene, SceneError> {
     build(file, locator).map_err(|mut e| {
         if e.message.starts_with("the scene has no lights") {
-            e.message = "the scene has no supported lights (area emitters on shapes, point or constant emitters): \
+            e.message = "the scene has no supported lights (area emitters on shapes, point, spot, constant or envmap emitters): \
                          nothing would be visible"
                 .into();
         } else if e.message.starts_with("the scene has no objects") {

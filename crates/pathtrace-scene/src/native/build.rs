@@ -12,7 +12,7 @@ use super::transform::compose;
 use super::values::vec3;
 use crate::{LoadedScene, RenderDefaults};
 use pathtrace::film::{GaussianFilter, PixelFilter};
-use pathtrace::light::{Emission, EnvMap, EnvironmentLight, PointLight};
+use pathtrace::light::{Emission, EnvMap, EnvironmentLight, PointLight, SpotLight};
 use pathtrace::material::{
     metal, Conductor, Dielectric, Diffuse, Glossy, Lambertian, Material, Microfacet, Mirror, Plastic, RoughConductor,
     RoughDielectric, RoughPlastic, ThinDielectric,
@@ -53,7 +53,7 @@ pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneEr
     Camera::new(&camera, defaults.width, defaults.height)
         .map_err(|e| src.error_at(&root.field("camera"), format!("invalid camera: {e}")))?;
     ctx.b.camera(camera);
-    let scene = ctx.b.build().map_err(|e| match e {
+    let mut scene = ctx.b.build().map_err(|e| match e {
         BuildError::Empty => SceneError::whole_file(src.path(), "the scene has no objects (add an [[objects]] entry)"),
         BuildError::NoLights => src.error_at(
             &root.field("materials"),
@@ -61,6 +61,9 @@ pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneEr
         ),
         other => SceneError::whole_file(src.path(), other.to_string()),
     })?;
+    if let Some(mode) = defaults.light_selection {
+        scene.lights.set_selection(mode);
+    }
     Ok(LoadedScene { scene, defaults })
 }
 
@@ -117,6 +120,7 @@ fn render_defaults(r: &RenderSection, c: &CameraSection, src: &impl Locate) -> R
         sampler: r.sampler.map(|s| s.0),
         seed: r.seed,
         filter: r.filter.map(|f| pixel_filter(&f)).transpose().map_err(|e| src.error_at(&at("filter"), e))?,
+        light_selection: r.light_selection.map(|s| s.0),
     })
 }
 
@@ -238,6 +242,19 @@ impl<L: Locate> Ctx<'_, L> {
         let result = match l {
             LightDef::Point { position, intensity } => {
                 self.b.point_light(PointLight { position: vec3(position), intensity: intensity.rgb() })
+            }
+            LightDef::Spot { intensity, cutoff_angle, beam_width, transform } => {
+                let to_world = self.transform(transform, at)?;
+                let cutoff = cutoff_angle.map_or(20.0, Num::f32);
+                let beam = beam_width.map_or(SpotLight::default_beam_width(cutoff), Num::f32);
+                let spot = SpotLight::new(&to_world, intensity.rgb(), cutoff, beam).ok_or_else(|| {
+                    self.src.error_at(
+                        at,
+                        "a spot light needs an intensity ≥ 0 and 0 < beam_width ≤ cutoff_angle ≤ 180 (degrees)",
+                    )
+                })?;
+                self.b.spot_light(spot);
+                Ok(())
             }
             LightDef::Constant { radiance } => self.b.environment(EnvironmentLight::constant(radiance.rgb())),
             LightDef::Envmap { filename, scale, transform } => {

@@ -6,7 +6,7 @@ pub use super::material::{EmissionDef, MaterialDef, MaterialKind, MaterialType};
 pub use super::object::{GroupDef, ObjectDef, ShapeDef, ShapeType};
 pub use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
 pub use super::transform::{LookAtDef, TransformStep};
-pub use super::values::{FilterName, Num, Num3, SamplerName, StrategyName, Triple};
+pub use super::values::{FilterName, LightSelectionName, Num, Num3, SamplerName, StrategyName, Triple};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -35,7 +35,7 @@ pub struct SceneFile {
     /// Placements of shape groups.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub instances: Vec<InstanceDef>,
-    /// Lights that are not surfaces: point lights and the environment (constant or a map).
+    /// Lights that are not surfaces: point and spot lights and the environment (constant or a map).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub lights: Vec<LightDef>,
 }
@@ -82,6 +82,9 @@ pub struct RenderSection {
     /// Pixel reconstruction filter (default: box of radius 0.5, the pixel itself).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub filter: Option<FilterDef>,
+    /// How next-event estimation picks a light: `power` (default) or `uniform`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub light_selection: Option<LightSelectionName>,
 }
 
 /// `filter = { type = "tent", radius = 1 }`: a pixel filter sampled by importance.
@@ -106,6 +109,19 @@ pub enum LightDef {
     /// An isotropic point light at `position` with `intensity` in W/sr (seen only by the `mis`
     /// strategy's light sampling).
     Point { position: Num3, intensity: Triple },
+    /// A spot light (Mitsuba 3's `spot`): `intensity` in W/sr on its axis, full out to
+    /// `beam_width` degrees (default 3/4 of `cutoff_angle`), falling linearly in angle to zero at
+    /// `cutoff_angle` degrees (default 20). It sits at the origin of `transform` and points along
+    /// its local +z (use a `look_at` step). Seen only by the `mis` strategy's light sampling.
+    Spot {
+        intensity: Triple,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        cutoff_angle: Option<Num>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        beam_width: Option<Num>,
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        transform: Vec<TransformStep>,
+    },
     /// A constant environment: `radiance` arrives from every direction that leaves the scene.
     Constant { radiance: Triple },
     /// An environment map: a lat-long image (`filename`: EXR, HDR, PFM or PNG, relative to the

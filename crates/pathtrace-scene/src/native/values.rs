@@ -3,6 +3,7 @@
 //! deserialised, so the error carries the location of the offending value.
 
 use pathtrace::integrator::Strategy;
+use pathtrace::light::LightSelection;
 use pathtrace::math::{Rgb, Vec3};
 use pathtrace::sampling::SamplerKind;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -193,6 +194,13 @@ named_choice!(
     SamplerName,
     SamplerKind,
     "a sampler name (independent, stratified or sobol)"
+);
+
+named_choice!(
+    /// A light selection by name: `power` or `uniform`.
+    LightSelectionName,
+    LightSelection,
+    "a light selection (power or uniform)"
 );
 
 /// The pixel filters by name: `box`, `tent` or `gaussian`.

@@ -131,7 +131,9 @@ impl Instances {
         if n_shading.dot(n_geometric) < 0.0 {
             n_shading = -n_shading;
         }
-        let surface = SurfacePoint { p: m.point(local.p), n_geometric, n_shading, uv: local.uv };
+        // ∂p/∂u is a tangent vector: it moves with the matrix (zero stays zero, the fallback).
+        let dpdu = m.vector(local.dpdu);
+        let surface = SurfacePoint { p: m.point(local.p), n_geometric, n_shading, uv: local.uv, dpdu };
         let material = if inst.material == Instance::OWN_MATERIALS { material } else { inst.material };
         (surface, material)
     }

@@ -126,7 +126,13 @@ pub fn radiance(
             n_g = -n_g;
             n_s = -n_s;
         }
-        let frame = Frame::from_normal(n_s);
+        // Anisotropic roughness is aligned with ∂p/∂u, as in Mitsuba; isotropic models do not
+        // depend on the tangent, and keep the cheaper (and historical) basis of the normal.
+        let frame = if material.is_anisotropic() {
+            Frame::from_normal_tangent(n_s, it.surface.tangent())
+        } else {
+            Frame::from_normal(n_s)
+        };
         let wo = frame.to_local(wo_world);
         let delta = material.is_delta();
         let can_sample_lights = !delta && !lights.is_empty();

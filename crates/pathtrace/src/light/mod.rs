@@ -1,14 +1,16 @@
-//! Lights: emissive surfaces (area lights), point lights, the environment, and the light set
-//! that picks one by power.
+//! Lights: emissive surfaces (area lights), point and spot lights, the environment, and the light
+//! set that picks one by power or uniformly.
 
 mod area;
 mod environment;
 mod envmap;
 mod point;
 mod set;
+mod spot;
 
 pub use area::{AreaLight, Emission, LightShape};
 pub use environment::EnvironmentLight;
 pub use envmap::EnvMap;
 pub use point::PointLight;
-pub use set::{LightSample, LightSet};
+pub use set::{LightSample, LightSelection, LightSet};
+pub use spot::SpotLight;

@@ -1,15 +1,17 @@
-//! The scene's lights, with a discrete distribution that picks one in proportion to its power.
+//! The scene's lights, with a discrete distribution that picks one in proportion to its power
+//! (the default) or uniformly ([`LightSelection`]).
 //!
 //! Lights are numbered area lights first (so a primitive's light id indexes them), then point
-//! lights, then the environment. Two selection distributions exist: `selection` over all
-//! lights, for next-event estimation, and `continuous` without the point lights, for the
-//! `light` and `mixture` strategies, which continue the path along the sampled direction and so
-//! need a density in solid angle (a point light has none). Without point lights both are the
-//! same distribution.
+//! lights, then spot lights, then the environment. Two selection distributions exist:
+//! `selection` over all lights, for next-event estimation, and `continuous` without the point
+//! and spot lights, for the `light` and `mixture` strategies, which continue the path along the
+//! sampled direction and so need a density in solid angle (a delta light has none). Without
+//! delta lights both are the same distribution.
 
 use super::area::AreaLight;
 use super::environment::EnvironmentLight;
 use super::point::PointLight;
+use super::spot::SpotLight;
 use crate::math::{Rgb, Vec2, Vec3};
 use crate::sampling::Distribution1D;
 
@@ -27,16 +29,64 @@ pub struct LightSample {
     pub pdf: f32,
     /// Radiance the light sends towards the reference point (for a point light: I/r²).
     pub radiance: Rgb,
-    /// True for a point light: a Dirac delta in direction, which bsdf sampling can never find.
+    /// True for a point or spot light: a Dirac delta in direction, which bsdf sampling can never
+    /// find.
     pub delta: bool,
 }
 
-/// All lights, selectable by power.
+/// How next-event estimation picks a light.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum LightSelection {
+    /// In proportion to each light's emitted power (the default): bright lights get the samples.
+    #[default]
+    Power,
+    /// Every light with nonzero power equally likely (each triangle of an emissive mesh counts
+    /// as one light), Mitsuba's default.
+    Uniform,
+}
+
+impl LightSelection {
+    /// The scene-file and command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightSelection::Power => "power",
+            LightSelection::Uniform => "uniform",
+        }
+    }
+
+    /// Parses `power` or `uniform`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "power" => Some(LightSelection::Power),
+            "uniform" => Some(LightSelection::Uniform),
+            _ => None,
+        }
+    }
+}
+
+impl std::str::FromStr for LightSelection {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::from_name(s).ok_or_else(|| format!("unknown light selection '{s}' (expected power or uniform)"))
+    }
+}
+
+impl std::fmt::Display for LightSelection {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// All lights, selectable by power or uniformly.
 #[derive(Clone, Debug, Default)]
 pub struct LightSet {
     lights: Vec<AreaLight>,
     points: Vec<PointLight>,
+    spots: Vec<SpotLight>,
     environment: Option<EnvironmentLight>,
+    /// Every light's power, in index order (the environment's measured over the scene).
+    powers: Vec<f32>,
+    mode: LightSelection,
     selection: Option<Distribution1D>,
     continuous: Option<Distribution1D>,
 }
@@ -45,6 +95,7 @@ pub struct LightSet {
 enum Picked<'a> {
     Area(&'a AreaLight),
     Point(&'a PointLight),
+    Spot(&'a SpotLight),
     Environment(&'a EnvironmentLight),
 }
 
@@ -62,20 +113,71 @@ impl LightSet {
         environment: Option<EnvironmentLight>,
         scene_radius: f32,
     ) -> Self {
-        let area: Vec<f32> = lights.iter().map(AreaLight::power).collect();
-        let point: Vec<f32> = points.iter().map(PointLight::power).collect();
-        let env: Vec<f32> = environment.iter().map(|e| e.power(scene_radius.max(1e-3))).collect();
-        let all: Vec<f32> = area.iter().chain(&point).chain(&env).copied().collect();
-        let selection = Distribution1D::new(&all);
-        let continuous = if points.is_empty() {
-            selection.clone()
-        } else {
-            // Same indices, with the point lights' power zeroed.
-            let zeros = vec![0.0; point.len()];
-            let no_points: Vec<f32> = area.iter().chain(&zeros).chain(&env).copied().collect();
-            Distribution1D::new(&no_points)
+        Self::with_spots(lights, points, Vec::new(), environment, scene_radius)
+    }
+
+    /// Every kind of light: area, point and spot lights and an optional environment, whose power
+    /// is measured over a scene bounded by a sphere of radius `scene_radius`. Selection is by
+    /// power until [`LightSet::set_selection`] says otherwise.
+    pub fn with_spots(
+        lights: Vec<AreaLight>,
+        points: Vec<PointLight>,
+        spots: Vec<SpotLight>,
+        environment: Option<EnvironmentLight>,
+        scene_radius: f32,
+    ) -> Self {
+        let area = lights.iter().map(AreaLight::power);
+        let point = points.iter().map(PointLight::power);
+        let spot = spots.iter().map(SpotLight::power);
+        let env = environment.iter().map(|e| e.power(scene_radius.max(1e-3)));
+        let powers: Vec<f32> = area.chain(point).chain(spot).chain(env).collect();
+        let mut set = Self { lights, points, spots, environment, powers, ..Default::default() };
+        set.set_selection(LightSelection::Power);
+        set
+    }
+
+    /// Rebuilds the selection distributions for `mode`. Both modes give every light with power a
+    /// nonzero probability, so both are unbiased; they differ only in noise.
+    pub fn set_selection(&mut self, mode: LightSelection) {
+        let weight = |p: f32| match mode {
+            LightSelection::Power => p,
+            LightSelection::Uniform => {
+                if p > 0.0 {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
         };
-        Self { lights, points, environment, selection, continuous }
+        let all: Vec<f32> = self.powers.iter().map(|&p| weight(p)).collect();
+        self.selection = Distribution1D::new(&all);
+        let delta = self.lights.len()..self.lights.len() + self.points.len() + self.spots.len();
+        self.continuous = if delta.is_empty() {
+            self.selection.clone()
+        } else {
+            // Same indices, with the delta lights' weight zeroed.
+            let no_delta: Vec<f32> =
+                all.iter().enumerate().map(|(i, &w)| if delta.contains(&i) { 0.0 } else { w }).collect();
+            Distribution1D::new(&no_delta)
+        };
+        self.mode = mode;
+    }
+
+    /// How lights are picked.
+    pub fn selection(&self) -> LightSelection {
+        self.mode
+    }
+
+    /// Probability that next-event estimation picks light `index` (numbered area lights, point
+    /// lights, spot lights, environment); these sum to 1 over `0..self.count()` when any light
+    /// has power.
+    pub fn index_pmf(&self, index: usize) -> f32 {
+        self.selection.as_ref().map_or(0.0, |d| d.pmf(index))
+    }
+
+    /// Number of lights of every kind (the environment counts as one).
+    pub fn count(&self) -> usize {
+        self.powers.len()
     }
 
     /// Number of area lights.
@@ -88,7 +190,7 @@ impl LightSet {
         self.selection.is_none()
     }
 
-    /// True when some light other than a point light has power (the `light` and `mixture`
+    /// True when some light other than a point or spot light has power (the `light` and `mixture`
     /// strategies can sample it).
     pub fn has_continuous(&self) -> bool {
         self.continuous.is_some()
@@ -104,8 +206,19 @@ impl LightSet {
         self.lights.iter()
     }
 
+    /// The point lights.
     pub fn points(&self) -> &[PointLight] {
         &self.points
+    }
+
+    /// The spot lights.
+    pub fn spots(&self) -> &[SpotLight] {
+        &self.spots
+    }
+
+    /// True when the scene has point or spot lights, which only next-event estimation sees.
+    pub fn has_delta(&self) -> bool {
+        !self.points.is_empty() || !self.spots.is_empty()
     }
 
     pub fn environment(&self) -> Option<&EnvironmentLight> {
@@ -113,21 +226,21 @@ impl LightSet {
     }
 
     fn env_index(&self) -> usize {
-        self.lights.len() + self.points.len()
+        self.lights.len() + self.points.len() + self.spots.len()
     }
 
-    fn picked(&self, i: usize) -> Picked<'_> {
+    fn picked(&self, i: usize) -> Option<Picked<'_>> {
         let n = self.lights.len();
+        let np = n + self.points.len();
         if i < n {
-            Picked::Area(&self.lights[i])
-        } else if i < n + self.points.len() {
-            Picked::Point(&self.points[i - n])
+            Some(Picked::Area(&self.lights[i]))
+        } else if i < np {
+            Some(Picked::Point(&self.points[i - n]))
+        } else if i < np + self.spots.len() {
+            Some(Picked::Spot(&self.spots[i - np]))
         } else {
-            match &self.environment {
-                Some(e) => Picked::Environment(e),
-                // Unreachable: indices past the points exist only with an environment.
-                None => Picked::Point(&self.points[self.points.len() - 1]),
-            }
+            // Indices past the spots exist only with an environment.
+            self.environment.as_ref().map(Picked::Environment)
         }
     }
 
@@ -136,14 +249,14 @@ impl LightSet {
         self.selection.as_ref().map_or(0.0, |d| d.pmf(id as usize))
     }
 
-    /// Picks a light by power (any kind) and a point on it: next-event estimation.
+    /// Picks a light (any kind) and a point on it: next-event estimation.
     #[inline(always)]
     pub fn sample(&self, ref_p: Vec3, u_select: f32, u: Vec2) -> Option<LightSample> {
         let (id, pmf) = self.selection.as_ref()?.sample(u_select);
         self.sample_picked(id, pmf, ref_p, u)
     }
 
-    /// Picks a light other than a point light by power and a direction towards it: the `light`
+    /// Picks a light other than a point or spot light and a direction towards it: the `light`
     /// and `mixture` strategies, whose density is [`LightSet::pdf_direction`].
     #[inline(always)]
     pub fn sample_continuous(&self, ref_p: Vec3, u_select: f32, u: Vec2) -> Option<LightSample> {
@@ -153,7 +266,7 @@ impl LightSet {
 
     #[inline(always)]
     fn sample_picked(&self, id: usize, pmf: f32, ref_p: Vec3, u: Vec2) -> Option<LightSample> {
-        match self.picked(id) {
+        match self.picked(id)? {
             Picked::Area(light) => {
                 let s = light.sample(ref_p, u)?;
                 Some(LightSample {
@@ -169,6 +282,10 @@ impl LightSet {
             Picked::Point(light) => {
                 let (wi, dist, radiance) = light.sample(ref_p)?;
                 Some(LightSample { point: light.position, normal: -wi, wi, dist, pdf: pmf, radiance, delta: true })
+            }
+            Picked::Spot(light) => {
+                let (wi, dist, radiance) = light.sample(ref_p)?;
+                Some(LightSample { point: light.position(), normal: -wi, wi, dist, pdf: pmf, radiance, delta: true })
             }
             Picked::Environment(env) => {
                 let (wi, pdf) = env.sample(u);
@@ -209,7 +326,7 @@ impl LightSet {
     }
 
     /// Density of direction `dir` under [`LightSet::sample_continuous`] from `ref_p`: the sum over
-    /// all lights but point lights (O(number of lights): used only by the mixture and light-only
+    /// all lights but point and spot lights (O(number of lights): used only by the mixture and light-only
     /// strategies).
     pub fn pdf_direction(&self, ref_p: Vec3, dir: Vec3) -> f32 {
         let Some(sel) = &self.continuous else {

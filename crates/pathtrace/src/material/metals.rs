@@ -6,6 +6,12 @@
 //! Mitsuba derived from the tabulated spectra (Palik's handbook and others, via Mitsuba's
 //! spectrum-to-sRGB conversion). These numbers are data measured by others, not fitted here.
 //! `none` is Mitsuba's perfect mirror (η = 0, k = 1 gives F = 1 at every angle).
+//!
+//! `Fe` and `Ti` are not in Mitsuba's data: their rows come from `benches/peers/metal_table_jc.py`,
+//! which converts the measured spectra of Johnson & Christy, "Optical constants of transition
+//! metals: Ti, V, Cr, Mn, Fe, Co, Ni, and Pd" (Phys. Rev. B 9, 5056, 1974; as tabulated by the
+//! refractiveindex.info database) through the same Mitsuba code path, checked to reproduce
+//! Mitsuba's own `Cr` exactly from a copy of its spectra.
 
 /// (name, η, k) per RGB channel, sorted by name (Mitsuba's names, case-sensitive).
 const METALS: &[(&str, [f32; 3], [f32; 3])] = &[
@@ -27,6 +33,7 @@ const METALS: &[(&str, [f32; 3], [f32; 3])] = &[
     ("CuO", [3.24754, 2.44781, 2.21022], [0.52109, 0.570031, 0.722179]),
     ("CuO_palik", [3.24754, 2.44781, 2.21022], [0.52109, 0.570031, 0.722179]),
     ("Cu_palik", [0.213229, 0.919715, 1.10241], [3.92187, 2.45733, 2.13658]),
+    ("Fe", [3.51448, 2.76976, 2.30173], [3.69503, 2.78613, 2.49299]),
     ("Hg", [2.39894, 1.44003, 0.90957], [6.32759, 4.37192, 3.42176]),
     ("HgTe", [4.77904, 3.2312, 2.6599], [1.63161, 1.58081, 1.72929]),
     ("HgTe_palik", [4.77904, 3.2312, 2.6599], [1.63161, 1.58081, 1.72929]),
@@ -63,6 +70,7 @@ const METALS: &[(&str, [f32; 3], [f32; 3])] = &[
     ("Te_palik", [7.39023, 4.4821, 2.63711], [3.25602, 3.52706, 3.29205]),
     ("ThF4", [1.83071, 1.44223, 1.38765], [0.0, 0.0, 0.0]),
     ("ThF4_palik", [1.83071, 1.44223, 1.38765], [0.0, 0.0, 0.0]),
+    ("Ti", [3.2754, 2.37976, 2.02469], [4.57234, 3.22453, 2.72781]),
     ("TiC", [3.70053, 2.83742, 2.58229], [3.26564, 2.35159, 2.17279]),
     ("TiC_palik", [3.70053, 2.83742, 2.58229], [3.26564, 2.35159, 2.17279]),
     ("TiN", [1.64845, 1.15052, 1.37982], [3.36833, 1.9435, 1.10207]),
@@ -111,7 +119,16 @@ mod tests {
         assert!(eta[0] < eta[2] && k[0] > k[2]);
         assert_eq!(metal("Ni"), metal("Ni_palik"));
         assert!(metal("Unobtainium").is_none());
-        for required in ["Ag", "Al", "Au", "Cr", "Cu", "Ni", "W", "Cu2O", "a-C", "none"] {
+        // Iron and titanium are greyish: normal-incidence reflectance ((η−1)² + k²)/((η+1)² + k²)
+        // between 0.4 and 0.7 in every channel (measured films reflect about 0.5–0.6).
+        for name in ["Fe", "Ti"] {
+            let (eta, k) = metal(name).unwrap();
+            for c in 0..3 {
+                let r = ((eta[c] - 1.0).powi(2) + k[c] * k[c]) / ((eta[c] + 1.0).powi(2) + k[c] * k[c]);
+                assert!((0.4..0.7).contains(&r), "{name} channel {c}: R = {r}");
+            }
+        }
+        for required in ["Ag", "Al", "Au", "Cr", "Cu", "Fe", "Ni", "Ti", "W", "Cu2O", "a-C", "none"] {
             assert!(metal(required).is_some(), "{required}");
         }
     }

@@ -152,7 +152,19 @@ impl Material {
         matches!(self, Material::Plastic(_))
     }
 
-    /// True if the model treats both sides of a surface alike.
+    /// True for a microfacet model with different roughness along its two tangent axes: its
+    /// shading frame must then follow the surface's ∂p/∂u rather than an arbitrary basis.
+    pub fn is_anisotropic(&self) -> bool {
+        let aniso = |d: &Microfacet| d.alpha_u != d.alpha_v;
+        match self {
+            Material::RoughConductor(m) => aniso(&m.distribution),
+            Material::RoughDielectric(m) => aniso(&m.distribution),
+            Material::RoughPlastic(m) => aniso(&m.distribution),
+            _ => false,
+        }
+    }
+
+    /// True unless the model has an inside (dielectrics): opaque models shade both faces.
     pub fn is_two_sided(&self) -> bool {
         !matches!(self, Material::Dielectric(_) | Material::RoughDielectric(_))
     }

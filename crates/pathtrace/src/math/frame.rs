@@ -22,6 +22,21 @@ impl Frame {
         Self { s, t, n }
     }
 
+    /// A frame around the unit normal `n` whose first tangent follows `tangent` (made
+    /// perpendicular to `n` by Gram–Schmidt, as Mitsuba 3 builds its shading frame from ∂p/∂u);
+    /// when `tangent` is (nearly) parallel to `n` or zero, [`Frame::from_normal`].
+    pub fn from_normal_tangent(n: Vec3, tangent: Vec3) -> Self {
+        let s = tangent - n * n.dot(tangent);
+        let len2 = s.length_squared();
+        // Also catches NaN: the comparison is false, so the fallback is taken.
+        let usable = len2 > 1e-12 * tangent.length_squared().max(f32::MIN_POSITIVE) && len2.is_finite();
+        if !usable {
+            return Self::from_normal(n);
+        }
+        let s = s / len2.sqrt();
+        Self { s, t: n.cross(s), n }
+    }
+
     /// World → local.
     pub fn to_local(&self, v: Vec3) -> Vec3 {
         Vec3::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))

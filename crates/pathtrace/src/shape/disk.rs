@@ -71,7 +71,16 @@ impl Disk {
         let (a, b) = if r > 1.0 { (hit.u / r, hit.v / r) } else { (hit.u, hit.v) };
         let phi = b.atan2(a);
         let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
-        SurfacePoint { p: self.point_at(a, b), n_geometric: n, n_shading: n, uv: Vec2::new(r.min(1.0), phi * INV_2PI) }
+        // u is the radius: ∂p/∂u points outwards, cos φ·u + sin φ·v (Mitsuba's disk), with
+        // (cos φ, sin φ) = (a, b)/r; at the centre, the first axis.
+        let dpdu = if r > 0.0 { (a * self.u + b * self.v) / r.min(1.0) } else { self.u };
+        SurfacePoint {
+            p: self.point_at(a, b),
+            n_geometric: n,
+            n_shading: n,
+            uv: Vec2::new(r.min(1.0), phi * INV_2PI),
+            dpdu,
+        }
     }
 
     /// Tight box of the ellipse: per axis, centre ± √(u_i² + v_i²).

@@ -40,6 +40,25 @@ pub struct SurfacePoint {
     /// `n_geometric`.
     pub n_shading: Vec3,
     pub uv: Vec2,
+    /// ∂p/∂u: the direction of increasing `u` (not normalised), from which the shading frame's
+    /// first tangent is taken for anisotropic materials, as in Mitsuba 3. Zero where `uv` has no
+    /// derivative (a triangle without texture coordinates, a sphere's pole): the frame then
+    /// takes Mitsuba's fallback, the `coordinate_system` tangent of the geometric normal
+    /// ([`SurfacePoint::tangent`]).
+    pub dpdu: Vec3,
+}
+
+impl SurfacePoint {
+    /// The tangent that anisotropic materials align their first roughness axis with: `dpdu`, or
+    /// when it is zero the first axis of the geometric normal's Duff et al. basis (Mitsuba 3's
+    /// `coordinate_system(n)` for meshes without texture coordinates).
+    pub fn tangent(&self) -> Vec3 {
+        if self.dpdu == Vec3::ZERO {
+            crate::math::Frame::from_normal(self.n_geometric).s
+        } else {
+            self.dpdu
+        }
+    }
 }
 
 /// Every shape the engine intersects.

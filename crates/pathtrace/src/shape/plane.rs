@@ -31,7 +31,13 @@ impl Plane {
         let p = ray.at(hit.t);
         let f = Frame::from_normal(self.normal);
         let d = p - self.point;
-        SurfacePoint { p, n_geometric: self.normal, n_shading: self.normal, uv: Vec2::new(d.dot(f.s), d.dot(f.t)) }
+        SurfacePoint {
+            p,
+            n_geometric: self.normal,
+            n_shading: self.normal,
+            uv: Vec2::new(d.dot(f.s), d.dot(f.t)),
+            dpdu: f.s,
+        }
     }
 
     pub(super) fn transformed(&self, t: &Transform) -> Plane {

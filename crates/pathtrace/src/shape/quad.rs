@@ -62,7 +62,13 @@ impl Quad {
     pub fn surface(&self, _ray: &Ray, hit: &PrimHit) -> SurfacePoint {
         let (a, b) = (hit.u.clamp(0.0, 1.0), hit.v.clamp(0.0, 1.0));
         let n = self.normal();
-        SurfacePoint { p: self.q + a * self.u + b * self.v, n_geometric: n, n_shading: n, uv: Vec2::new(a, b) }
+        SurfacePoint {
+            p: self.q + a * self.u + b * self.v,
+            n_geometric: n,
+            n_shading: n,
+            uv: Vec2::new(a, b),
+            dpdu: self.u,
+        }
     }
 
     pub fn bounds(&self) -> Aabb {

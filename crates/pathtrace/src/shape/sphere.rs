@@ -57,7 +57,7 @@ impl Sphere {
         let n = n.normalize_or(Vec3::Z);
         // Re-project onto the surface to cut the error of the intersection point.
         let p = self.center + n * self.radius;
-        SurfacePoint { p, n_geometric: n, n_shading: n, uv: sphere_uv(n) }
+        SurfacePoint { p, n_geometric: n, n_shading: n, uv: sphere_uv(n), dpdu: sphere_dpdu(n) * self.radius }
     }
 
     pub fn bounds(&self) -> Aabb {
@@ -90,6 +90,14 @@ fn sphere_uv(n: Vec3) -> Vec2 {
     Vec2::new(phi / (2.0 * PI), theta / PI)
 }
 
+/// ∂n/∂u of [`sphere_uv`]'s parameterisation (up to the factor 2π): with φ = atan2(−n.z, n.x),
+/// n = (ρ cos φ, n.y, −ρ sin φ), so ∂n/∂φ = (n.z, 0, −n.x), the direction of increasing u around
+/// the +y axis; zero at the poles, where the shading frame falls back to the normal's own basis.
+/// Keep it in step with `sphere_uv`.
+fn sphere_dpdu(n: Vec3) -> Vec3 {
+    Vec3::new(n.z, 0.0, -n.x)
+}
+
 /// A unit sphere at the origin placed by an arbitrary affine transform (boxed: it is rare, and
 /// keeping it out of line keeps every other shape small).
 #[derive(Clone, Debug, PartialEq)]
@@ -113,7 +121,13 @@ impl Ellipsoid {
     pub fn surface(&self, ray: &Ray, hit: &PrimHit) -> SurfacePoint {
         let local = Self::UNIT.surface(&self.object_ray(ray), hit);
         let n = self.to_world.normal(local.n_geometric);
-        SurfacePoint { p: self.to_world.point(local.p), n_geometric: n, n_shading: n, uv: local.uv }
+        SurfacePoint {
+            p: self.to_world.point(local.p),
+            n_geometric: n,
+            n_shading: n,
+            uv: local.uv,
+            dpdu: self.to_world.vector(local.dpdu),
+        }
     }
 
     pub fn bounds(&self) -> Aabb {
