@@ -12,6 +12,7 @@ mod primitive_store;
 pub mod sampling;
 pub mod scene;
 pub mod shape;
+pub mod texture;
 
 pub use camera::{Camera, CameraDesc};
 pub use scene::{MaterialId, Scene, SceneBuilder};

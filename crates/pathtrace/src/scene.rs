@@ -8,6 +8,7 @@ use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
 use crate::shape::{MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
+use crate::texture::{ColourSlot, Texture, TextureBindings, TextureId};
 
 /// Index of a material in the scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -55,6 +56,8 @@ pub enum PrimRef {
 pub struct Interaction<'a> {
     pub surface: SurfacePoint,
     pub material: &'a Material,
+    /// Index of the material in the scene (for its texture bindings).
+    pub material_id: u32,
     pub light: u32,
 }
 
@@ -88,6 +91,9 @@ pub struct Scene {
     unbounded: Vec<Primitive>,
     bvh: Bvh,
     materials: Vec<Material>,
+    /// Per material: the textures bound to its colour slots (most are empty).
+    bindings: Vec<TextureBindings>,
+    textures: Vec<Texture>,
     pub lights: LightSet,
     pub camera: CameraDesc,
 }
@@ -124,7 +130,30 @@ impl Scene {
                 (p.shape.surface(ray, &hit.hit, &[]), p.material, p.light)
             }
         };
-        Interaction { surface, material: &self.materials[material as usize], light }
+        Interaction { surface, material: &self.materials[material as usize], material_id: material, light }
+    }
+
+    /// The material at a hit with its textures applied, or `None` if it has no textures (then
+    /// `it.material` is the one to use): the constant case costs one check.
+    #[inline(always)]
+    pub fn shading_material(&self, it: &Interaction) -> Option<Material> {
+        let b = self.bindings[it.material_id as usize];
+        if b.is_empty() {
+            return None;
+        }
+        Some(self.apply_textures(it.material, b, it.surface.uv))
+    }
+
+    #[inline(never)]
+    fn apply_textures(&self, m: &Material, b: TextureBindings, uv: crate::math::Vec2) -> Material {
+        let mut m = *m;
+        if let Some(t) = b.base {
+            m = m.with_colour(ColourSlot::Base, self.textures[t.0 as usize].eval(uv));
+        }
+        if let Some(t) = b.specular {
+            m = m.with_colour(ColourSlot::Specular, self.textures[t.0 as usize].eval(uv));
+        }
+        m
     }
 
     /// The BVH's nodes, one per line.
@@ -180,6 +209,8 @@ enum Entry {
 #[derive(Clone, Debug, Default)]
 pub struct SceneBuilder {
     materials: Vec<(Material, Option<Emission>)>,
+    bindings: Vec<TextureBindings>,
+    textures: Vec<Texture>,
     entries: Vec<Entry>,
     camera: CameraDesc,
     allow_no_lights: bool,
@@ -190,6 +221,31 @@ pub struct SceneBuilder {
 impl SceneBuilder {
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Adds a texture, to be bound to materials with [`SceneBuilder::bind_texture`].
+    pub fn texture(&mut self, t: Texture) -> TextureId {
+        self.textures.push(t);
+        TextureId(self.textures.len() as u32 - 1)
+    }
+
+    /// Makes `material`'s `slot` colour vary as `texture` (evaluated at each hit's uv). The
+    /// material's constant colour in that slot should be the texture's mean (it sets sampling
+    /// weights, as in Mitsuba).
+    pub fn bind_texture(&mut self, material: MaterialId, slot: ColourSlot, texture: TextureId) -> Result<(), BuildError> {
+        self.check_material(material)?;
+        let m = &self.materials[material.0 as usize].0;
+        if !m.has_slot(slot) {
+            return Err(BuildError::Material(format!("a {} material has no {slot:?} colour to texture", m.name())));
+        }
+        if texture.0 as usize >= self.textures.len() {
+            return Err(BuildError::Material(format!("texture id {} does not exist", texture.0)));
+        }
+        if self.bindings.len() <= material.0 as usize {
+            self.bindings.resize(material.0 as usize + 1, TextureBindings::default());
+        }
+        self.bindings[material.0 as usize].set(slot, texture);
+        Ok(())
     }
 
     /// Adds a non-emissive material.
@@ -364,11 +420,15 @@ impl SceneBuilder {
             .flat_map(|m| (0..m.geometry.len() as u32).map(|i| Packable::Triangle(m.geometry.triangle(i))));
         let kinds: Vec<Packable> = shape_kinds.chain(mesh_kinds).collect();
         let bvh = Bvh::build(&bounds, &kinds);
+        let mut bindings = self.bindings;
+        bindings.resize(self.materials.len(), TextureBindings::default());
         Ok(Scene {
             prims,
             unbounded,
             bvh,
             materials: self.materials.into_iter().map(|(m, _)| m).collect(),
+            bindings,
+            textures: self.textures,
             lights,
             camera: self.camera,
         })

@@ -5,7 +5,7 @@ use super::parse::{Element, XmlSource};
 use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
     CameraSection, EmissionDef, FilterDef, FilterName, LightDef, LookAtDef, MaterialDef, MaterialKind, Num, Num3,
-    ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep, Triple,
+    ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep, Triple, Colour,
 };
 use crate::native::{ItemPath, SceneError};
 use pathtrace::math::{Transform, Vec3};
@@ -14,6 +14,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 mod bsdf;
+mod texture;
 
 type R<T> = Result<T, SceneError>;
 
@@ -552,10 +553,10 @@ impl<'a> Conv<'a, '_> {
             return Err(self.src.error(e.offset, "BSDFs are nested too deeply (a <ref> cycle?)"));
         }
         let ty = self.req_attr(e, "type")?;
-        let grey = MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) };
+        let grey = MaterialKind::Lambertian { albedo: Colour::grey(0.5) };
         Ok(match ty {
             "diffuse" => {
-                let albedo = self.color(e, "reflectance")?.unwrap_or(Triple::Splat(num(0.5)));
+                let albedo = self.colour(e, "reflectance")?.unwrap_or(Colour::grey(0.5));
                 MaterialKind::Lambertian { albedo }
             }
             "twosided" => {
@@ -565,19 +566,19 @@ impl<'a> Conv<'a, '_> {
                         let i = self.deref(i)?;
                         self.bsdf_kind_at(i, depth + 1)?
                     }
-                    None => MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) },
+                    None => MaterialKind::Lambertian { albedo: Colour::grey(0.5) },
                 }
             }
             "dielectric" => {
                 let int = self.ior(e, "int_ior", 1.5046)?;
                 let ext = self.ior(e, "ext_ior", 1.000277)?;
-                let tint = self.color(e, "specular_transmittance")?.unwrap_or(Triple::Splat(num(1.0)));
+                let tint = self.colour(e, "specular_transmittance")?.unwrap_or(Colour::grey(1.0));
                 MaterialKind::Dielectric { ior: num(int / ext), tint }
             }
             "thindielectric" => {
                 let int = self.ior(e, "int_ior", 1.5046)?;
                 let ext = self.ior(e, "ext_ior", 1.000277)?;
-                let tint = self.color(e, "specular_transmittance")?.unwrap_or(Triple::Splat(num(1.0)));
+                let tint = self.colour(e, "specular_transmittance")?.unwrap_or(Colour::grey(1.0));
                 MaterialKind::ThinDielectric { ior: num(int / ext), tint }
             }
             other => match self.microfacet_bsdf(e, other)? {
@@ -641,7 +642,7 @@ impl<'a> Conv<'a, '_> {
         }
         let kind = match bsdf {
             Some(b) => self.bsdf_kind(b)?,
-            None => MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) },
+            None => MaterialKind::Lambertian { albedo: Colour::grey(0.5) },
         };
         let base = match (shared, bsdf.and_then(|b| b.attr("id"))) {
             (Some(b), _) => b.attr("id").unwrap_or("bsdf").to_string(),

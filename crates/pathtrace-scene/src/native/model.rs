@@ -3,6 +3,7 @@
 //! The field-by-field reference with defaults is docs/scene-format.md.
 
 pub use super::material::{EmissionDef, MaterialDef, MaterialKind, MaterialType};
+pub use super::texture::{identity_uv, Colour, TextureDef, UvRows};
 pub use super::object::{GroupDef, ObjectDef, ShapeDef, ShapeType};
 pub use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
 pub use super::transform::{LookAtDef, TransformStep};

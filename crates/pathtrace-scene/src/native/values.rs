@@ -117,7 +117,7 @@ impl Serialize for Triple {
     }
 }
 
-struct TripleVisitor;
+pub(super) struct TripleVisitor;
 
 impl<'de> Visitor<'de> for TripleVisitor {
     type Value = Triple;

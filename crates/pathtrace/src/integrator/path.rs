@@ -118,8 +118,11 @@ pub fn radiance(
             break;
         }
 
+        // Textured colours at this hit (untextured materials are used as they are).
+        let textured = scene.shading_material(&it);
+        let material = textured.as_ref().unwrap_or(it.material);
+
         // Shading frame, flipped to the viewer's side for two-sided materials.
-        let material = it.material;
         let mut n_g = it.surface.n_geometric;
         let mut n_s = it.surface.n_shading;
         if material.is_two_sided() && n_g.dot(wo_world) < 0.0 {
