@@ -133,25 +133,30 @@ impl Scene {
         Interaction { surface, material: &self.materials[material as usize], material_id: material, light }
     }
 
-    /// The material at a hit with its textures applied, or `None` if it has no textures (then
-    /// `it.material` is the one to use): the constant case costs one check.
+    /// True if any material has a texture.
     #[inline(always)]
-    pub fn shading_material(&self, it: &Interaction) -> Option<Material> {
-        let b = self.bindings[it.material_id as usize];
-        if b.is_empty() {
-            return None;
-        }
-        Some(self.apply_textures(it.material, b, it.surface.uv))
+    pub fn has_textures(&self) -> bool {
+        !self.textures.is_empty()
     }
 
+    /// True if the material at a hit has textured colours (then use
+    /// [`Scene::textured_material`] instead of `it.material`). Scenes without textures answer
+    /// from one flag, so the constant case costs a predictable branch per hit.
+    #[inline(always)]
+    pub fn is_textured(&self, it: &Interaction) -> bool {
+        self.has_textures() && self.bindings.get(it.material_id as usize).is_some_and(|b| !b.is_empty())
+    }
+
+    /// The material at a hit with its textures evaluated at the hit's uv.
     #[inline(never)]
-    fn apply_textures(&self, m: &Material, b: TextureBindings, uv: crate::math::Vec2) -> Material {
-        let mut m = *m;
+    pub fn textured_material(&self, it: &Interaction) -> Material {
+        let b = self.bindings.get(it.material_id as usize).copied().unwrap_or_default();
+        let mut m = *it.material;
         if let Some(t) = b.base {
-            m = m.with_colour(ColourSlot::Base, self.textures[t.0 as usize].eval(uv));
+            m = m.with_colour(ColourSlot::Base, self.textures[t.0 as usize].eval(it.surface.uv));
         }
         if let Some(t) = b.specular {
-            m = m.with_colour(ColourSlot::Specular, self.textures[t.0 as usize].eval(uv));
+            m = m.with_colour(ColourSlot::Specular, self.textures[t.0 as usize].eval(it.surface.uv));
         }
         m
     }

@@ -105,14 +105,14 @@ impl Bitmap {
     #[inline]
     pub fn eval(&self, uv: Vec2) -> Rgb {
         let t = self.to_uv.apply(uv);
+        if !t.is_finite() {
+            return Rgb::BLACK;
+        }
         // Far-out coordinates would overflow the integer texel index: wrap them first.
         let t = match self.wrap {
             WrapMode::Repeat => t - t.floor(),
             WrapMode::Clamp => t.clamp(Vec2::splat(-1.0), Vec2::splat(2.0)),
         };
-        if !t.is_finite() {
-            return Rgb::BLACK;
-        }
         let (w, h) = (self.width as f32, self.height as f32);
         match self.filter {
             FilterType::Nearest => self.texel((t.x * w).floor() as i64, (t.y * h).floor() as i64),

@@ -10,8 +10,8 @@
 //! parameter of a material may be bound to a texture ([`ColourSlot`], [`TextureBindings`]): the
 //! material keeps its constant parameters (set to the texture's mean, which is what Mitsuba uses
 //! for sampling weights), and at a hit the scene makes a copy with the texture's value in that
-//! slot ([`crate::Scene::shading_material`]). Untextured materials are used as they are, so the
-//! constant case costs one check per hit.
+//! slot ([`crate::Scene::textured_material`]). Untextured materials are used as they are, so the
+//! constant case costs one predictable branch per hit.
 
 mod bitmap;
 mod checkerboard;
