@@ -10,11 +10,11 @@ mod exr_codec;
 mod hdr_codec;
 mod pfm_codec;
 mod png_codec;
-mod texture_codec;
 #[cfg(test)]
 mod scratch;
 #[cfg(test)]
 mod tests;
+mod texture_codec;
 
 use std::fmt;
 use std::fs;

@@ -106,7 +106,10 @@ fn a_textured_square_under_a_white_sky_reflects_the_texture_mean() {
     let dir = scratch("furnace");
     flat_grey(&dir.join("grey.png"), 128, image::ImageFormat::Png);
     let cases = [
-        (r#"{ type = "checkerboard", color0 = [0.8, 0.2, 0.5], color1 = [0.2, 0.6, 0.1], scale = 4 }"#, [0.5, 0.4, 0.3]),
+        (
+            r#"{ type = "checkerboard", color0 = [0.8, 0.2, 0.5], color1 = [0.2, 0.6, 0.1], scale = 4 }"#,
+            [0.5, 0.4, 0.3],
+        ),
         (r#"{ type = "bitmap", filename = "grey.png" }"#, [0.21586; 3]),
         (r#"{ type = "bitmap", filename = "grey.png", raw = true, scale = 3 }"#, [128.0 / 255.0; 3]),
     ];
@@ -142,7 +145,9 @@ fn bad_texture_tables_are_errors_at_their_line_and_column() {
 #[test]
 fn textured_scenes_round_trip_through_toml_and_json() {
     let file = parse_str(
-        &square_scene(r#"{ type = "bitmap", filename = "a.png", filter_type = "nearest", to_uv = [[2, 0, 0.5], [0, 2, 0]] }"#),
+        &square_scene(
+            r#"{ type = "bitmap", filename = "a.png", filter_type = "nearest", to_uv = [[2, 0, 0.5], [0, 2, 0]] }"#,
+        ),
         Format::Toml,
         Path::new("s.toml"),
     )
@@ -212,7 +217,8 @@ fn mitsuba_texture_options_we_lack_are_warned_about_and_bad_refs_are_located() {
     let (_, w) = convert_str(&xml, Path::new("t.xml"), &[]).unwrap();
     assert!(w.iter().any(|w| w.contains("`wobble`") && w.contains("t.xml:3:")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("`voronoi`") && w.contains("t.xml:4:")), "{w:?}");
-    let bad = xml.replace(r#"<shape type="sphere"><ref id="a"/></shape>"#, r#"<shape type="sphere"><ref id="c"/></shape>"#);
+    let bad =
+        xml.replace(r#"<shape type="sphere"><ref id="a"/></shape>"#, r#"<shape type="sphere"><ref id="c"/></shape>"#);
     let e = convert_str(&bad, Path::new("t.xml"), &[]).unwrap_err().to_string();
     assert!(e.contains("t.xml:5:") && e.contains("must name a <texture>"), "{e}");
 }

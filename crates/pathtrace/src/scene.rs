@@ -237,7 +237,12 @@ impl SceneBuilder {
     /// Makes `material`'s `slot` colour vary as `texture` (evaluated at each hit's uv). The
     /// material's constant colour in that slot should be the texture's mean (it sets sampling
     /// weights, as in Mitsuba).
-    pub fn bind_texture(&mut self, material: MaterialId, slot: ColourSlot, texture: TextureId) -> Result<(), BuildError> {
+    pub fn bind_texture(
+        &mut self,
+        material: MaterialId,
+        slot: ColourSlot,
+        texture: TextureId,
+    ) -> Result<(), BuildError> {
         self.check_material(material)?;
         let m = &self.materials[material.0 as usize].0;
         if !m.has_slot(slot) {

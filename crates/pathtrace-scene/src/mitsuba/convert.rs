@@ -4,8 +4,8 @@
 use super::parse::{Element, XmlSource};
 use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
-    CameraSection, EmissionDef, FilterDef, FilterName, LightDef, LookAtDef, MaterialDef, MaterialKind, Num, Num3,
-    ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep, Triple, Colour,
+    CameraSection, Colour, EmissionDef, FilterDef, FilterName, LightDef, LookAtDef, MaterialDef, MaterialKind, Num,
+    Num3, ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep, Triple,
 };
 use crate::native::{ItemPath, SceneError};
 use pathtrace::math::{Transform, Vec3};

@@ -226,12 +226,14 @@ impl TryFrom<RawMaterial> for MaterialDef {
                 albedo: required(r.albedo, &name, "albedo")?,
                 exponent: required(r.exponent, &name, "exponent")?,
             },
-            MaterialType::Dielectric => {
-                MaterialKind::Dielectric { ior: r.ior.map_or(Num::from(1.5), |i| i.0), tint: r.tint.unwrap_or(one.clone()) }
-            }
-            MaterialType::ThinDielectric => {
-                MaterialKind::ThinDielectric { ior: r.ior.map_or(Num::from(1.5), |i| i.0), tint: r.tint.unwrap_or(one.clone()) }
-            }
+            MaterialType::Dielectric => MaterialKind::Dielectric {
+                ior: r.ior.map_or(Num::from(1.5), |i| i.0),
+                tint: r.tint.unwrap_or(one.clone()),
+            },
+            MaterialType::ThinDielectric => MaterialKind::ThinDielectric {
+                ior: r.ior.map_or(Num::from(1.5), |i| i.0),
+                tint: r.tint.unwrap_or(one.clone()),
+            },
             MaterialType::Emissive => MaterialKind::Emissive,
             MaterialType::Conductor => {
                 MaterialKind::Conductor { metal: r.metal_def()?, reflectance: r.reflectance.unwrap_or(one.clone()) }

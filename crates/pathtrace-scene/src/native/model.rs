@@ -3,9 +3,9 @@
 //! The field-by-field reference with defaults is docs/scene-format.md.
 
 pub use super::material::{EmissionDef, MaterialDef, MaterialKind, MaterialType};
-pub use super::texture::{identity_uv, Colour, TextureDef, UvRows};
 pub use super::object::{GroupDef, ObjectDef, ShapeDef, ShapeType};
 pub use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
+pub use super::texture::{identity_uv, Colour, TextureDef, UvRows};
 pub use super::transform::{LookAtDef, TransformStep};
 pub use super::values::{FilterName, Num, Num3, SamplerName, StrategyName, Triple};
 use serde::{Deserialize, Serialize};

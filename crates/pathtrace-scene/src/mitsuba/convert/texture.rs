@@ -28,7 +28,9 @@ impl<'a> Conv<'a, '_> {
                 Some(r) => {
                     let target = self.deref(r)?;
                     if target.tag != "texture" {
-                        return Err(self.src.error(r.offset, format!("`{name}` must name a <texture>, not <{}>", target.tag)));
+                        return Err(self
+                            .src
+                            .error(r.offset, format!("`{name}` must name a <texture>, not <{}>", target.tag)));
                     }
                     Some(target)
                 }
