@@ -466,7 +466,7 @@ fn serialized_meshes_load_and_bad_ones_are_errors() {
     std::fs::copy(&path, tmp.join("m.serialized")).unwrap();
     let (f, w) = convert_str(&xml, &tmp.join("s.xml"), &[]).unwrap();
     assert!(w.is_empty(), "{w:?}");
-    assert_eq!(f.objects[0].shape, ShapeDef::Mesh { file: "m.serialized".into(), part: Some(1) });
+    assert_eq!(f.objects[0].shape, ShapeDef::Mesh { file: "m.serialized".into(), part: Some(1), flip_v: false });
     let bad = xml.replace("value=\"1\"", "value=\"99\"").replace("</scene>", &format!("{LIGHT}</scene>"));
     let e = load_str(&bad, &tmp.join("s.xml"), &[]).unwrap_err().to_string();
     assert!(e.contains("part 99 does not exist"), "{e}");

@@ -222,3 +222,36 @@ fn mitsuba_texture_options_we_lack_are_warned_about_and_bad_refs_are_located() {
     let e = convert_str(&bad, Path::new("t.xml"), &[]).unwrap_err().to_string();
     assert!(e.contains("t.xml:5:") && e.contains("must name a <texture>"), "{e}");
 }
+
+#[test]
+fn mitsuba_obj_meshes_flip_v_as_mitsuba_does_and_ply_do_not() {
+    let dir = scratch("flip");
+    std::fs::write(dir.join("t.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.1 0.2\nvt 0.3 0.4\nvt 0.5 0.6\nf 1/1 2/2 3/3\n")
+        .unwrap();
+    std::fs::copy(dir.join("t.obj"), dir.join("u.obj")).unwrap();
+    std::fs::write(dir.join("t.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+    let xml = format!(
+        r#"<scene version="3.0.0">
+        <shape type="obj"><string name="filename" value="t.obj"/></shape>
+        <shape type="obj"><string name="filename" value="u.obj"/><boolean name="flip_tex_coords" value="false"/></shape>
+        <shape type="ply"><string name="filename" value="t.ply"/></shape>
+        {LIGHT}</scene>"#
+    );
+    let path = dir.join("scene.xml");
+    std::fs::write(&path, &xml).unwrap();
+    let (file, warnings) = pathtrace_scene::mitsuba::convert_file(&path, &[]).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let flips: Vec<bool> = file
+        .objects
+        .iter()
+        .filter_map(|o| match &o.shape {
+            pathtrace_scene::native::model::ShapeDef::Mesh { flip_v, .. } => Some(*flip_v),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(flips, [true, false, false]);
+    // The flag survives the native round trip and the scene builds.
+    let text = to_string(&file, Format::Toml).unwrap();
+    assert!(text.contains("flip_v = true"), "{text}");
+    pathtrace_scene::mitsuba::build_model(&file, &path).unwrap();
+}

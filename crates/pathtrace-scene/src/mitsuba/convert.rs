@@ -685,7 +685,9 @@ impl<'a> Conv<'a, '_> {
                 if self.boolean(e, "flip_normals")? == Some(true) {
                     self.warn(e, "flip_normals is not supported and is ignored");
                 }
-                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: None }
+                // Mitsuba flips v of OBJ texture coordinates unless told not to (not PLY's).
+                let flip_v = ty == "obj" && self.boolean(e, "flip_tex_coords")?.unwrap_or(true);
+                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: None, flip_v }
             }
             "serialized" => {
                 let Some(file) = self.string(e, "filename")? else {
@@ -694,7 +696,7 @@ impl<'a> Conv<'a, '_> {
                 let index = self.integer(e, "shape_index")?.unwrap_or(0);
                 let part = u32::try_from(index)
                     .map_err(|_| self.src.error(e.offset, format!("shape_index {index} must be ≥ 0")))?;
-                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: Some(part) }
+                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: Some(part), flip_v: false }
             }
             "rectangle" => ShapeDef::Quad {
                 q: n3(Vec3::new(-1.0, -1.0, 0.0)),

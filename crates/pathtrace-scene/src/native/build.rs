@@ -354,7 +354,7 @@ impl<L: Locate> Ctx<'_, L> {
                     degenerate("box: `max` must exceed `min` on every axis and the transform keep it solid")
                 });
             }
-            ShapeDef::Mesh { file, part } => return self.add_mesh(file, *part, id, &t, at),
+            ShapeDef::Mesh { file, part, flip_v } => return self.add_mesh(file, *part, *flip_v, id, &t, at),
         };
         self.b.shape(shape, id, &t).map_err(|e| err(&e))
     }
@@ -363,6 +363,7 @@ impl<L: Locate> Ctx<'_, L> {
         &mut self,
         file: &str,
         part: Option<u32>,
+        flip_v: bool,
         id: MaterialId,
         t: &Transform,
         object: &ItemPath,
@@ -381,6 +382,16 @@ impl<L: Locate> Ctx<'_, L> {
             })?,
         };
         for (_, mesh) in chosen {
+            let flipped;
+            let mesh = match (&mesh.uvs, flip_v) {
+                (Some(uvs), true) => {
+                    let mut m = mesh.clone();
+                    m.uvs = Some(uvs.iter().map(|uv| pathtrace::math::Vec2::new(uv.x, 1.0 - uv.y)).collect());
+                    flipped = m;
+                    &flipped
+                }
+                _ => mesh,
+            };
             self.b.mesh(mesh, id, t).map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
         }
         Ok(())
