@@ -59,6 +59,29 @@ pub enum MaterialKind {
     RoughPlastic { albedo: Colour, specular: Colour, ior: Num, nonlinear: bool, roughness: RoughnessDef },
 }
 
+impl MaterialKind {
+    /// The colour parameters, for edits that apply to every texture (e.g. rebasing file paths).
+    pub fn colours_mut(&mut self) -> Vec<&mut Colour> {
+        match self {
+            MaterialKind::Diffuse { albedo }
+            | MaterialKind::Lambertian { albedo }
+            | MaterialKind::Glossy { albedo, .. } => {
+                vec![albedo]
+            }
+            MaterialKind::Mirror { reflectance }
+            | MaterialKind::Conductor { reflectance, .. }
+            | MaterialKind::RoughConductor { reflectance, .. } => vec![reflectance],
+            MaterialKind::Dielectric { tint, .. }
+            | MaterialKind::ThinDielectric { tint, .. }
+            | MaterialKind::RoughDielectric { tint, .. } => vec![tint],
+            MaterialKind::Plastic { albedo, specular, .. } | MaterialKind::RoughPlastic { albedo, specular, .. } => {
+                vec![albedo, specular]
+            }
+            MaterialKind::Emissive => Vec::new(),
+        }
+    }
+}
+
 /// Light given off by a surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmissionDef {
