@@ -10,7 +10,8 @@ Two uses, chosen by whether a scene file is named:
 
    Each scene is loaded as written except for the film size (width and height are replaced in the
    XML text, so `$res` defaults and fixed sizes alike become SIZE × SIZE) and the sample count
-   (`--spp`, default 4096, through the sampler's `sample_count`). The scene's own integrator, depth,
+   (`--spp`, default 4096, through the sampler's `sample_count`); `<include>`d files are inlined
+   first so a film defined in one is resized too. The scene's own integrator, depth,
    filter and emitters are kept. `--only TEXT` renders only scenes whose path contains TEXT.
 
 2. Mitsuba against pathtrace on one scene (SCENE.xml given). Renders the same XML file with both
@@ -42,7 +43,24 @@ SCENES = [
     "cornell-box-bitterli/scene_v3.xml",
     "teapot-simple/simple.xml",
     "cbox-classic/docs/scenes/integrator_depth_inf.xml",
+    "matpreview/docs/scenes/bsdf_diffuse_plain.xml",
+    "matpreview/docs/scenes/bsdf_plastic_shiny.xml",
+    "matpreview/docs/scenes/bsdf_roughconductor_copper.xml",
+    "matpreview/docs/scenes/bsdf_dielectric_glass.xml",
+    "bunny/docs/scenes/shape_ply_bunny.xml",
 ]
+
+
+def inline_includes(text, folder):
+    """Replaces each `<include filename="F"/>` by F's body (its <scene> wrapper removed), so that
+    the film-size substitution also reaches a film defined in an included file. Relative paths in
+    an included file resolve against the including scene's folder and `<path>`s, as Mitsuba does."""
+    def body(m):
+        inner = open(os.path.join(folder, m.group(1))).read()
+        inner = re.sub(r"<\?xml[^>]*\?>", "", inner)
+        inner = re.sub(r"<scene[^>]*>", "", inner, count=1)
+        return inline_includes(re.sub(r"</scene>\s*$", "", inner.strip()), folder)
+    return re.sub(r'<include\s+filename="([^"]*)"\s*/>', body, text)
 
 
 def image_mean(np, img):
@@ -70,7 +88,7 @@ def reference_means(a, mi, np):
         if a.only and a.only not in rel:
             continue
         path = os.path.abspath(os.path.join(a.scenes, rel))
-        text = open(path).read()
+        text = inline_includes(open(path).read(), os.path.dirname(path))
         for axis in ("width", "height"):
             text = re.sub(rf'(<integer\s+name="{axis}"\s+value=")[^"]*(")', rf"\g<1>{a.size}\g<2>", text)
         # Resolve relative paths (meshes, <path>) as if the text were the file itself.

@@ -176,3 +176,33 @@ fn convert_writes_every_new_plugin_and_the_native_file_renders_with_any_filter()
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn convert_keeps_texture_and_environment_paths_working_from_another_folder() {
+    let dir = temp_dir("textures");
+    std::fs::create_dir_all(dir.join("scene/tex")).unwrap();
+    std::fs::create_dir_all(dir.join("out")).unwrap();
+    // A 2×2 PNG texture and a 2×1 PFM environment map next to the scene.
+    let png = [0u8, 0, 0, 255, 255, 255, 255, 255, 255, 0, 0, 0];
+    image::save_buffer(dir.join("scene/tex/checks.png"), &png, 2, 2, image::ExtendedColorType::Rgb8).unwrap();
+    let mut pfm = b"PF\n2 1\n-1.0\n".to_vec();
+    pfm.extend([1.0f32; 6].iter().flat_map(|x| x.to_le_bytes()));
+    std::fs::write(dir.join("scene/tex/sky.pfm"), pfm).unwrap();
+    let xml = r#"<scene version="3.0.0">
+        <bsdf type="diffuse" id="m"><texture type="bitmap" name="reflectance">
+            <string name="filename" value="tex/checks.png"/></texture></bsdf>
+        <shape type="sphere"><ref id="m"/></shape>
+        <emitter type="envmap"><string name="filename" value="tex/sky.pfm"/></emitter>
+        <sensor type="perspective"><transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+    </scene>"#;
+    std::fs::write(dir.join("scene/s.xml"), xml).unwrap();
+    let o = run_in(&dir, &["convert", "scene/s.xml", "out/s.toml"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
+    let toml = std::fs::read_to_string(dir.join("out/s.toml")).unwrap();
+    assert!(toml.contains("type = \"bitmap\"") && toml.contains("checks.png"), "{toml}");
+    let o = run_in(&dir, &["render", "out/s.toml", "--quiet", "--spp", "2", "-o", "out/s.pfm"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let _ = std::fs::remove_dir_all(&dir);
+}

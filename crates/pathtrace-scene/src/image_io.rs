@@ -14,6 +14,7 @@ mod png_codec;
 mod scratch;
 #[cfg(test)]
 mod tests;
+mod texture_codec;
 
 use std::fmt;
 use std::fs;
@@ -151,6 +152,21 @@ pub fn read_linear_image(path: &Path) -> Result<Image, ImageIoError> {
     let file = fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
     hdr_codec::decode(BufReader::new(file))
         .map_err(|reason| ImageIoError::InvalidHdr { path: path.to_path_buf(), reason })
+}
+
+/// Reads a texture image as linear RGB: PNG and JPEG (`.jpg`, `.jpeg`) are sRGB-decoded unless
+/// `raw` (then their values are only scaled to [0, 1]); EXR, HDR and PFM are linear already and
+/// read as [`read_linear_image`] does.
+pub fn read_texture(path: &Path, raw: bool) -> Result<Image, ImageIoError> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let format = match ext.as_str() {
+        "png" => image::ImageFormat::Png,
+        "jpg" | "jpeg" => image::ImageFormat::Jpeg,
+        _ => return read_linear_image(path),
+    };
+    let file = fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
+    texture_codec::decode(BufReader::new(file), format, raw)
+        .map_err(|source| ImageIoError::Texture { path: path.to_path_buf(), source })
 }
 
 /// Reads an EXR file, explaining a missing-channel failure in our own words.

@@ -13,6 +13,7 @@ mod primitive_store;
 pub mod sampling;
 pub mod scene;
 pub mod shape;
+pub mod texture;
 
 pub use camera::{Camera, CameraDesc};
 pub use instance::{GroupId, ShapeGroup};

@@ -9,6 +9,7 @@ use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
 use crate::shape::{MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
+use crate::texture::{ColourSlot, Texture, TextureBindings, TextureId};
 
 /// Index of a material in the scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -57,6 +58,8 @@ pub enum PrimRef {
 pub struct Interaction<'a> {
     pub surface: SurfacePoint,
     pub material: &'a Material,
+    /// Index of the material in the scene (for its texture bindings).
+    pub material_id: u32,
     pub light: u32,
 }
 
@@ -94,6 +97,9 @@ pub struct Scene {
     /// Placed shape groups (two-level); empty in scenes without instances.
     instances: Instances,
     materials: Vec<Material>,
+    /// Per material: the textures bound to its colour slots (most are empty).
+    bindings: Vec<TextureBindings>,
+    textures: Vec<Texture>,
     pub lights: LightSet,
     pub camera: CameraDesc,
 }
@@ -141,7 +147,35 @@ impl Scene {
                 (surface, material, Primitive::NO_LIGHT)
             }
         };
-        Interaction { surface, material: &self.materials[material as usize], light }
+        Interaction { surface, material: &self.materials[material as usize], material_id: material, light }
+    }
+
+    /// True if any material has a texture.
+    #[inline(always)]
+    pub fn has_textures(&self) -> bool {
+        !self.textures.is_empty()
+    }
+
+    /// True if the material at a hit has textured colours (then use
+    /// [`Scene::textured_material`] instead of `it.material`). Scenes without textures answer
+    /// from one flag, so the constant case costs a predictable branch per hit.
+    #[inline(always)]
+    pub fn is_textured(&self, it: &Interaction) -> bool {
+        self.has_textures() && self.bindings.get(it.material_id as usize).is_some_and(|b| !b.is_empty())
+    }
+
+    /// The material at a hit with its textures evaluated at the hit's uv.
+    #[inline(never)]
+    pub fn textured_material(&self, it: &Interaction) -> Material {
+        let b = self.bindings.get(it.material_id as usize).copied().unwrap_or_default();
+        let mut m = *it.material;
+        if let Some(t) = b.base {
+            m = m.with_colour(ColourSlot::Base, self.textures[t.0 as usize].eval(it.surface.uv));
+        }
+        if let Some(t) = b.specular {
+            m = m.with_colour(ColourSlot::Specular, self.textures[t.0 as usize].eval(it.surface.uv));
+        }
+        m
     }
 
     /// The BVH's nodes, one per line.
@@ -216,6 +250,8 @@ enum Entry {
 #[derive(Clone, Debug, Default)]
 pub struct SceneBuilder {
     materials: Vec<(Material, Option<Emission>)>,
+    bindings: Vec<TextureBindings>,
+    textures: Vec<Texture>,
     entries: Vec<Entry>,
     camera: CameraDesc,
     allow_no_lights: bool,
@@ -230,6 +266,36 @@ pub struct SceneBuilder {
 impl SceneBuilder {
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Adds a texture, to be bound to materials with [`SceneBuilder::bind_texture`].
+    pub fn texture(&mut self, t: Texture) -> TextureId {
+        self.textures.push(t);
+        TextureId(self.textures.len() as u32 - 1)
+    }
+
+    /// Makes `material`'s `slot` colour vary as `texture` (evaluated at each hit's uv). The
+    /// material's constant colour in that slot should be the texture's mean (it sets sampling
+    /// weights, as in Mitsuba).
+    pub fn bind_texture(
+        &mut self,
+        material: MaterialId,
+        slot: ColourSlot,
+        texture: TextureId,
+    ) -> Result<(), BuildError> {
+        self.check_material(material)?;
+        let m = &self.materials[material.0 as usize].0;
+        if !m.has_slot(slot) {
+            return Err(BuildError::Material(format!("a {} material has no {slot:?} colour to texture", m.name())));
+        }
+        if texture.0 as usize >= self.textures.len() {
+            return Err(BuildError::Material(format!("texture id {} does not exist", texture.0)));
+        }
+        if self.bindings.len() <= material.0 as usize {
+            self.bindings.resize(material.0 as usize + 1, TextureBindings::default());
+        }
+        self.bindings[material.0 as usize].set(slot, texture);
+        Ok(())
     }
 
     /// Adds a non-emissive material.
@@ -479,12 +545,16 @@ impl SceneBuilder {
             return Err(BuildError::NoLights);
         }
         let bvh = Bvh::build(&bounds, &prims.packables());
+        let mut bindings = self.bindings;
+        bindings.resize(self.materials.len(), TextureBindings::default());
         Ok(Scene {
             prims,
             unbounded,
             bvh,
             instances,
             materials: self.materials.into_iter().map(|(m, _)| m).collect(),
+            bindings,
+            textures: self.textures,
             lights,
             camera: self.camera,
         })

@@ -93,6 +93,16 @@ pub enum ImageIoError {
         source: image::ImageError,
     },
 
+    /// A texture image (PNG or JPEG) could not be decoded.
+    #[error("cannot decode {}: {source}", .path.display())]
+    Texture {
+        /// The file.
+        path: PathBuf,
+        /// The codec's error.
+        #[source]
+        source: image::ImageError,
+    },
+
     /// The EXR encoder or decoder failed.
     #[error("EXR error in {}: {source}", .path.display())]
     Exr {

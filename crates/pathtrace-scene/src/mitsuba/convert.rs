@@ -4,7 +4,7 @@
 use super::parse::{Element, XmlSource};
 use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
-    CameraSection, EmissionDef, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, LookAtDef, MaterialDef,
+    CameraSection, Colour, EmissionDef, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, LookAtDef, MaterialDef,
     MaterialKind, Num, Num3, ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep, Triple,
 };
 use crate::native::{ItemPath, SceneError};
@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 
 mod bsdf;
 mod instance;
+mod texture;
 
 type R<T> = Result<T, SceneError>;
 
@@ -569,10 +570,10 @@ impl<'a> Conv<'a, '_> {
             return Err(self.src.error(e.offset, "BSDFs are nested too deeply (a <ref> cycle?)"));
         }
         let ty = self.req_attr(e, "type")?;
-        let grey = MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) };
+        let grey = MaterialKind::Lambertian { albedo: Colour::grey(0.5) };
         Ok(match ty {
             "diffuse" => {
-                let albedo = self.color(e, "reflectance")?.unwrap_or(Triple::Splat(num(0.5)));
+                let albedo = self.colour(e, "reflectance")?.unwrap_or(Colour::grey(0.5));
                 MaterialKind::Lambertian { albedo }
             }
             "twosided" => {
@@ -582,19 +583,19 @@ impl<'a> Conv<'a, '_> {
                         let i = self.deref(i)?;
                         self.bsdf_kind_at(i, depth + 1)?
                     }
-                    None => MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) },
+                    None => MaterialKind::Lambertian { albedo: Colour::grey(0.5) },
                 }
             }
             "dielectric" => {
                 let int = self.ior(e, "int_ior", 1.5046)?;
                 let ext = self.ior(e, "ext_ior", 1.000277)?;
-                let tint = self.color(e, "specular_transmittance")?.unwrap_or(Triple::Splat(num(1.0)));
+                let tint = self.colour(e, "specular_transmittance")?.unwrap_or(Colour::grey(1.0));
                 MaterialKind::Dielectric { ior: num(int / ext), tint }
             }
             "thindielectric" => {
                 let int = self.ior(e, "int_ior", 1.5046)?;
                 let ext = self.ior(e, "ext_ior", 1.000277)?;
-                let tint = self.color(e, "specular_transmittance")?.unwrap_or(Triple::Splat(num(1.0)));
+                let tint = self.colour(e, "specular_transmittance")?.unwrap_or(Colour::grey(1.0));
                 MaterialKind::ThinDielectric { ior: num(int / ext), tint }
             }
             other => match self.microfacet_bsdf(e, other)? {
@@ -658,7 +659,7 @@ impl<'a> Conv<'a, '_> {
         }
         let kind = match bsdf {
             Some(b) => self.bsdf_kind(b)?,
-            None => MaterialKind::Lambertian { albedo: Triple::Splat(num(0.5)) },
+            None => MaterialKind::Lambertian { albedo: Colour::grey(0.5) },
         };
         let base = match (shared, bsdf.and_then(|b| b.attr("id"))) {
             (Some(b), _) => b.attr("id").unwrap_or("bsdf").to_string(),
@@ -706,7 +707,9 @@ impl<'a> Conv<'a, '_> {
                 if self.boolean(e, "flip_normals")? == Some(true) {
                     self.warn(e, "flip_normals is not supported and is ignored");
                 }
-                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: None }
+                // Mitsuba flips v of OBJ texture coordinates unless told not to (not PLY's).
+                let flip_v = ty == "obj" && self.boolean(e, "flip_tex_coords")?.unwrap_or(true);
+                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: None, flip_v }
             }
             "serialized" => {
                 let Some(file) = self.string(e, "filename")? else {
@@ -715,7 +718,7 @@ impl<'a> Conv<'a, '_> {
                 let index = self.integer(e, "shape_index")?.unwrap_or(0);
                 let part = u32::try_from(index)
                     .map_err(|_| self.src.error(e.offset, format!("shape_index {index} must be ≥ 0")))?;
-                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: Some(part) }
+                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: Some(part), flip_v: false }
             }
             "rectangle" => ShapeDef::Quad {
                 q: n3(Vec3::new(-1.0, -1.0, 0.0)),

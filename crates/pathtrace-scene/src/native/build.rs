@@ -5,8 +5,8 @@
 use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
 use super::model::{
-    CameraSection, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind, MetalDef, Num,
-    ObjectDef, RenderSection, RoughnessDef, SceneFile, ShapeDef,
+    CameraSection, Colour, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind, MetalDef,
+    Num, ObjectDef, RenderSection, RoughnessDef, SceneFile, ShapeDef, TextureDef, UvRows,
 };
 use super::transform::compose;
 use super::values::vec3;
@@ -21,6 +21,7 @@ use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::scene::{validate_material, BuildError};
 use pathtrace::shape::TriangleMesh;
 use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
+use pathtrace::texture::{Bitmap, Checkerboard, ColourSlot, FilterType, Texture, UvTransform, WrapMode};
 use pathtrace::{Camera, CameraDesc, GroupId, MaterialId, SceneBuilder, ShapeGroup};
 use std::collections::BTreeMap;
 
@@ -179,54 +180,70 @@ struct Ctx<'a, L: Locate> {
 impl<L: Locate> Ctx<'_, L> {
     fn add_material(&mut self, name: &str, def: &MaterialDef) -> Result<MaterialId, SceneError> {
         let at = ItemPath::root().field("materials").field(name);
-        let m = match def.kind {
-            MaterialKind::Diffuse { albedo } => Material::Diffuse(Diffuse { albedo: albedo.rgb() }),
-            MaterialKind::Lambertian { albedo } => Material::Lambertian(Lambertian { albedo: albedo.rgb() }),
-            MaterialKind::Mirror { reflectance } => Material::Mirror(Mirror { reflectance: reflectance.rgb() }),
+        // Textured colours enter the material as their mean (Mitsuba's sampling weights use the
+        // mean too) and are bound to their slot below.
+        let mut bound: Vec<(ColourSlot, Texture)> = Vec::new();
+        let mut col = |c: &Colour, slot: ColourSlot, field: &str| -> Result<Rgb, SceneError> {
+            match c {
+                Colour::Constant(t) => Ok(t.rgb()),
+                Colour::Texture(t) => {
+                    let tex = self.texture(t, &at.field(field))?;
+                    let mean = tex.mean();
+                    bound.push((slot, tex));
+                    Ok(mean)
+                }
+            }
+        };
+        let (base, spec) = (ColourSlot::Base, ColourSlot::Specular);
+        let m = match &def.kind {
+            MaterialKind::Diffuse { albedo } => Material::Diffuse(Diffuse { albedo: col(albedo, base, "albedo")? }),
+            MaterialKind::Lambertian { albedo } => {
+                Material::Lambertian(Lambertian { albedo: col(albedo, base, "albedo")? })
+            }
+            MaterialKind::Mirror { reflectance } => {
+                Material::Mirror(Mirror { reflectance: col(reflectance, base, "reflectance")? })
+            }
             MaterialKind::Glossy { albedo, exponent } => {
-                Material::Glossy(Glossy { albedo: albedo.rgb(), exponent: exponent.f32() })
+                Material::Glossy(Glossy { albedo: col(albedo, base, "albedo")?, exponent: exponent.f32() })
             }
             MaterialKind::Dielectric { ior, tint } => {
-                Material::Dielectric(Dielectric { ior: ior.f32(), tint: tint.rgb() })
+                Material::Dielectric(Dielectric { ior: ior.f32(), tint: col(tint, base, "tint")? })
             }
             MaterialKind::ThinDielectric { ior, tint } => {
-                Material::ThinDielectric(ThinDielectric { ior: ior.f32(), tint: tint.rgb() })
+                Material::ThinDielectric(ThinDielectric { ior: ior.f32(), tint: col(tint, base, "tint")? })
             }
             MaterialKind::Emissive => Material::Black,
             MaterialKind::Conductor { metal, reflectance } => {
-                let (eta, k) = metal_optics(metal);
-                Material::Conductor(Conductor { eta, k, reflectance: reflectance.rgb() })
+                let (eta, k) = metal_optics(*metal);
+                Material::Conductor(Conductor { eta, k, reflectance: col(reflectance, base, "reflectance")? })
             }
             MaterialKind::RoughConductor { metal, reflectance, roughness } => {
-                let (eta, k) = metal_optics(metal);
-                let distribution = microfacet(roughness);
-                Material::RoughConductor(RoughConductor { distribution, eta, k, reflectance: reflectance.rgb() })
+                let (eta, k) = metal_optics(*metal);
+                let distribution = microfacet(*roughness);
+                let reflectance = col(reflectance, base, "reflectance")?;
+                Material::RoughConductor(RoughConductor { distribution, eta, k, reflectance })
             }
             MaterialKind::RoughDielectric { ior, tint, roughness } => Material::RoughDielectric(RoughDielectric {
-                distribution: microfacet(roughness),
+                distribution: microfacet(*roughness),
                 ior: ior.f32(),
-                tint: tint.rgb(),
+                tint: col(tint, base, "tint")?,
             }),
             MaterialKind::Plastic { albedo, specular, ior, nonlinear } => {
-                check_coating(albedo.rgb(), specular.rgb(), ior.f32())
+                let (albedo, specular) = (col(albedo, base, "albedo")?, col(specular, spec, "specular")?);
+                check_coating(albedo, specular, ior.f32())
                     .map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
-                Material::Plastic(Plastic::new(albedo.rgb(), specular.rgb(), ior.f32(), nonlinear))
+                Material::Plastic(Plastic::new(albedo, specular, ior.f32(), *nonlinear))
             }
             MaterialKind::RoughPlastic { albedo, specular, ior, nonlinear, roughness } => {
-                check_coating(albedo.rgb(), specular.rgb(), ior.f32())
+                let (albedo, specular) = (col(albedo, base, "albedo")?, col(specular, spec, "specular")?);
+                check_coating(albedo, specular, ior.f32())
                     .map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
-                let distribution = microfacet(roughness);
-                Material::RoughPlastic(RoughPlastic::new(
-                    distribution,
-                    albedo.rgb(),
-                    specular.rgb(),
-                    ior.f32(),
-                    nonlinear,
-                ))
+                let distribution = microfacet(*roughness);
+                Material::RoughPlastic(RoughPlastic::new(distribution, albedo, specular, ior.f32(), *nonlinear))
             }
         };
         validate_material(&m).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
-        Ok(match def.emission {
+        let id = match def.emission {
             None => self.b.material(m),
             Some(e) => {
                 let radiance = e.radiance.rgb();
@@ -235,7 +252,35 @@ impl<L: Locate> Ctx<'_, L> {
                 }
                 self.b.material_with_emission(m, Emission { radiance, two_sided: e.two_sided })
             }
-        })
+        };
+        for (slot, tex) in bound {
+            let t = self.b.texture(tex);
+            self.b.bind_texture(id, slot, t).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
+        }
+        Ok(id)
+    }
+
+    /// The engine texture a definition describes; a bitmap's file is read relative to the scene
+    /// file (8-bit sRGB decoded unless `raw`, float formats linear).
+    fn texture(&self, t: &TextureDef, at: &ItemPath) -> Result<Texture, SceneError> {
+        let uv = |rows: &UvRows| UvTransform::from_rows(rows.map(|r| r.map(Num::f32)));
+        match t {
+            TextureDef::Checkerboard { color0, color1, to_uv } => {
+                Ok(Texture::Checkerboard(Checkerboard { color0: color0.rgb(), color1: color1.rgb(), to_uv: uv(to_uv) }))
+            }
+            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv } => {
+                let dir = self.src.path().parent().unwrap_or(std::path::Path::new(""));
+                let image = crate::image_io::read_texture(&dir.join(filename), *raw)
+                    .map_err(|e| self.src.error_at(at, format!("cannot load texture: {e}")))?;
+                let mut b = Bitmap::new(image.width, image.height, image.pixels).ok_or_else(|| {
+                    self.src.error_at(at, format!("texture `{filename}` has negative or non-finite texels"))
+                })?;
+                b.filter = if *nearest { FilterType::Nearest } else { FilterType::Bilinear };
+                b.wrap = if *clamp { WrapMode::Clamp } else { WrapMode::Repeat };
+                b.to_uv = uv(to_uv);
+                Ok(Texture::Bitmap(b))
+            }
+        }
     }
 
     fn add_light(&mut self, l: &LightDef, at: &ItemPath) -> Result<(), SceneError> {
@@ -411,7 +456,7 @@ impl<L: Locate> Ctx<'_, L> {
                     degenerate("box: `max` must exceed `min` on every axis and the transform keep it solid")
                 });
             }
-            ShapeDef::Mesh { file, part } => return self.add_mesh(file, *part, id, &t, at),
+            ShapeDef::Mesh { file, part, flip_v } => return self.add_mesh(file, *part, *flip_v, id, &t, at),
         };
         self.put_shape(shape, id, &t).map_err(|e| err(&e))
     }
@@ -420,6 +465,7 @@ impl<L: Locate> Ctx<'_, L> {
         &mut self,
         file: &str,
         part: Option<u32>,
+        flip_v: bool,
         id: MaterialId,
         t: &Transform,
         object: &ItemPath,
@@ -438,6 +484,16 @@ impl<L: Locate> Ctx<'_, L> {
             })?,
         };
         for (_, mesh) in chosen {
+            let flipped;
+            let mesh = match (&mesh.uvs, flip_v) {
+                (Some(uvs), true) => {
+                    let mut m = mesh.clone();
+                    m.uvs = Some(uvs.iter().map(|uv| pathtrace::math::Vec2::new(uv.x, 1.0 - uv.y)).collect());
+                    flipped = m;
+                    &flipped
+                }
+                _ => mesh,
+            };
             self.put_mesh(mesh, id, t).map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
         }
         Ok(())

@@ -4,6 +4,7 @@
 //! wrongly typed value is reported at its own position), then checked into a [`MaterialDef`].
 
 use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
+use super::texture::Colour;
 use super::values::{Num, Triple};
 use pathtrace::material::MicrofacetKind;
 use serde::{Deserialize, Serialize};
@@ -28,34 +29,57 @@ pub enum MaterialType {
     RoughPlastic,
 }
 
-/// A material's scattering model and parameters.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A material's scattering model and parameters. Colour parameters may be textures.
+#[derive(Clone, Debug, PartialEq)]
 pub enum MaterialKind {
     /// The naive "uniform diffuse" model: scatters uniformly over the hemisphere (not Lambertian).
-    Diffuse { albedo: Triple },
+    Diffuse { albedo: Colour },
     /// Lambertian reflector with cosine-weighted sampling.
-    Lambertian { albedo: Triple },
+    Lambertian { albedo: Colour },
     /// Perfect specular reflector; `reflectance` defaults to 1.
-    Mirror { reflectance: Triple },
+    Mirror { reflectance: Colour },
     /// Phong lobe of the given exponent.
-    Glossy { albedo: Triple, exponent: Num },
+    Glossy { albedo: Colour, exponent: Num },
     /// Smooth glass; `ior` defaults to 1.5, `tint` to 1.
-    Dielectric { ior: Num, tint: Triple },
+    Dielectric { ior: Num, tint: Colour },
     /// A thin glass sheet (Mitsuba's `thindielectric`); `ior` defaults to 1.5, `tint` to 1.
-    ThinDielectric { ior: Num, tint: Triple },
+    ThinDielectric { ior: Num, tint: Colour },
     /// A black surface that emits `radiance` (set on the [`MaterialDef`]'s emission).
     Emissive,
     /// Smooth metal: Fresnel reflection with a complex index (named `metal` or `eta` + `k`),
     /// times `reflectance` (default 1).
-    Conductor { metal: MetalDef, reflectance: Triple },
+    Conductor { metal: MetalDef, reflectance: Colour },
     /// Rough metal (microfacets).
-    RoughConductor { metal: MetalDef, reflectance: Triple, roughness: RoughnessDef },
+    RoughConductor { metal: MetalDef, reflectance: Colour, roughness: RoughnessDef },
     /// Rough glass (microfacets); `ior` defaults to 1.5, `tint` to 1.
-    RoughDielectric { ior: Num, tint: Triple, roughness: RoughnessDef },
+    RoughDielectric { ior: Num, tint: Colour, roughness: RoughnessDef },
     /// Diffuse base under a smooth coating (Mitsuba's `plastic`).
-    Plastic { albedo: Triple, specular: Triple, ior: Num, nonlinear: bool },
+    Plastic { albedo: Colour, specular: Colour, ior: Num, nonlinear: bool },
     /// Diffuse base under a rough coating (Mitsuba's `roughplastic`; isotropic roughness).
-    RoughPlastic { albedo: Triple, specular: Triple, ior: Num, nonlinear: bool, roughness: RoughnessDef },
+    RoughPlastic { albedo: Colour, specular: Colour, ior: Num, nonlinear: bool, roughness: RoughnessDef },
+}
+
+impl MaterialKind {
+    /// The colour parameters, for edits that apply to every texture (e.g. rebasing file paths).
+    pub fn colours_mut(&mut self) -> Vec<&mut Colour> {
+        match self {
+            MaterialKind::Diffuse { albedo }
+            | MaterialKind::Lambertian { albedo }
+            | MaterialKind::Glossy { albedo, .. } => {
+                vec![albedo]
+            }
+            MaterialKind::Mirror { reflectance }
+            | MaterialKind::Conductor { reflectance, .. }
+            | MaterialKind::RoughConductor { reflectance, .. } => vec![reflectance],
+            MaterialKind::Dielectric { tint, .. }
+            | MaterialKind::ThinDielectric { tint, .. }
+            | MaterialKind::RoughDielectric { tint, .. } => vec![tint],
+            MaterialKind::Plastic { albedo, specular, .. } | MaterialKind::RoughPlastic { albedo, specular, .. } => {
+                vec![albedo, specular]
+            }
+            MaterialKind::Emissive => Vec::new(),
+        }
+    }
 }
 
 /// Light given off by a surface.
@@ -68,7 +92,7 @@ pub struct EmissionDef {
 }
 
 /// One named material of a scene file.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(try_from = "RawMaterial", into = "RawMaterial")]
 pub struct MaterialDef {
     /// How the surface scatters light.
@@ -84,15 +108,15 @@ pub struct RawMaterial {
     #[serde(rename = "type")]
     kind: Option<MaterialType>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    albedo: Option<Triple>,
+    albedo: Option<Colour>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    reflectance: Option<Triple>,
+    reflectance: Option<Colour>,
     #[serde(skip_serializing_if = "Option::is_none")]
     exponent: Option<Num>,
     #[serde(skip_serializing_if = "Option::is_none")]
     ior: Option<Ior>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    tint: Option<Triple>,
+    tint: Option<Colour>,
     #[serde(skip_serializing_if = "Option::is_none")]
     radiance: Option<Triple>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -106,7 +130,7 @@ pub struct RawMaterial {
     #[serde(skip_serializing_if = "Option::is_none")]
     k: Option<Triple>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    specular: Option<Triple>,
+    specular: Option<Colour>,
     #[serde(skip_serializing_if = "Option::is_none")]
     nonlinear: Option<bool>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -216,45 +240,47 @@ impl TryFrom<RawMaterial> for MaterialDef {
             let ok = allowed(t).iter().map(|f| format!("`{f}`")).collect::<Vec<_>>().join(", ");
             return Err(format!("`{extra}` is not a parameter of a {name} material (it takes {ok})"));
         }
-        let one = Triple::Splat(Num::from(1.0));
+        let one = Colour::grey(1.0);
         let kind = match t {
             MaterialType::Diffuse => MaterialKind::Diffuse { albedo: required(r.albedo, &name, "albedo")? },
             MaterialType::Lambertian => MaterialKind::Lambertian { albedo: required(r.albedo, &name, "albedo")? },
-            MaterialType::Mirror => MaterialKind::Mirror { reflectance: r.reflectance.unwrap_or(one) },
+            MaterialType::Mirror => MaterialKind::Mirror { reflectance: r.reflectance.unwrap_or(one.clone()) },
             MaterialType::Glossy => MaterialKind::Glossy {
                 albedo: required(r.albedo, &name, "albedo")?,
                 exponent: required(r.exponent, &name, "exponent")?,
             },
-            MaterialType::Dielectric => {
-                MaterialKind::Dielectric { ior: r.ior.map_or(Num::from(1.5), |i| i.0), tint: r.tint.unwrap_or(one) }
-            }
-            MaterialType::ThinDielectric => {
-                MaterialKind::ThinDielectric { ior: r.ior.map_or(Num::from(1.5), |i| i.0), tint: r.tint.unwrap_or(one) }
-            }
+            MaterialType::Dielectric => MaterialKind::Dielectric {
+                ior: r.ior.map_or(Num::from(1.5), |i| i.0),
+                tint: r.tint.unwrap_or(one.clone()),
+            },
+            MaterialType::ThinDielectric => MaterialKind::ThinDielectric {
+                ior: r.ior.map_or(Num::from(1.5), |i| i.0),
+                tint: r.tint.unwrap_or(one.clone()),
+            },
             MaterialType::Emissive => MaterialKind::Emissive,
             MaterialType::Conductor => {
-                MaterialKind::Conductor { metal: r.metal_def()?, reflectance: r.reflectance.unwrap_or(one) }
+                MaterialKind::Conductor { metal: r.metal_def()?, reflectance: r.reflectance.unwrap_or(one.clone()) }
             }
             MaterialType::RoughConductor => MaterialKind::RoughConductor {
                 metal: r.metal_def()?,
-                reflectance: r.reflectance.unwrap_or(one),
+                reflectance: r.reflectance.clone().unwrap_or(one.clone()),
                 roughness: r.roughness()?,
             },
             MaterialType::RoughDielectric => MaterialKind::RoughDielectric {
                 ior: r.ior.map_or(Num::from(1.5), |i| i.0),
-                tint: r.tint.unwrap_or(one),
+                tint: r.tint.clone().unwrap_or(one.clone()),
                 roughness: r.roughness()?,
             },
             // Plastics default to Mitsuba's: albedo 0.5, polypropylene (1.49), linear.
             MaterialType::Plastic => MaterialKind::Plastic {
-                albedo: r.albedo.unwrap_or(Triple::Splat(Num::from(0.5))),
-                specular: r.specular.unwrap_or(one),
+                albedo: r.albedo.clone().unwrap_or(Colour::grey(0.5)),
+                specular: r.specular.clone().unwrap_or(one.clone()),
                 ior: r.ior.map_or(Num::from(1.49), |i| i.0),
                 nonlinear: r.nonlinear.unwrap_or(false),
             },
             MaterialType::RoughPlastic => MaterialKind::RoughPlastic {
-                albedo: r.albedo.unwrap_or(Triple::Splat(Num::from(0.5))),
-                specular: r.specular.unwrap_or(one),
+                albedo: r.albedo.clone().unwrap_or(Colour::grey(0.5)),
+                specular: r.specular.clone().unwrap_or(one.clone()),
                 ior: r.ior.map_or(Num::from(1.49), |i| i.0),
                 nonlinear: r.nonlinear.unwrap_or(false),
                 roughness: r.roughness()?,
@@ -281,6 +307,7 @@ impl TryFrom<RawMaterial> for MaterialDef {
 impl From<MaterialDef> for RawMaterial {
     fn from(m: MaterialDef) -> Self {
         let mut r = RawMaterial::default();
+        let emissive = m.kind == MaterialKind::Emissive;
         match m.kind {
             MaterialKind::Diffuse { albedo } => (r.kind, r.albedo) = (Some(MaterialType::Diffuse), Some(albedo)),
             MaterialKind::Lambertian { albedo } => (r.kind, r.albedo) = (Some(MaterialType::Lambertian), Some(albedo)),
@@ -323,7 +350,7 @@ impl From<MaterialDef> for RawMaterial {
             }
         }
         if let Some(e) = m.emission {
-            if m.kind == MaterialKind::Emissive {
+            if emissive {
                 r.radiance = Some(e.radiance);
             } else {
                 r.emission = Some(e.radiance);
@@ -363,7 +390,7 @@ mod tests {
     #[test]
     fn defaults_are_filled_in() {
         let glass = parse("type = \"dielectric\"").unwrap();
-        assert_eq!(glass.kind, MaterialKind::Dielectric { ior: Num::from(1.5), tint: Triple::Splat(Num::from(1.0)) });
+        assert_eq!(glass.kind, MaterialKind::Dielectric { ior: Num::from(1.5), tint: Colour::grey(1.0) });
         let light = parse("type = \"emissive\"\nradiance = 4").unwrap();
         assert_eq!(light.emission, Some(EmissionDef { radiance: Triple::Splat(Num::from(4.0)), two_sided: false }));
     }
@@ -392,7 +419,7 @@ mod tests {
         assert_eq!((roughness.distribution, roughness.alpha_u.get()), (MicrofacetKind::Ggx, 0.2));
         let plastic = parse("type = \"plastic\"\nior = \"water\"").unwrap();
         let MaterialKind::Plastic { ior, albedo, nonlinear, .. } = plastic.kind else { panic!("{plastic:?}") };
-        assert!((ior.get() - 1.333).abs() < 1e-6 && albedo == Triple::Splat(Num::from(0.5)) && !nonlinear);
+        assert!((ior.get() - 1.333).abs() < 1e-6 && albedo == Colour::grey(0.5) && !nonlinear);
         for text in [
             "type = \"rough_dielectric\"\nalpha_u = 0.1\nalpha_v = 0.3",
             "type = \"conductor\"\neta = [0.2, 0.4, 1.4]\nk = 3",

@@ -30,7 +30,8 @@ pub mod model;
 mod object;
 mod optics;
 mod parse;
-mod transform;
+mod texture;
+pub(crate) mod transform;
 mod values;
 
 pub use build::build;

@@ -5,6 +5,7 @@
 pub use super::material::{EmissionDef, MaterialDef, MaterialKind, MaterialType};
 pub use super::object::{GroupDef, ObjectDef, ShapeDef, ShapeType};
 pub use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
+pub use super::texture::{identity_uv, Colour, TextureDef, UvRows};
 pub use super::transform::{LookAtDef, TransformStep};
 pub use super::values::{FilterName, LightSelectionName, Num, Num3, SamplerName, StrategyName, Triple};
 use serde::{Deserialize, Serialize};

@@ -39,8 +39,9 @@ pub enum ShapeDef {
     Triangle { a: Num3, b: Num3, c: Num3 },
     /// Triangles from an OBJ, PLY or Mitsuba `.serialized` file; the path is relative to the scene
     /// file's folder. `part` picks one part by index (an OBJ material group, a serialized shape);
-    /// without it, all parts are used.
-    Mesh { file: String, part: Option<u32> },
+    /// without it, all parts are used. `flip_v` replaces each texture coordinate v by 1 − v
+    /// (what Mitsuba does to OBJ files, its `flip_tex_coords`).
+    Mesh { file: String, part: Option<u32>, flip_v: bool },
 }
 
 /// One object: a shape, the name of its material, and its transform list.
@@ -107,6 +108,8 @@ pub struct RawObject {
     file: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     part: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    flip_v: Option<bool>,
 }
 
 /// The geometric fields each shape takes.
@@ -117,7 +120,7 @@ fn fields_of(t: ShapeType) -> &'static [&'static str] {
         ShapeType::Quad => &["q", "u", "v"],
         ShapeType::Box => &["min", "max"],
         ShapeType::Triangle => &["a", "b", "c"],
-        ShapeType::Mesh => &["file", "part"],
+        ShapeType::Mesh => &["file", "part", "flip_v"],
         ShapeType::Disk => &["center", "normal", "radius"],
     }
 }
@@ -152,6 +155,7 @@ impl RawObject {
             ("c", v3(&self.c)),
             ("file", self.file.is_some()),
             ("part", self.part.is_some()),
+            ("flip_v", self.flip_v.is_some()),
         ];
         fields.iter().filter(|f| f.1).map(|f| f.0).collect()
     }
@@ -184,7 +188,11 @@ impl TryFrom<RawObject> for ObjectDef {
                 normal: need(r.normal, "normal")?,
                 radius: r.radius.ok_or_else(|| missing("radius"))?,
             },
-            ShapeType::Mesh => ShapeDef::Mesh { file: r.file.ok_or_else(|| missing("file"))?, part: r.part },
+            ShapeType::Mesh => ShapeDef::Mesh {
+                file: r.file.ok_or_else(|| missing("file"))?,
+                part: r.part,
+                flip_v: r.flip_v.unwrap_or(false),
+            },
         };
         let material =
             r.material.ok_or_else(|| format!("a {name} needs a `material` (the name of a [materials.NAME])"))?;
@@ -216,8 +224,8 @@ impl From<ObjectDef> for RawObject {
                 (r.a, r.b, r.c) = (Some(a), Some(b), Some(c));
                 ShapeType::Triangle
             }
-            ShapeDef::Mesh { file, part } => {
-                (r.file, r.part) = (Some(file), part);
+            ShapeDef::Mesh { file, part, flip_v } => {
+                (r.file, r.part, r.flip_v) = (Some(file), part, flip_v.then_some(true));
                 ShapeType::Mesh
             }
             ShapeDef::Disk { center, normal, radius } => {

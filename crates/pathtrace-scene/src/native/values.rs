@@ -118,7 +118,7 @@ impl Serialize for Triple {
     }
 }
 
-struct TripleVisitor;
+pub(super) struct TripleVisitor;
 
 impl<'de> Visitor<'de> for TripleVisitor {
     type Value = Triple;

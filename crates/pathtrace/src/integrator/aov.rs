@@ -66,7 +66,8 @@ fn first_hit(scene: &Scene, cam: &Camera, x: u32, y: u32) -> Option<HitSample> {
         n = -n;
     }
     let frame = Frame::from_normal(n);
-    let albedo = directional_albedo(it.material, frame.to_local(wo_world));
+    let material = if scene.is_textured(&it) { scene.textured_material(&it) } else { *it.material };
+    let albedo = directional_albedo(&material, frame.to_local(wo_world));
     Some(HitSample { albedo, normal: n, depth: hit.hit.t })
 }
 

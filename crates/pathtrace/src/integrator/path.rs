@@ -81,6 +81,8 @@ pub fn radiance(
     let mut ray = camera_ray;
     let mut segments = 1u32;
     let mut prev = PrevVertex { p: ray.origin, pdf: 0.0, specular: true };
+    // Asked once per path, so untextured scenes pay one register test per hit.
+    let has_textures = scene.has_textures();
 
     loop {
         // ---- Escape: the environment (if any) is seen, then the path ends ------------------
@@ -118,8 +120,16 @@ pub fn radiance(
             break;
         }
 
+        // Textured colours at this hit (untextured materials are used as they are).
+        let textured: Material;
+        let material = if has_textures && scene.is_textured(&it) {
+            textured = scene.textured_material(&it);
+            &textured
+        } else {
+            it.material
+        };
+
         // Shading frame, flipped to the viewer's side for two-sided materials.
-        let material = it.material;
         let mut n_g = it.surface.n_geometric;
         let mut n_s = it.surface.n_shading;
         if material.is_two_sided() && n_g.dot(wo_world) < 0.0 {

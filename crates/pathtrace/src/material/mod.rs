@@ -40,6 +40,7 @@ pub use rough_plastic::RoughPlastic;
 pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Rgb, Vec2, Vec3};
+use crate::texture::ColourSlot;
 
 /// A sampled scattering direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -135,6 +136,38 @@ impl Material {
             | Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::ThinDielectric(_) => 0.0,
+        }
+    }
+
+    /// The model with its `slot` colour replaced by `c` (a texture's value at a hit). Slots a
+    /// model does not have leave it unchanged.
+    #[inline]
+    pub fn with_colour(&self, slot: ColourSlot, c: Rgb) -> Material {
+        let mut m = *self;
+        match (&mut m, slot) {
+            (Material::Diffuse(d), ColourSlot::Base) => d.albedo = c,
+            (Material::Lambertian(d), ColourSlot::Base) => d.albedo = c,
+            (Material::Glossy(g), ColourSlot::Base) => g.albedo = c,
+            (Material::Mirror(r), ColourSlot::Base) => r.reflectance = c,
+            (Material::Dielectric(d), ColourSlot::Base) => d.tint = c,
+            (Material::ThinDielectric(d), ColourSlot::Base) => d.tint = c,
+            (Material::RoughDielectric(d), ColourSlot::Base) => d.tint = c,
+            (Material::Conductor(k), ColourSlot::Base) => k.reflectance = c,
+            (Material::RoughConductor(k), ColourSlot::Base) => k.reflectance = c,
+            (Material::Plastic(p), ColourSlot::Base) => *p = p.with_albedo(c),
+            (Material::RoughPlastic(p), ColourSlot::Base) => *p = p.with_albedo(c),
+            (Material::Plastic(p), ColourSlot::Specular) => p.specular = c,
+            (Material::RoughPlastic(p), ColourSlot::Specular) => p.specular = c,
+            _ => {}
+        }
+        m
+    }
+
+    /// The slots this model has, for front ends that bind textures.
+    pub fn has_slot(&self, slot: ColourSlot) -> bool {
+        match slot {
+            ColourSlot::Base => !matches!(self, Material::Black),
+            ColourSlot::Specular => matches!(self, Material::Plastic(_) | Material::RoughPlastic(_)),
         }
     }
 

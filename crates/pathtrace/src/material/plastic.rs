@@ -30,6 +30,9 @@ pub struct Plastic {
     pub nonlinear: bool,
     /// ρ' / (π η²): the base's constant factor.
     base: Rgb,
+    /// The coating's internal diffuse reflectance F_dr (kept to rebuild `base` for a textured
+    /// albedo).
+    internal: f32,
     specular_weight: f32,
 }
 
@@ -66,7 +69,15 @@ impl Plastic {
         let internal = diffuse_fresnel_reflectance(1.0 / ior);
         let base = base_albedo(albedo, internal, nonlinear) * (INV_PI / (ior * ior));
         let specular_weight = specular_sampling_weight(albedo, specular);
-        Self { albedo, specular, ior, nonlinear, base, specular_weight }
+        Self { albedo, specular, ior, nonlinear, base, internal, specular_weight }
+    }
+
+    /// The same coating over another base albedo (a textured `albedo` at one hit). The lobe
+    /// sampling weight stays the one computed from the mean albedo, as in Mitsuba.
+    #[inline]
+    pub fn with_albedo(&self, albedo: Rgb) -> Self {
+        let base = base_albedo(albedo, self.internal, self.nonlinear) * (INV_PI / (self.ior * self.ior));
+        Self { albedo, base, ..*self }
     }
 
     /// Probability of sampling the coating for a viewer at cos θo.

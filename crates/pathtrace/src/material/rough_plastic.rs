@@ -35,6 +35,9 @@ pub struct RoughPlastic {
     pub nonlinear: bool,
     /// ρ' / (π η²).
     base: Rgb,
+    /// The coating's internal diffuse reflectance F_dr (kept to rebuild `base` for a textured
+    /// albedo).
+    internal: f32,
     specular_weight: f32,
     /// t(μ) at μ = i/(TABLE_SIZE − 1).
     transmittance: [f32; TABLE_SIZE],
@@ -74,7 +77,15 @@ impl RoughPlastic {
         internal *= 2.0 / TABLE_SIZE as f32;
         let base = base_albedo(albedo, internal, nonlinear) * (INV_PI / (ior * ior));
         let specular_weight = specular_sampling_weight(albedo, specular);
-        Self { distribution, albedo, specular, ior, nonlinear, base, specular_weight, transmittance }
+        Self { distribution, albedo, specular, ior, nonlinear, base, internal, specular_weight, transmittance }
+    }
+
+    /// The same coating over another base albedo (a textured `albedo` at one hit). The lobe
+    /// sampling weight stays the one computed from the mean albedo, as in Mitsuba.
+    #[inline]
+    pub fn with_albedo(&self, albedo: Rgb) -> Self {
+        let base = base_albedo(albedo, self.internal, self.nonlinear) * (INV_PI / (self.ior * self.ior));
+        Self { albedo, base, ..*self }
     }
 
     /// t(μ) by linear interpolation in the table.

@@ -5,32 +5,32 @@
 
 use super::{num, Conv, R};
 use crate::mitsuba::parse::Element;
-use crate::native::model::{MaterialKind, MetalDef, MetalName, Num, RoughnessDef, Triple};
+use crate::native::model::{Colour, MaterialKind, MetalDef, MetalName, Num, RoughnessDef, Triple};
 use pathtrace::material::MicrofacetKind;
 
 impl<'a> Conv<'a, '_> {
     /// The native material for one of the BSDF types named in the module doc, or `None` for
     /// any other type.
     pub(super) fn microfacet_bsdf(&mut self, e: &'a Element, ty: &str) -> R<Option<MaterialKind>> {
-        let one = Triple::Splat(num(1.0));
+        let one = Colour::grey(1.0);
         Ok(Some(match ty {
             "conductor" => {
                 let metal = self.metal(e)?;
-                MaterialKind::Conductor { metal, reflectance: self.color(e, "specular_reflectance")?.unwrap_or(one) }
+                MaterialKind::Conductor { metal, reflectance: self.colour(e, "specular_reflectance")?.unwrap_or(one) }
             }
             "roughconductor" => {
                 let metal = self.metal(e)?;
-                let reflectance = self.color(e, "specular_reflectance")?.unwrap_or(one);
+                let reflectance = self.colour(e, "specular_reflectance")?.unwrap_or(one);
                 MaterialKind::RoughConductor { metal, reflectance, roughness: self.roughness(e, true)? }
             }
             "roughdielectric" => {
                 let ior = self.relative_ior(e, 1.5046)?;
-                let tint = self.color(e, "specular_transmittance")?.unwrap_or(one);
+                let tint = self.colour(e, "specular_transmittance")?.unwrap_or(one);
                 MaterialKind::RoughDielectric { ior, tint, roughness: self.roughness(e, true)? }
             }
             "plastic" | "roughplastic" => {
-                let albedo = self.color(e, "diffuse_reflectance")?.unwrap_or(Triple::Splat(num(0.5)));
-                let specular = self.color(e, "specular_reflectance")?.unwrap_or(one);
+                let albedo = self.colour(e, "diffuse_reflectance")?.unwrap_or(Colour::grey(0.5));
+                let specular = self.colour(e, "specular_reflectance")?.unwrap_or(one);
                 let ior = self.relative_ior(e, 1.49)?;
                 let nonlinear = self.boolean(e, "nonlinear")?.unwrap_or(false);
                 if ty == "plastic" {

@@ -1,0 +1,298 @@
+//! Colour parameters that may be textures: `albedo = 0.5`, `albedo = [0.2, 0.3, 0.4]`, or a
+//! texture table —
+//!
+//! ```toml
+//! albedo = { type = "checkerboard", color0 = 0.4, color1 = 0.2, scale = 8 }
+//! albedo = { type = "bitmap", filename = "textures/wood.jpg", raw = false, to_uv = [[2, 0, 0], [0, 2, 0]] }
+//! ```
+//!
+//! Tables are read into a flat [`RawTexture`] (unknown fields rejected) and checked into a
+//! [`TextureDef`]; `scale` (one number or `[su, sv]`) and `to_uv` (rows `[a, b, tx]`,
+//! `[c, d, ty]`) are two spellings of one uv transform, written back as `to_uv`.
+
+use super::values::{Num, Triple, TripleVisitor};
+use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Serialize, Serializer};
+use std::fmt;
+
+/// A colour parameter: constant, or a texture.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Colour {
+    /// One colour everywhere.
+    Constant(Triple),
+    /// A colour that varies with the surface's (u, v).
+    Texture(TextureDef),
+}
+
+impl Colour {
+    /// A constant grey.
+    pub fn grey(x: f32) -> Self {
+        Colour::Constant(Triple::Splat(Num::from(x)))
+    }
+
+    /// The constant colour, if it is one.
+    pub fn constant(&self) -> Option<Triple> {
+        match self {
+            Colour::Constant(t) => Some(*t),
+            Colour::Texture(_) => None,
+        }
+    }
+}
+
+impl From<Triple> for Colour {
+    fn from(t: Triple) -> Self {
+        Colour::Constant(t)
+    }
+}
+
+/// `[[a, b, tx], [c, d, ty]]`: uv' = [a b; c d]·uv + (tx, ty).
+pub type UvRows = [[Num; 3]; 2];
+
+/// The identity uv transform.
+pub fn identity_uv() -> UvRows {
+    let (o, z) = (Num::from(1.0), Num::from(0.0));
+    [[o, z, z], [z, o, z]]
+}
+
+/// The texture types.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TextureDef {
+    /// Mitsuba's `checkerboard` (defaults color0 = 0.4, color1 = 0.2).
+    Checkerboard { color0: Triple, color1: Triple, to_uv: UvRows },
+    /// An image file (PNG, JPEG, EXR, HDR, PFM) relative to the scene file. 8-bit images are
+    /// sRGB-decoded unless `raw`; float images are linear.
+    Bitmap { filename: String, raw: bool, nearest: bool, clamp: bool, to_uv: UvRows },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum TextureType {
+    Checkerboard,
+    Bitmap,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum FilterType {
+    Bilinear,
+    Nearest,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum WrapMode {
+    Repeat,
+    Clamp,
+}
+
+/// `scale = 8` or `scale = [8, 4]`.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(untagged, expecting = "a number or [su, sv]")]
+enum Scale {
+    One(Num),
+    Two([Num; 2]),
+}
+
+/// The file form of a texture table.
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTexture {
+    #[serde(rename = "type")]
+    kind: Option<TextureType>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    color0: Option<Triple>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    color1: Option<Triple>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    filename: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    raw: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    filter_type: Option<FilterType>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    wrap_mode: Option<WrapMode>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    scale: Option<Scale>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    to_uv: Option<UvRows>,
+}
+
+impl TryFrom<RawTexture> for TextureDef {
+    type Error = String;
+
+    fn try_from(r: RawTexture) -> Result<Self, String> {
+        let kind = r.kind.ok_or("a texture needs a `type` (checkerboard or bitmap)")?;
+        let to_uv = match (r.scale, r.to_uv) {
+            (Some(_), Some(_)) => return Err("give either `scale` or `to_uv`, not both".into()),
+            (None, Some(rows)) => rows,
+            (Some(s), None) => {
+                let (su, sv) = match s {
+                    Scale::One(x) => (x, x),
+                    Scale::Two([a, b]) => (a, b),
+                };
+                let mut rows = identity_uv();
+                (rows[0][0], rows[1][1]) = (su, sv);
+                rows
+            }
+            (None, None) => identity_uv(),
+        };
+        let non_negative = |t: Option<Triple>, name: &str| -> Result<(), String> {
+            match t {
+                Some(t) if t.vec3().min_element() < 0.0 => Err(format!("`{name}` must be ≥ 0")),
+                _ => Ok(()),
+            }
+        };
+        match kind {
+            TextureType::Checkerboard => {
+                if let Some(f) = [("filename", r.filename.is_some()), ("raw", r.raw.is_some())]
+                    .iter()
+                    .chain(&[("filter_type", r.filter_type.is_some()), ("wrap_mode", r.wrap_mode.is_some())])
+                    .find(|f| f.1)
+                {
+                    return Err(format!("`{}` is not a parameter of a checkerboard texture", f.0));
+                }
+                non_negative(r.color0, "color0")?;
+                non_negative(r.color1, "color1")?;
+                Ok(TextureDef::Checkerboard {
+                    color0: r.color0.unwrap_or(Triple::Splat(Num::from(0.4))),
+                    color1: r.color1.unwrap_or(Triple::Splat(Num::from(0.2))),
+                    to_uv,
+                })
+            }
+            TextureType::Bitmap => {
+                if r.color0.is_some() || r.color1.is_some() {
+                    return Err("`color0` and `color1` are parameters of a checkerboard texture, not a bitmap".into());
+                }
+                let filename = r.filename.ok_or("a bitmap texture needs a `filename`")?;
+                Ok(TextureDef::Bitmap {
+                    filename,
+                    raw: r.raw.unwrap_or(false),
+                    nearest: r.filter_type == Some(FilterType::Nearest),
+                    clamp: r.wrap_mode == Some(WrapMode::Clamp),
+                    to_uv,
+                })
+            }
+        }
+    }
+}
+
+impl From<&TextureDef> for RawTexture {
+    fn from(t: &TextureDef) -> Self {
+        let mut r = RawTexture::default();
+        let to_uv = match t {
+            TextureDef::Checkerboard { color0, color1, to_uv } => {
+                (r.kind, r.color0, r.color1) = (Some(TextureType::Checkerboard), Some(*color0), Some(*color1));
+                to_uv
+            }
+            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv } => {
+                (r.kind, r.filename) = (Some(TextureType::Bitmap), Some(filename.clone()));
+                r.raw = raw.then_some(true);
+                r.filter_type = nearest.then_some(FilterType::Nearest);
+                r.wrap_mode = clamp.then_some(WrapMode::Clamp);
+                to_uv
+            }
+        };
+        r.to_uv = (*to_uv != identity_uv()).then_some(*to_uv);
+        r
+    }
+}
+
+impl Serialize for Colour {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Colour::Constant(t) => t.serialize(s),
+            Colour::Texture(t) => RawTexture::from(t).serialize(s),
+        }
+    }
+}
+
+struct ColourVisitor;
+
+impl<'de> Visitor<'de> for ColourVisitor {
+    type Value = Colour;
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a number, an array of three numbers, or a texture table")
+    }
+    fn visit_f64<E: de::Error>(self, x: f64) -> Result<Colour, E> {
+        TripleVisitor.visit_f64(x).map(Colour::Constant)
+    }
+    fn visit_i64<E: de::Error>(self, x: i64) -> Result<Colour, E> {
+        TripleVisitor.visit_i64(x).map(Colour::Constant)
+    }
+    fn visit_u64<E: de::Error>(self, x: u64) -> Result<Colour, E> {
+        TripleVisitor.visit_u64(x).map(Colour::Constant)
+    }
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Colour, A::Error> {
+        TripleVisitor.visit_seq(seq).map(Colour::Constant)
+    }
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Colour, A::Error> {
+        let raw = RawTexture::deserialize(de::value::MapAccessDeserializer::new(map))?;
+        TextureDef::try_from(raw).map(Colour::Texture).map_err(de::Error::custom)
+    }
+}
+
+impl<'de> Deserialize<'de> for Colour {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(ColourVisitor)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(s: &str) -> Result<Colour, String> {
+        #[derive(Deserialize)]
+        struct W {
+            c: Colour,
+        }
+        toml::from_str::<W>(s).map(|w| w.c).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn constants_and_textures_parse() {
+        assert_eq!(parse("c = 0.5").unwrap(), Colour::grey(0.5));
+        let Colour::Texture(TextureDef::Checkerboard { color0, color1, to_uv }) =
+            parse("c = { type = \"checkerboard\", scale = [8, 4] }").unwrap()
+        else {
+            panic!()
+        };
+        assert_eq!((color0.vec3().x, color1.vec3().x), (0.4, 0.2));
+        assert_eq!((to_uv[0][0].get(), to_uv[1][1].get(), to_uv[0][1].get()), (8.0, 4.0, 0.0));
+        let Colour::Texture(TextureDef::Bitmap { filename, raw, nearest, clamp, .. }) =
+            parse("c = { type = \"bitmap\", filename = \"a.png\", raw = true, filter_type = \"nearest\" }").unwrap()
+        else {
+            panic!()
+        };
+        assert_eq!((filename.as_str(), raw, nearest, clamp), ("a.png", true, true, false));
+    }
+
+    #[test]
+    fn bad_tables_are_located_and_explained() {
+        let e = parse("c = { type = \"bitmap\" }").unwrap_err();
+        assert!(e.contains("needs a `filename`") && e.contains("line 1"), "{e}");
+        let e = parse("c = { type = \"checkerboard\",\n  colour0 = 1 }").unwrap_err();
+        assert!(e.contains("unknown field `colour0`") && e.contains("line 2"), "{e}");
+        assert!(parse("c = { type = \"checkerboard\", scale = 2, to_uv = [[1, 0, 0], [0, 1, 0]] }")
+            .unwrap_err()
+            .contains("not both"));
+        assert!(parse("c = { type = \"checkerboard\", color0 = -1 }").unwrap_err().contains("≥ 0"));
+        assert!(parse("c = { type = \"bitmap\", filename = \"a.png\", wrap_mode = \"mirror\" }")
+            .unwrap_err()
+            .contains("unknown variant"));
+        assert!(parse("c = { type = \"noise\" }").unwrap_err().contains("unknown variant"));
+    }
+
+    #[test]
+    fn textures_round_trip_through_toml_and_json() {
+        for text in [
+            "c = { type = \"checkerboard\", color0 = [1, 0, 0], scale = 8 }",
+            "c = { type = \"bitmap\", filename = \"t.exr\", wrap_mode = \"clamp\", to_uv = [[1, 2, 3], [4, 5, 6]] }",
+            "c = [0.1, 0.2, 0.3]",
+        ] {
+            let c = parse(text).unwrap();
+            let json = serde_json::to_string(&c).unwrap();
+            assert_eq!(serde_json::from_str::<Colour>(&json).unwrap(), c, "{json}");
+        }
+    }
+}

@@ -1,0 +1,102 @@
+//! Textures: colours that vary over a surface, looked up at the hit's (u, v).
+//!
+//! ```toml
+//! [materials.floor]
+//! type = "diffuse"
+//! albedo = { type = "checkerboard", color0 = 0.4, color1 = 0.2, scale = 8 }
+//! ```
+//!
+//! A closed [`Texture`] enum (constant, checkerboard, bitmap) dispatched by `match`. Any colour
+//! parameter of a material may be bound to a texture ([`ColourSlot`], [`TextureBindings`]): the
+//! material keeps its constant parameters (set to the texture's mean, which is what Mitsuba uses
+//! for sampling weights), and at a hit the scene makes a copy with the texture's value in that
+//! slot ([`crate::Scene::textured_material`]). Untextured materials are used as they are, so the
+//! constant case costs one predictable branch per hit.
+
+mod bitmap;
+mod checkerboard;
+mod uv_transform;
+
+pub use bitmap::{Bitmap, FilterType, WrapMode};
+pub use checkerboard::Checkerboard;
+pub use uv_transform::UvTransform;
+
+use crate::math::{Rgb, Vec2};
+
+/// Every texture.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Texture {
+    /// The same colour everywhere.
+    Constant(Rgb),
+    Checkerboard(Checkerboard),
+    Bitmap(Bitmap),
+}
+
+impl Texture {
+    /// The colour at surface coordinates `uv`.
+    #[inline]
+    pub fn eval(&self, uv: Vec2) -> Rgb {
+        match self {
+            Texture::Constant(c) => *c,
+            Texture::Checkerboard(c) => c.eval(uv),
+            Texture::Bitmap(b) => b.eval(uv),
+        }
+    }
+
+    /// The mean colour over the unit uv square.
+    pub fn mean(&self) -> Rgb {
+        match self {
+            Texture::Constant(c) => *c,
+            Texture::Checkerboard(c) => c.mean(),
+            Texture::Bitmap(b) => b.mean(),
+        }
+    }
+
+    /// The largest channel value the texture can return.
+    pub fn max_value(&self) -> f32 {
+        match self {
+            Texture::Constant(c) => c.max_component(),
+            Texture::Checkerboard(c) => c.color0.max_component().max(c.color1.max_component()),
+            Texture::Bitmap(b) => b.max_value(),
+        }
+    }
+}
+
+/// Which colour parameter of a material a texture drives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColourSlot {
+    /// The main colour: diffuse/lambertian/glossy `albedo`, mirror and conductor `reflectance`,
+    /// glass `tint`, plastic `albedo` (the base).
+    Base,
+    /// A plastic's coating `specular` reflectance.
+    Specular,
+}
+
+/// Index of a texture in the scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureId(pub u32);
+
+/// The textures bound to one material's colour slots (none for most materials).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct TextureBindings {
+    /// Texture of [`ColourSlot::Base`], if any.
+    pub base: Option<TextureId>,
+    /// Texture of [`ColourSlot::Specular`], if any.
+    pub specular: Option<TextureId>,
+}
+
+impl TextureBindings {
+    /// True if no slot is textured.
+    #[inline(always)]
+    pub fn is_empty(&self) -> bool {
+        self.base.is_none() && self.specular.is_none()
+    }
+
+    /// Binds `slot` to `texture`.
+    pub fn set(&mut self, slot: ColourSlot, texture: TextureId) {
+        match slot {
+            ColourSlot::Base => self.base = Some(texture),
+            ColourSlot::Specular => self.specular = Some(texture),
+        }
+    }
+}
