@@ -21,12 +21,20 @@ impl PointLight {
     /// The unit direction and distance from `ref_p` to the light, and the radiance-like term
     /// I/r² that the integrator treats as a Dirac delta in direction.
     pub(super) fn sample(&self, ref_p: Vec3) -> Option<(Vec3, f32, Rgb)> {
-        let d = self.position - ref_p;
-        let dist2 = d.length_squared();
-        if !(dist2 > 0.0 && dist2.is_finite()) {
-            return None;
-        }
-        let dist = dist2.sqrt();
-        Some((d / dist, dist, self.intensity * (1.0 / dist2)))
+        let (wi, dist, dist2) = towards(self.position, ref_p)?;
+        Some((wi, dist, self.intensity * (1.0 / dist2)))
     }
+}
+
+/// The unit direction, distance and squared distance from `ref_p` to a light at `position`
+/// (point and spot lights); `None` when the two coincide or are not finitely apart.
+#[inline]
+pub(super) fn towards(position: Vec3, ref_p: Vec3) -> Option<(Vec3, f32, f32)> {
+    let d = position - ref_p;
+    let dist2 = d.length_squared();
+    if !(dist2 > 0.0 && dist2.is_finite()) {
+        return None;
+    }
+    let dist = dist2.sqrt();
+    Some((d / dist, dist, dist2))
 }

@@ -98,13 +98,7 @@ impl SpotLight {
     /// The unit direction and distance from `ref_p` to the light, and I·falloff/r², the
     /// radiance-like term of a Dirac delta in direction.
     pub(super) fn sample(&self, ref_p: Vec3) -> Option<(Vec3, f32, Rgb)> {
-        let d = self.position - ref_p;
-        let dist2 = d.length_squared();
-        if !(dist2 > 0.0 && dist2.is_finite()) {
-            return None;
-        }
-        let dist = dist2.sqrt();
-        let wi = d / dist;
+        let (wi, dist, dist2) = super::point::towards(self.position, ref_p)?;
         let falloff = self.falloff(-wi);
         Some((wi, dist, self.intensity * (falloff / dist2)))
     }
