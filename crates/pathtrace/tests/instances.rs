@@ -75,6 +75,18 @@ fn test_group() -> Group {
 
 /// A random placement: rotation, scale (sometimes non-uniform, sometimes mirroring) and
 /// translation within [-6, 6]³.
+/// The group built as one shape group, item `k` with material `mats[m]`.
+fn shape_group(group: &Group, mats: &[MaterialId]) -> ShapeGroup {
+    let mut g = ShapeGroup::new();
+    for (item, m) in &group.items {
+        match item {
+            Item::Mesh(mesh, t) => drop(g.mesh(mesh, mats[*m], t).unwrap()),
+            Item::Shape(s, t) => g.shape(s.clone(), mats[*m], t).unwrap(),
+        }
+    }
+    g
+}
+
 fn random_transform(rng: &mut TestRng, k: usize) -> Transform {
     let mut r = || rng.next_f32();
     let s = 0.6 + 1.2 * r();
@@ -109,14 +121,7 @@ fn scenes(count: usize, seed: u64) -> (Scene, Scene) {
             .unwrap();
         let override_of = |k: usize| (k % 3 == 2).then_some(mats[4]);
         if instanced {
-            let mut g = ShapeGroup::new();
-            for (item, m) in &group.items {
-                match item {
-                    Item::Mesh(mesh, t) => drop(g.mesh(mesh, mats[*m], t).unwrap()),
-                    Item::Shape(s, t) => g.shape(s.clone(), mats[*m], t).unwrap(),
-                }
-            }
-            let id = b.group(g).unwrap();
+            let id = b.group(shape_group(&group, &mats)).unwrap();
             for (k, t) in placements.iter().enumerate() {
                 b.instance(id, t, override_of(k)).unwrap();
             }
@@ -271,14 +276,7 @@ fn lit_scenes() -> (Arc<Scene>, Arc<Scene>) {
         let light = Quad::new(Vec3::new(-1.5, 5.0, -1.5), Vec3::new(3.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 3.0)).unwrap();
         b.shape(Shape::Quad(light), lamp, &Transform::IDENTITY).unwrap();
         if instanced {
-            let mut g = ShapeGroup::new();
-            for (item, m) in &group.items {
-                match item {
-                    Item::Mesh(mesh, t) => drop(g.mesh(mesh, mats[*m], t).unwrap()),
-                    Item::Shape(s, t) => g.shape(s.clone(), mats[*m], t).unwrap(),
-                }
-            }
-            let id = b.group(g).unwrap();
+            let id = b.group(shape_group(&group, &mats)).unwrap();
             for t in &placements {
                 b.instance(id, t, None).unwrap();
             }
