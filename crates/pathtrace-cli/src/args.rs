@@ -5,6 +5,7 @@ use pathtrace::film::{PixelFilter, ToneMap};
 use pathtrace::integrator::Strategy;
 use pathtrace::light::LightSelection;
 use pathtrace::sampling::SamplerKind;
+use pathtrace::wide::Kernel;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -203,6 +204,11 @@ pub struct QualityArgs {
     /// (every light equally) [default: the scene's, else power]
     #[arg(long, value_name = "MODE", value_parser = parse_from_str::<LightSelection>)]
     pub light_selection: Option<LightSelection>,
+    /// Path loop: auto (the wide kernel where the scene allows it, else scalar), scalar (one path
+    /// at a time: every scene) or wide (eight paths per SIMD lane group: Lambertian surfaces,
+    /// flat area lights, mis; an error otherwise). Both converge to the same image
+    #[arg(long, value_parser = parse_from_str::<Kernel>, default_value = "auto")]
+    pub kernel: Kernel,
     /// Random seed: the same seed, scene and settings give the same image [default: the scene's, else 0]
     #[arg(long)]
     pub seed: Option<u64>,

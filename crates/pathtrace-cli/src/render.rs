@@ -28,6 +28,7 @@ pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &R
         filter: q.filter.clone().or_else(|| d.filter.clone()).unwrap_or_default(),
         seed: q.seed.or(d.seed).unwrap_or(0),
         threads: q.threads.unwrap_or(0),
+        kernel: q.kernel,
         ..RenderSettings::default()
     };
     s.path.strategy = q.strategy.or(d.strategy).unwrap_or_default();

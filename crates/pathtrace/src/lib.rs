@@ -20,6 +20,7 @@ pub use instance::{GroupId, ShapeGroup};
 pub use scene::{MaterialId, Scene, SceneBuilder};
 pub mod integrator;
 pub mod render;
+pub mod wide;
 
 pub use render::{render, AdaptiveSettings, Progress, RenderOutcome, RenderSession, RenderSettings};
 pub mod metrics;

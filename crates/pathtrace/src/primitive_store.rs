@@ -4,9 +4,9 @@
 //! names every bounded primitive by one index: shapes first, then each mesh's triangles in turn.
 
 use crate::accel::{Packable, PrimitiveSet};
-use crate::math::{Aabb, Ray};
+use crate::math::{Aabb, Ray, Vec3};
 use crate::scene::Primitive;
-use crate::shape::{MeshGeometry, PrimHit, Shape, SurfacePoint};
+use crate::shape::{MeshGeometry, PrimHit, Shape, SurfacePoint, Triangle};
 
 /// A mesh in a scene.
 #[derive(Clone, Debug)]
@@ -16,6 +16,19 @@ pub(crate) struct SceneMesh {
     /// Light of triangle 0 (triangle `i` has light `first_light + i`), or
     /// [`Primitive::NO_LIGHT`] for a mesh that does not emit.
     pub first_light: u32,
+}
+
+/// A flat quad (`origin + a·e1 + b·e2`, a, b ∈ [0, 1]) or triangle (a, b ≥ 0, a + b ≤ 1)
+/// with its material and light; its front is along `e1 × e2`, as for [`Quad`](crate::shape::Quad) and
+/// [`Triangle`](crate::shape::Triangle).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FlatPolygon {
+    pub origin: Vec3,
+    pub e1: Vec3,
+    pub e2: Vec3,
+    pub triangle: bool,
+    pub material: u32,
+    pub light: u32,
 }
 
 /// Which stored item a primitive index names.
@@ -115,6 +128,32 @@ impl PrimitiveStore {
                 (m.geometry.surface(triangle, hit), m.material, light)
             }
         }
+    }
+
+    /// Every primitive as a flat polygon (in index order), or `None` if some primitive is
+    /// another shape or a mesh triangle with interpolated normals: what the wide kernel's
+    /// brute-force intersector can hold.
+    pub fn flat_polygons(&self) -> Option<Vec<FlatPolygon>> {
+        let mut out = Vec::with_capacity(self.len());
+        for p in &self.shapes {
+            let (origin, e1, e2, triangle) = match p.shape {
+                Shape::Quad(q) => (q.q, q.u, q.v, false),
+                Shape::Triangle(t) if t.shading == Triangle::FLAT => (t.p0, t.e1, t.e2, true),
+                _ => return None,
+            };
+            out.push(FlatPolygon { origin, e1, e2, triangle, material: p.material, light: p.light });
+        }
+        for m in &self.meshes {
+            if m.geometry.has_normals() {
+                return None;
+            }
+            for i in 0..m.geometry.len() as u32 {
+                let t = m.geometry.triangle(i);
+                let light = if m.first_light == Primitive::NO_LIGHT { m.first_light } else { m.first_light + i };
+                out.push(FlatPolygon { origin: t.p0, e1: t.e1, e2: t.e2, triangle: true, material: m.material, light });
+            }
+        }
+        Some(out)
     }
 
     /// Heap bytes, from the vectors' capacities.

@@ -150,6 +150,26 @@ impl Scene {
         Interaction { surface, material: &self.materials[material as usize], material_id: material, light }
     }
 
+    /// The materials, indexed by material id.
+    pub fn materials(&self) -> &[Material] {
+        &self.materials
+    }
+
+    /// True if the scene has infinite planes (kept outside the BVH).
+    pub fn has_unbounded(&self) -> bool {
+        !self.unbounded.is_empty()
+    }
+
+    /// True if the scene places shape groups by instances.
+    pub fn has_instances(&self) -> bool {
+        !self.instances.is_empty()
+    }
+
+    /// The bounded primitives as flat polygons (see [`PrimitiveStore::flat_polygons`]).
+    pub(crate) fn flat_polygons(&self) -> Option<Vec<crate::primitive_store::FlatPolygon>> {
+        self.prims.flat_polygons()
+    }
+
     /// True if any material has a texture.
     #[inline(always)]
     pub fn has_textures(&self) -> bool {

@@ -249,6 +249,13 @@ impl LightSet {
         self.selection.as_ref().map_or(0.0, |d| d.pmf(id as usize))
     }
 
+    /// Picks a light index for next-event estimation (as [`LightSet::sample`] does) and its
+    /// probability; `None` when no light has power.
+    #[inline(always)]
+    pub fn pick(&self, u_select: f32) -> Option<(usize, f32)> {
+        self.selection.as_ref().map(|d| d.sample(u_select))
+    }
+
     /// Picks a light (any kind) and a point on it: next-event estimation.
     #[inline(always)]
     pub fn sample(&self, ref_p: Vec3, u_select: f32, u: Vec2) -> Option<LightSample> {

@@ -3,7 +3,7 @@
 mod adaptive;
 mod session;
 mod settings;
-mod tile;
+pub(crate) mod tile;
 
 pub use adaptive::{allocate, AdaptiveSettings};
 pub use session::{render, Progress, RenderError, RenderOutcome, RenderSession};

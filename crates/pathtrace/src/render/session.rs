@@ -17,6 +17,7 @@ use crate::film::{Film, Image};
 use crate::integrator::PathStats;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::wide::{Kernel, WideScene};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -32,6 +33,8 @@ pub enum RenderError {
     Threads(String),
     #[error("nothing to render: give a sample count, a time limit or a target error")]
     NoBudget,
+    #[error("the wide kernel cannot render this scene: it has {0}; use the scalar or auto kernel")]
+    WideKernel(String),
 }
 
 /// A snapshot of how far a render is.
@@ -111,6 +114,13 @@ impl Shared {
     }
 }
 
+/// What a render computes once before its waves: the camera, and the scene prepared for the
+/// wide kernel when that kernel renders it.
+struct Prepared {
+    camera: Camera,
+    wide: Option<WideScene>,
+}
+
 /// A render in progress.
 pub struct RenderSession {
     shared: Arc<Shared>,
@@ -136,6 +146,12 @@ impl RenderSession {
             return Err(RenderError::NoBudget);
         }
         let camera = Camera::new(camera, settings.width, settings.height)?;
+        let wide = match settings.kernel {
+            Kernel::Scalar => None,
+            Kernel::Auto => WideScene::new(&scene, &settings.path).ok(),
+            Kernel::Wide => Some(WideScene::new(&scene, &settings.path).map_err(RenderError::WideKernel)?),
+        };
+        let prep = Prepared { camera, wide };
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(settings.threads)
             .thread_name(|i| format!("pathtrace-worker-{i}"))
@@ -161,7 +177,7 @@ impl RenderSession {
         let handle = std::thread::Builder::new()
             .name("pathtrace-session".into())
             .spawn(move || {
-                pool.install(|| run_waves(&scene, &camera, &settings, &worker_shared));
+                pool.install(|| run_waves(&scene, &prep, &settings, &worker_shared));
                 if let Ok(mut end) = worker_shared.end.lock() {
                     *end = Some(Instant::now());
                 }
@@ -245,24 +261,30 @@ pub fn render(scene: Arc<Scene>, settings: RenderSettings) -> Result<RenderOutco
     Ok(RenderSession::start(scene, settings)?.wait())
 }
 
-fn run_waves(scene: &Scene, camera: &Camera, settings: &RenderSettings, shared: &Shared) {
+fn run_waves(scene: &Scene, prep: &Prepared, settings: &RenderSettings, shared: &Shared) {
     match settings.adaptive {
-        None => run_uniform(scene, camera, settings, shared),
-        Some(adaptive) => run_adaptive(scene, camera, settings, &adaptive, shared),
+        None => run_uniform(scene, prep, settings, shared),
+        Some(adaptive) => run_adaptive(scene, prep, settings, &adaptive, shared),
     }
 }
 
 /// One wave: a parallel loop over tiles; tiles not started before a stop are skipped.
 fn run_wave(
     scene: &Scene,
-    camera: &Camera,
+    prep: &Prepared,
     settings: &RenderSettings,
     shared: &Shared,
     tile_list: &[Tile],
     samples: WaveSamples,
 ) {
     let deadline = settings.time_limit.map(|t| shared.start + t);
-    let job = TileJob { scene, camera, path: &settings.path, filter: &settings.filter };
+    let job = TileJob {
+        scene,
+        camera: &prep.camera,
+        wide: prep.wide.as_ref(),
+        path: &settings.path,
+        filter: &settings.filter,
+    };
     tile_list.par_iter().for_each_init(
         || Sampler::new(settings.sampler, settings.seed, settings.strata_count()),
         |sampler, &tile| {
@@ -276,7 +298,7 @@ fn run_wave(
 }
 
 /// Every pixel gets the same samples: waves of `settings.waves()`.
-fn run_uniform(scene: &Scene, camera: &Camera, settings: &RenderSettings, shared: &Shared) {
+fn run_uniform(scene: &Scene, prep: &Prepared, settings: &RenderSettings, shared: &Shared) {
     let tile_list = tiles(settings.width, settings.height, settings.tile_size);
     let deadline = settings.time_limit.map(|t| shared.start + t);
     let mut first = 0u32;
@@ -284,7 +306,7 @@ fn run_uniform(scene: &Scene, camera: &Camera, settings: &RenderSettings, shared
         if shared.stop_requested(deadline) {
             break;
         }
-        run_wave(scene, camera, settings, shared, &tile_list, WaveSamples::Uniform { first, count });
+        run_wave(scene, prep, settings, shared, &tile_list, WaveSamples::Uniform { first, count });
         if shared.stop_requested(deadline) {
             break;
         }
@@ -299,7 +321,7 @@ fn run_uniform(scene: &Scene, camera: &Camera, settings: &RenderSettings, shared
 /// budget (`spp` on average) is spent, the target error is reached, time is up or on cancel.
 fn run_adaptive(
     scene: &Scene,
-    camera: &Camera,
+    prep: &Prepared,
     settings: &RenderSettings,
     adaptive: &AdaptiveSettings,
     shared: &Shared,
@@ -324,7 +346,7 @@ fn run_adaptive(
         wave_spp = wave_spp.saturating_mul(2);
         if uniform_done < min_spp {
             let count = per_pixel.min(min_spp - uniform_done);
-            run_wave(scene, camera, settings, shared, &tile_list, WaveSamples::Uniform { first: uniform_done, count });
+            run_wave(scene, prep, settings, shared, &tile_list, WaveSamples::Uniform { first: uniform_done, count });
             uniform_done += count;
             given.iter_mut().for_each(|n| *n += count);
             spent += count as u64 * pixels;
@@ -332,7 +354,7 @@ fn run_adaptive(
             let wave_budget = (per_pixel as u64 * pixels).min(remaining);
             let count = allocate(&shared.lock_film(), &given, wave_budget, adaptive.floor);
             let samples = WaveSamples::PerPixel { width: settings.width, first: &given, count: &count };
-            run_wave(scene, camera, settings, shared, &tile_list, samples);
+            run_wave(scene, prep, settings, shared, &tile_list, samples);
             given.iter_mut().zip(&count).for_each(|(n, c)| *n = n.saturating_add(*c));
             spent += wave_budget;
         }

@@ -4,6 +4,7 @@ use super::adaptive::AdaptiveSettings;
 use crate::film::PixelFilter;
 use crate::integrator::PathSettings;
 use crate::sampling::SamplerKind;
+use crate::wide::Kernel;
 use std::time::Duration;
 
 /// Settings of one render.
@@ -29,6 +30,8 @@ pub struct RenderSettings {
     pub max_wave_spp: u32,
     /// Adaptive sampling (`None`, the default: every pixel gets `spp` samples).
     pub adaptive: Option<AdaptiveSettings>,
+    /// Which path loop renders (default: the wide kernel where the scene allows it).
+    pub kernel: Kernel,
 }
 
 impl Default for RenderSettings {
@@ -46,6 +49,7 @@ impl Default for RenderSettings {
             tile_size: 16,
             max_wave_spp: 16,
             adaptive: None,
+            kernel: Kernel::default(),
         }
     }
 }

@@ -5,10 +5,11 @@ use crate::film::{PixelFilter, PixelStats};
 use crate::integrator::{radiance, PathSettings, PathStats};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::wide::{render_tile_wide, WideJob, WideScene};
 
 /// A rectangle of pixels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct Tile {
+pub(crate) struct Tile {
     pub x0: u32,
     pub y0: u32,
     pub w: u32,
@@ -32,13 +33,15 @@ pub(super) fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
 pub(super) struct TileJob<'a> {
     pub scene: &'a Scene,
     pub camera: &'a Camera,
+    /// The scene prepared for the wide kernel, when that kernel renders it.
+    pub wide: Option<&'a WideScene>,
     pub path: &'a PathSettings,
     pub filter: &'a PixelFilter,
 }
 
 /// Which samples of each pixel a wave renders.
 #[derive(Clone, Copy, Debug)]
-pub(super) enum WaveSamples<'a> {
+pub(crate) enum WaveSamples<'a> {
     /// Samples `first .. first + count` of every pixel.
     Uniform { first: u32, count: u32 },
     /// Pixel `i` (row-major over an image `width` wide) takes samples
@@ -49,7 +52,7 @@ pub(super) enum WaveSamples<'a> {
 impl WaveSamples<'_> {
     /// The first sample index and the number of samples of pixel `(x, y)`.
     #[inline(always)]
-    fn range(&self, x: u32, y: u32) -> (u32, u32) {
+    pub(crate) fn range(&self, x: u32, y: u32) -> (u32, u32) {
         match *self {
             WaveSamples::Uniform { first, count } => (first, count),
             WaveSamples::PerPixel { width, first, count } => {
@@ -61,7 +64,7 @@ impl WaveSamples<'_> {
 }
 
 /// The samples of one tile for one wave.
-pub(super) struct TileResult {
+pub(crate) struct TileResult {
     pub tile: Tile,
     pub pixels: Vec<PixelStats>,
     pub stats: PathStats,
@@ -94,7 +97,10 @@ fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: W
 
 #[inline(always)]
 fn render_tile_body(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
-    let TileJob { scene, camera, path, filter } = *job;
+    let TileJob { scene, camera, wide, path, filter } = *job;
+    if let Some(wide) = wide {
+        return render_tile_wide(&WideJob { scene, wide, camera, filter }, sampler, tile, samples);
+    }
     let mut pixels = vec![PixelStats::default(); (tile.w * tile.h) as usize];
     let mut stats = PathStats::default();
     let mut dropped = 0;

@@ -52,6 +52,11 @@ impl MeshGeometry {
         self.indices.is_empty()
     }
 
+    /// True if the mesh has vertex normals (its shading normals are interpolated).
+    pub fn has_normals(&self) -> bool {
+        self.normals.is_some()
+    }
+
     /// Triangle `i` (flat: its vertex normals stay in the mesh).
     #[inline(always)]
     pub fn triangle(&self, i: u32) -> Triangle {

@@ -1,0 +1,228 @@
+//! Brute-force intersection of eight rays with every polygon of a small scene.
+//!
+//! Why no tree: for a few dozen polygons a BVH visit costs more than the tests it saves (the
+//! Cornell box's 19 quads sit under one or two four-wide nodes anyway), and testing one polygon
+//! against eight rays at once keeps every SIMD lane busy on incoherent rays, which packet
+//! traversal of a tree cannot. Scenes above [`MAX_FLAT_POLYGONS`] use the BVH one lane at a
+//! time instead.
+//!
+//! Each polygon is tested as a plane and two edge coordinates, as [`crate::shape::Quad`] does
+//! ("Ray Tracing: The Next Week" §6): with n = e1 × e2, t = (n·q − n·o) / n·d, and for
+//! h = o + t·d − q the coordinates a = h·ẽ1, b = h·ẽ2 with the dual vectors
+//! ẽ1 = (e2 × n)/|n|², ẽ2 = (n × e1)/|n|². A quad holds a, b ∈ [0, 1]; a triangle a, b ≥ 0,
+//! a + b ≤ 1 (a and b are then its barycentric coordinates).
+
+use super::simd::{F32x8, Vec3x8, LANES, M8};
+use crate::math::Vec3;
+use crate::primitive_store::FlatPolygon;
+use crate::shape::EDGE_SLACK;
+
+/// Largest scene tested by brute force; chosen by `pathtrace bench` on the Cornell box (19)
+/// against meshes of a few hundred triangles, where the BVH wins.
+pub const MAX_FLAT_POLYGONS: usize = 64;
+
+/// One polygon's intersection data.
+#[derive(Clone, Copy, Debug)]
+struct Plane {
+    n: Vec3,
+    n_dot_q: f32,
+    q: Vec3,
+    e1_dual: Vec3,
+    e2_dual: Vec3,
+}
+
+/// The polygons of a small scene, with what shading needs at a hit.
+#[derive(Clone, Debug)]
+pub struct FlatGeometry {
+    quads: Vec<Plane>,
+    triangles: Vec<Plane>,
+    /// Per polygon (quads first, then triangles): unit normal along e1 × e2, material, light.
+    normals: Vec<Vec3>,
+    materials: Vec<u32>,
+    lights: Vec<u32>,
+}
+
+/// Eight rays' closest hits: distance and polygon (`u32::MAX` where nothing was hit).
+#[derive(Clone, Copy, Debug)]
+pub struct Hits8 {
+    pub t: F32x8,
+    pub polygon: [u32; LANES],
+}
+
+impl FlatGeometry {
+    /// `None` when some polygon is degenerate (the scene builder rejects those already).
+    pub(crate) fn new(polygons: &[FlatPolygon]) -> Option<Self> {
+        let (quads, triangles): (Vec<&FlatPolygon>, Vec<&FlatPolygon>) = polygons.iter().partition(|p| !p.triangle);
+        let plane = |p: &&FlatPolygon| {
+            let n = p.e1.cross(p.e2);
+            let n2 = n.length_squared();
+            (n2 > 0.0 && n2.is_finite()).then(|| Plane {
+                n,
+                n_dot_q: n.dot(p.origin),
+                q: p.origin,
+                e1_dual: p.e2.cross(n) / n2,
+                e2_dual: n.cross(p.e1) / n2,
+            })
+        };
+        let ordered = || quads.iter().chain(&triangles);
+        Some(Self {
+            quads: quads.iter().map(plane).collect::<Option<_>>()?,
+            triangles: triangles.iter().map(plane).collect::<Option<_>>()?,
+            normals: ordered().map(|p| p.e1.cross(p.e2).normalize()).collect(),
+            materials: ordered().map(|p| p.material).collect(),
+            lights: ordered().map(|p| p.light).collect(),
+        })
+    }
+
+    /// Unit normal (front side), material and light of polygon `i`.
+    #[inline(always)]
+    pub fn polygon(&self, i: u32) -> (Vec3, u32, u32) {
+        let i = i as usize;
+        (self.normals[i], self.materials[i], self.lights[i])
+    }
+
+    /// Closest hits with t ∈ [0, t_max) of the lanes in `active`.
+    #[inline(always)]
+    pub fn intersect(&self, o: &Vec3x8, d: &Vec3x8, active: M8, t_max: F32x8) -> Hits8 {
+        let mut best = F32x8::select(active, t_max, F32x8::ZERO);
+        let mut polygon = [u32::MAX; LANES];
+        for (k, plane) in self.quads.iter().enumerate() {
+            let (hit, t) = plane.test::<false>(o, d, best);
+            record(hit, t, k as u32, &mut best, &mut polygon);
+        }
+        let first = self.quads.len() as u32;
+        for (k, plane) in self.triangles.iter().enumerate() {
+            let (hit, t) = plane.test::<true>(o, d, best);
+            record(hit, t, first + k as u32, &mut best, &mut polygon);
+        }
+        Hits8 { t: best, polygon }
+    }
+
+    /// Lanes of `active` whose ray meets a polygon with t ∈ [0, t_max).
+    #[inline(always)]
+    pub fn occluded(&self, o: &Vec3x8, d: &Vec3x8, active: M8, t_max: F32x8) -> M8 {
+        let limit = F32x8::select(active, t_max, F32x8::ZERO);
+        let mut blocked = M8::NONE;
+        for plane in &self.quads {
+            blocked = blocked | plane.test::<false>(o, d, limit).0;
+            if (blocked & active) == active {
+                return active;
+            }
+        }
+        for plane in &self.triangles {
+            blocked = blocked | plane.test::<true>(o, d, limit).0;
+            if (blocked & active) == active {
+                return active;
+            }
+        }
+        blocked & active
+    }
+}
+
+#[inline(always)]
+fn record(hit: M8, t: F32x8, k: u32, best: &mut F32x8, polygon: &mut [u32; LANES]) {
+    *best = F32x8::select(hit, t, *best);
+    for i in 0..LANES {
+        polygon[i] = (k & hit.0[i]) | (polygon[i] & !hit.0[i]);
+    }
+}
+
+impl Plane {
+    /// Lanes hitting this polygon at 0 ≤ t < limit, and their t.
+    #[inline(always)]
+    fn test<const TRIANGLE: bool>(&self, o: &Vec3x8, d: &Vec3x8, limit: F32x8) -> (M8, F32x8) {
+        let n = Vec3x8::splat(self.n);
+        let denom = n.dot(d);
+        let t = (F32x8::splat(self.n_dot_q) - n.dot(o)) / denom;
+        // Ordered comparisons are false for NaN (rays parallel to the plane).
+        let in_range = t.ge(F32x8::ZERO) & t.lt(limit);
+        let q = Vec3x8::splat(self.q);
+        let h = Vec3x8 { x: o.x + t * d.x - q.x, y: o.y + t * d.y - q.y, z: o.z + t * d.z - q.z };
+        let a = h.dot(&Vec3x8::splat(self.e1_dual));
+        let b = h.dot(&Vec3x8::splat(self.e2_dual));
+        let lo = F32x8::splat(-EDGE_SLACK);
+        let hi = F32x8::splat(1.0 + EDGE_SLACK);
+        let inside =
+            if TRIANGLE { a.ge(lo) & b.ge(lo) & (a + b).le(hi) } else { a.ge(lo) & a.le(hi) & b.ge(lo) & b.le(hi) };
+        (in_range & inside, t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Ray;
+    use crate::sampling::Pcg32;
+    use crate::shape::{Quad, Triangle};
+
+    fn random_vec(rng: &mut Pcg32, scale: f32) -> Vec3 {
+        Vec3::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, rng.next_f32() - 0.5) * scale
+    }
+
+    /// Random quads and triangles; eight rays at a time against the scalar shape tests.
+    #[test]
+    fn brute_force_hits_agree_with_the_scalar_shape_tests() {
+        let mut rng = Pcg32::new(7, 3);
+        let polygons: Vec<FlatPolygon> = (0..40)
+            .map(|k| FlatPolygon {
+                origin: random_vec(&mut rng, 4.0),
+                e1: random_vec(&mut rng, 2.0),
+                e2: random_vec(&mut rng, 2.0),
+                triangle: k % 3 == 0,
+                material: k,
+                light: u32::MAX,
+            })
+            .collect();
+        let geometry = FlatGeometry::new(&polygons).unwrap();
+        let scalar_hit = |ray: &Ray, t_max: f32| -> Option<(f32, u32)> {
+            let mut best: Option<(f32, u32)> = None;
+            for p in &polygons {
+                let limit = best.map_or(t_max, |b| b.0);
+                let hit = if p.triangle {
+                    Triangle::new(p.origin, p.origin + p.e1, p.origin + p.e2, Triangle::FLAT)?
+                        .intersect(ray, 0.0, limit)
+                } else {
+                    Quad::new(p.origin, p.e1, p.e2)?.intersect(ray, 0.0, limit)
+                };
+                if let Some(h) = hit {
+                    best = Some((h.t, p.material));
+                }
+            }
+            best
+        };
+        let (mut hits, mut disagreements) = (0, 0);
+        for _ in 0..4000 {
+            let rays: Vec<Ray> = (0..LANES)
+                .map(|_| Ray::new(random_vec(&mut rng, 6.0), random_vec(&mut rng, 2.0).normalize()))
+                .collect();
+            let o = Vec3x8::from_fn(|i| rays[i].origin);
+            let d = Vec3x8::from_fn(|i| rays[i].dir);
+            let t_max = F32x8::from_fn(|i| if i == 5 { 1.5 } else { f32::INFINITY });
+            let active = M8::from_fn(|i| i != 2);
+            let wide = geometry.intersect(&o, &d, active, t_max);
+            let blocked = geometry.occluded(&o, &d, active, t_max);
+            for (i, ray) in rays.iter().enumerate() {
+                if !active.lane(i) {
+                    assert_eq!(wide.polygon[i], u32::MAX);
+                    assert!(!blocked.lane(i));
+                    continue;
+                }
+                let expect = scalar_hit(ray, t_max.0[i]);
+                let got = (wide.polygon[i] != u32::MAX).then(|| (wide.t.0[i], geometry.polygon(wide.polygon[i]).1));
+                hits += expect.is_some() as u32;
+                match (expect, got) {
+                    (Some((te, me)), Some((tg, mg))) => {
+                        assert!((te - tg).abs() <= 1e-4 * te.max(1.0), "t {te} vs {tg}");
+                        disagreements += (me != mg) as u32;
+                    }
+                    (None, None) => {}
+                    // Grazing hits on an edge may fall either way by rounding.
+                    _ => disagreements += 1,
+                }
+                assert_eq!(blocked.lane(i), got.is_some(), "any-hit agrees with closest-hit");
+            }
+        }
+        assert!(hits > 2000, "the test rays must hit often: {hits}");
+        assert!(disagreements <= 2, "{disagreements} rays of {hits} hits disagree");
+    }
+}

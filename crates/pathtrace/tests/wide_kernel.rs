@@ -1,0 +1,255 @@
+//! The wide kernel (eight paths per SIMD lane group, `pathtrace::wide`) against the scalar
+//! path loop: the same images within confidence intervals, for both of its intersectors
+//! (brute force over a small scene's polygons, the BVH for larger ones), every sampler, quad
+//! and triangle lights; a furnace with a known answer; and the scenes it must refuse.
+
+use pathtrace::integrator::Strategy;
+use pathtrace::light::{Emission, PointLight};
+use pathtrace::material::{Dielectric, Lambertian, Material};
+use pathtrace::math::{Rgb, Transform, Vec3};
+use pathtrace::render::RenderError;
+use pathtrace::sampling::SamplerKind;
+use pathtrace::shape::{Quad, Shape, Sphere, TriangleMesh};
+use pathtrace::wide::{Kernel, WideScene, MAX_FLAT_POLYGONS};
+use pathtrace::{render, CameraDesc, RenderSettings, Scene, SceneBuilder};
+use std::sync::Arc;
+
+fn lambertian(r: f32, g: f32, b: f32) -> Material {
+    Material::Lambertian(Lambertian { albedo: Rgb::new(r, g, b) })
+}
+
+/// A quad split into `n × n` smaller quads, as a triangle mesh (two triangles each).
+fn subdivided(quads: &[Quad], n: u32) -> TriangleMesh {
+    let mut mesh = TriangleMesh { positions: Vec::new(), indices: Vec::new(), normals: None, uvs: None };
+    for q in quads {
+        let base = mesh.positions.len() as u32;
+        for j in 0..=n {
+            for i in 0..=n {
+                mesh.positions.push(q.point_at(i as f32 / n as f32, j as f32 / n as f32));
+            }
+        }
+        let at = |i: u32, j: u32| base + j * (n + 1) + i;
+        for j in 0..n {
+            for i in 0..n {
+                // Counter-clockwise seen from the front (along u × v), like the quad.
+                mesh.indices.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                mesh.indices.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+    }
+    mesh
+}
+
+/// The Cornell box of `scenes/cornell-box.toml` in unit size. With `meshes`, the two boxes are
+/// subdivided triangle meshes (too many polygons for brute force: the wide kernel uses the
+/// BVH) and the light is a two-triangle emissive mesh (two triangle lights).
+fn cornell(meshes: bool) -> Scene {
+    let mut b = SceneBuilder::new();
+    let red = b.material(lambertian(0.65, 0.05, 0.05));
+    let white = b.material(lambertian(0.73, 0.73, 0.73));
+    let green = b.material(lambertian(0.12, 0.45, 0.15));
+    let light = b.emissive(Emission { radiance: Rgb::splat(15.0), two_sided: false });
+    let s = 1.0 / 555.0;
+    let v = |x: f32, y: f32, z: f32| Vec3::new(x, y, z) * s;
+    let mut quad = |q: Vec3, u: Vec3, w: Vec3, m| {
+        b.shape(Shape::Quad(Quad::new(q, u, w).unwrap()), m, &Transform::IDENTITY).unwrap();
+    };
+    quad(v(555.0, 0.0, 0.0), v(0.0, 555.0, 0.0), v(0.0, 0.0, 555.0), green);
+    quad(v(0.0, 0.0, 0.0), v(0.0, 555.0, 0.0), v(0.0, 0.0, 555.0), red);
+    quad(v(0.0, 0.0, 0.0), v(555.0, 0.0, 0.0), v(0.0, 0.0, 555.0), white);
+    quad(v(555.0, 555.0, 555.0), v(-555.0, 0.0, 0.0), v(0.0, 0.0, -555.0), white);
+    quad(v(0.0, 0.0, 555.0), v(555.0, 0.0, 0.0), v(0.0, 555.0, 0.0), white);
+    let lamp = Quad::new(v(343.0, 554.0, 332.0), v(-130.0, 0.0, 0.0), v(0.0, 0.0, -105.0)).unwrap();
+    if meshes {
+        b.mesh(&subdivided(&[lamp], 1), light, &Transform::IDENTITY).unwrap();
+    } else {
+        b.shape(Shape::Quad(lamp), light, &Transform::IDENTITY).unwrap();
+    }
+    let boxes =
+        [(v(165.0, 330.0, 165.0), 15.0, v(265.0, 0.0, 295.0)), (v(165.0, 165.0, 165.0), -18.0, v(130.0, 0.0, 65.0))];
+    for (size, angle, at) in boxes {
+        let place = Transform::rotate_y(angle).then(&Transform::translate(at));
+        let faces = Quad::box_faces(Vec3::ZERO, size, &place).unwrap();
+        if meshes {
+            b.mesh(&subdivided(&faces, 3), white, &Transform::IDENTITY).unwrap();
+        } else {
+            for f in faces {
+                b.shape(Shape::Quad(f), white, &Transform::IDENTITY).unwrap();
+            }
+        }
+    }
+    b.camera(CameraDesc {
+        look_from: v(278.0, 278.0, -800.0),
+        look_at: v(278.0, 278.0, 0.0),
+        up: Vec3::Y,
+        vfov_degrees: 40.0,
+        focal_length: 1.0,
+    });
+    b.build().unwrap()
+}
+
+fn settings(kernel: Kernel, sampler: SamplerKind, size: u32, spp: u32, seed: u64) -> RenderSettings {
+    let mut s = RenderSettings { width: size, height: size, spp, seed, sampler, kernel, ..Default::default() };
+    s.path.max_depth = 8;
+    s
+}
+
+/// Renders `scene` with both kernels and compares the whole image and 4×4-pixel blocks.
+fn assert_kernels_agree(scene: Scene, sampler: SamplerKind, spp: u32) {
+    let scene = Arc::new(scene);
+    let size = 32;
+    let wide = render(Arc::clone(&scene), settings(Kernel::Wide, sampler, size, spp, 5)).unwrap();
+    let scalar = render(scene, settings(Kernel::Scalar, sampler, size, spp, 6)).unwrap();
+    assert_eq!(wide.progress.dropped_samples + scalar.progress.dropped_samples, 0);
+    let (w, s) = (&wide.film, &scalar.film);
+    let whole = w.region_estimate(0, 0, size, size).max_z_score(&s.region_estimate(0, 0, size, size));
+    assert!(whole < 4.0, "{sampler}: image means differ, z = {whole:.2}");
+    // 64 blocks × 3 channels: max |z| < 4.5 has p ≈ 1e-3 under agreement.
+    let mut worst = 0.0f64;
+    for by in 0..8 {
+        for bx in 0..8 {
+            let (x0, y0) = (bx * 4, by * 4);
+            let z = w.region_estimate(x0, y0, x0 + 4, y0 + 4).max_z_score(&s.region_estimate(x0, y0, x0 + 4, y0 + 4));
+            worst = worst.max(z);
+        }
+    }
+    assert!(worst < 4.5, "{sampler}: a block differs, z = {worst:.2}");
+    // The comparison must be sharp enough to see a 2% bias on the image mean.
+    let est = w.region_estimate(0, 0, size, size);
+    assert!(est.variance_of_mean[0].sqrt() < 0.01 * est.mean[0], "too noisy to judge: {est:?}");
+    // Same ray bookkeeping: one camera ray per sample.
+    assert_eq!(wide.progress.rays.camera_rays, (size * size * spp) as u64);
+}
+
+#[test]
+fn small_scenes_are_intersected_by_brute_force_and_larger_ones_by_the_bvh() {
+    let settings = settings(Kernel::Wide, SamplerKind::Independent, 8, 1, 0).path;
+    assert!(WideScene::new(&cornell(false), &settings).unwrap().brute_force());
+    let meshes = cornell(true);
+    assert!(!WideScene::new(&meshes, &settings).unwrap().brute_force(), "> {MAX_FLAT_POLYGONS} polygons");
+}
+
+#[test]
+fn wide_and_scalar_kernels_render_the_same_cornell_box() {
+    assert_kernels_agree(cornell(false), SamplerKind::Independent, 512);
+}
+
+#[test]
+fn wide_kernel_keeps_the_samplers_dimensions() {
+    // Stratified and Sobol samples are only well distributed if each dimension is used for the
+    // same decision in every sample: a mismatch would show as disagreement or bias.
+    assert_kernels_agree(cornell(false), SamplerKind::Stratified, 256);
+    assert_kernels_agree(cornell(false), SamplerKind::Sobol, 256);
+}
+
+#[test]
+fn wide_kernel_through_the_bvh_with_triangle_lights_matches_the_scalar_kernel() {
+    assert_kernels_agree(cornell(true), SamplerKind::Independent, 512);
+}
+
+#[test]
+fn wide_kernel_renders_the_same_image_on_any_number_of_threads() {
+    let scene = Arc::new(cornell(false));
+    let mut one = settings(Kernel::Wide, SamplerKind::Independent, 24, 8, 3);
+    one.threads = 1;
+    let two = RenderSettings { threads: 2, ..one.clone() };
+    let a = render(Arc::clone(&scene), one).unwrap().film.image();
+    let b = render(scene, two).unwrap().film.image();
+    assert!(a.pixels == b.pixels, "images differ between 1 and 2 threads");
+}
+
+/// A closed box whose six walls (each split into `n × n` quads) emit E from both faces and
+/// reflect with albedo a: the radiance is E / (1 − a) everywhere.
+fn furnace_box(n: u32, albedo: f32, emission: f32) -> Scene {
+    let mut b = SceneBuilder::new();
+    let wall = b.material_with_emission(
+        lambertian(albedo, albedo, albedo),
+        Emission { radiance: Rgb::splat(emission), two_sided: true },
+    );
+    for face in Quad::box_faces(Vec3::splat(-1.0), Vec3::splat(1.0), &Transform::IDENTITY).unwrap() {
+        for j in 0..n {
+            for i in 0..n {
+                let (u, v) = (face.u / n as f32, face.v / n as f32);
+                let q = face.q + u * i as f32 + v * j as f32;
+                b.shape(Shape::Quad(Quad::new(q, u, v).unwrap()), wall, &Transform::IDENTITY).unwrap();
+            }
+        }
+    }
+    b.camera(CameraDesc {
+        look_from: Vec3::new(0.1, 0.2, 0.3),
+        look_at: Vec3::new(1.0, 0.0, 0.0),
+        up: Vec3::Y,
+        vfov_degrees: 90.0,
+        focal_length: 1.0,
+    });
+    b.build().unwrap()
+}
+
+#[test]
+fn wide_kernel_passes_the_furnace_test_with_either_intersector() {
+    let (albedo, emission) = (0.6f32, 0.5f32);
+    let expected = (emission / (1.0 - albedo)) as f64;
+    for n in [1, 4] {
+        let scene = furnace_box(n, albedo, emission);
+        let path = settings(Kernel::Wide, SamplerKind::Independent, 8, 1, 0).path;
+        let mut s = settings(Kernel::Wide, SamplerKind::Independent, 24, 256, 7);
+        s.path.max_depth = -1;
+        assert_eq!(WideScene::new(&scene, &path).unwrap().brute_force(), 6 * n * n <= MAX_FLAT_POLYGONS as u32);
+        for strategy in [Strategy::Mis, Strategy::MisBalance] {
+            s.path.strategy = strategy;
+            let out = render(Arc::new(furnace_box(n, albedo, emission)), s.clone()).unwrap();
+            let est = out.film.region_estimate(0, 0, 24, 24);
+            let z = est.max_z_score_against([expected; 3]);
+            assert!(z < 4.5, "{n}×{n} walls, {strategy}: mean {:?} vs E/(1-a) = {expected}, z = {z:.2}", est.mean);
+            assert!(est.variance_of_mean[0].sqrt() < 0.02 * expected, "too noisy to judge");
+        }
+    }
+}
+
+#[test]
+fn wide_kernel_refuses_what_it_cannot_render() {
+    let mis = settings(Kernel::Wide, SamplerKind::Independent, 8, 1, 0).path;
+    let refuse = |scene: &Scene, path, what: &str| {
+        let err = WideScene::new(scene, path).expect_err(what);
+        assert!(err.contains(what), "{err}");
+    };
+    let bsdf = pathtrace::integrator::PathSettings { strategy: Strategy::Bsdf, ..mis };
+    refuse(&cornell(false), &bsdf, "strategy 'bsdf'");
+
+    let with = |extra: &dyn Fn(&mut SceneBuilder)| {
+        let mut b = SceneBuilder::new();
+        let white = b.material(lambertian(0.5, 0.5, 0.5));
+        let lamp = b.emissive(Emission { radiance: Rgb::splat(1.0), two_sided: false });
+        let floor = Quad::new(Vec3::ZERO, Vec3::X, Vec3::Z).unwrap();
+        b.shape(Shape::Quad(floor), white, &Transform::IDENTITY).unwrap();
+        let top = Quad::new(Vec3::Y, Vec3::Z, Vec3::X).unwrap();
+        b.shape(Shape::Quad(top), lamp, &Transform::IDENTITY).unwrap();
+        extra(&mut b);
+        b.build().unwrap()
+    };
+    assert!(WideScene::new(&with(&|_| {}), &mis).is_ok());
+    let glass = with(&|b| {
+        let m = b.material(Material::Dielectric(Dielectric { ior: 1.5, tint: Rgb::WHITE }));
+        let q = Quad::new(Vec3::splat(0.2), Vec3::X * 0.1, Vec3::Y * 0.1).unwrap();
+        b.shape(Shape::Quad(q), m, &Transform::IDENTITY).unwrap();
+    });
+    refuse(&glass, &mis, "material 'dielectric'");
+    let sphere_light = with(&|b| {
+        let m = b.emissive(Emission { radiance: Rgb::splat(1.0), two_sided: false });
+        b.shape(Shape::Sphere(Sphere::new(Vec3::splat(0.5), 0.1).unwrap()), m, &Transform::IDENTITY).unwrap();
+    });
+    assert!(WideScene::new(&sphere_light, &mis).is_err(), "a sphere is not a polygon");
+    let point = with(&|b| {
+        b.point_light(PointLight { position: Vec3::splat(0.5), intensity: Rgb::splat(1.0) }).unwrap();
+    });
+    refuse(&point, &mis, "lights other than quad or triangle area lights");
+
+    // Asked for explicitly, the render fails with the reason; `auto` falls back to scalar.
+    let s = settings(Kernel::Wide, SamplerKind::Independent, 8, 1, 0);
+    match render(Arc::new(glass.clone()), s.clone()) {
+        Err(RenderError::WideKernel(why)) => assert!(why.contains("dielectric"), "{why}"),
+        other => panic!("expected a wide-kernel error, got {:?}", other.map(|o| o.progress)),
+    }
+    let auto = RenderSettings { kernel: Kernel::Auto, ..s };
+    assert!(render(Arc::new(glass), auto).is_ok());
+}
