@@ -5,6 +5,7 @@ use crate::film::{PixelFilter, PixelStats};
 use crate::integrator::{radiance, PathSettings, PathStats};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::wide::simd::{LANES_256, LANES_512};
 use crate::wide::{render_tile_wide, WideJob, WideScene};
 
 /// A rectangle of pixels.
@@ -71,35 +72,62 @@ pub(crate) struct TileResult {
     pub dropped: u64,
 }
 
-/// Renders the wave's samples (`samples`) of every pixel in `tile`, filtered by the job's pixel filter. Each pixel sample's
-/// random numbers depend only on (seed, pixel, sample index), never on the thread.
+/// Renders the wave's samples (`samples`) of every pixel in `tile`, filtered by the job's pixel
+/// filter. Each pixel sample's random numbers depend only on (seed, pixel, sample index), never
+/// on the thread.
 ///
-/// On x86-64 CPUs with AVX2 the same code runs compiled for AVX2 (chosen at run time, so the
-/// binary stays portable). Rust never fuses multiply-adds on its own, so both versions compute
-/// bit-identical images; the AVX2 build is about 6% faster (3-operand VEX encoding; measured in
-/// docs/benchmarks.md). Setting the environment variable `PATHTRACE_NO_AVX2` forces the portable
-/// build, for that measurement.
+/// The same code runs compiled for the widest SIMD the CPU has, chosen at run time so the
+/// binary stays portable: the wide kernel in groups of 16 lanes with AVX-512, of 8 with AVX2
+/// (and in the portable build); the scalar kernel with AVX2 or portable. Rust never fuses
+/// multiply-adds on its own, so every build computes the same values per sample (the scalar
+/// kernel's images are bit-identical; the wide kernel's differ only in the order samples are
+/// summed, which depends on the group size). Setting `PATHTRACE_NO_AVX512` or
+/// `PATHTRACE_NO_AVX2` forces the narrower builds, to measure them (docs/benchmarks.md).
 pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") && std::env::var_os("PATHTRACE_NO_AVX2").is_none() {
-        // SAFETY: `render_tile_avx2` only requires AVX2, which the CPU was just checked to have.
-        #[allow(unsafe_code)]
-        return unsafe { render_tile_avx2(job, sampler, tile, samples) };
+    {
+        let avx2 = std::arch::is_x86_feature_detected!("avx2") && std::env::var_os("PATHTRACE_NO_AVX2").is_none();
+        let avx512 = avx2
+            && std::arch::is_x86_feature_detected!("avx512f")
+            && std::arch::is_x86_feature_detected!("avx512vl")
+            && std::env::var_os("PATHTRACE_NO_AVX512").is_none();
+        if avx512 && job.wide.is_some() {
+            // SAFETY: `render_tile_avx512` only requires AVX-512 F/VL, which the CPU was just checked to have.
+            #[allow(unsafe_code)]
+            return unsafe { render_tile_avx512(job, sampler, tile, samples) };
+        }
+        if avx2 {
+            // SAFETY: `render_tile_avx2` only requires AVX2, which the CPU was just checked to have.
+            #[allow(unsafe_code)]
+            return unsafe { render_tile_avx2(job, sampler, tile, samples) };
+        }
     }
-    render_tile_body(job, sampler, tile, samples)
+    render_tile_body::<LANES_256>(job, sampler, tile, samples)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
-    render_tile_body(job, sampler, tile, samples)
+    render_tile_body::<LANES_256>(job, sampler, tile, samples)
 }
 
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,avx512f,avx512vl")]
+fn render_tile_avx512(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
+    render_tile_body::<LANES_512>(job, sampler, tile, samples)
+}
+
+/// `N`: lanes per group of the wide kernel.
 #[inline(always)]
-fn render_tile_body(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
+fn render_tile_body<const N: usize>(
+    job: &TileJob,
+    sampler: &mut Sampler,
+    tile: Tile,
+    samples: WaveSamples,
+) -> TileResult {
     let TileJob { scene, camera, wide, path, filter } = *job;
     if let Some(wide) = wide {
-        return render_tile_wide(&WideJob { scene, wide, camera, filter }, sampler, tile, samples);
+        return render_tile_wide::<N>(&WideJob { scene, wide, camera, filter }, sampler, tile, samples);
     }
     let mut pixels = vec![PixelStats::default(); (tile.w * tile.h) as usize];
     let mut stats = PathStats::default();

@@ -12,7 +12,7 @@
 //! ẽ1 = (e2 × n)/|n|², ẽ2 = (n × e1)/|n|². A quad holds a, b ∈ [0, 1]; a triangle a, b ≥ 0,
 //! a + b ≤ 1 (a and b are then its barycentric coordinates).
 
-use super::simd::{F32x8, Vec3x8, LANES, M8};
+use super::simd::{F32s, Ms, Vec3s};
 use crate::math::Vec3;
 use crate::primitive_store::FlatPolygon;
 use crate::shape::EDGE_SLACK;
@@ -44,9 +44,9 @@ pub struct FlatGeometry {
 
 /// Eight rays' closest hits: distance and polygon (`u32::MAX` where nothing was hit).
 #[derive(Clone, Copy, Debug)]
-pub struct Hits8 {
-    pub t: F32x8,
-    pub polygon: [u32; LANES],
+pub struct Hits<const N: usize> {
+    pub t: F32s<N>,
+    pub polygon: [u32; N],
 }
 
 impl FlatGeometry {
@@ -83,35 +83,35 @@ impl FlatGeometry {
 
     /// Closest hits with t ∈ [0, t_max) of the lanes in `active`.
     #[inline(always)]
-    pub fn intersect(&self, o: &Vec3x8, d: &Vec3x8, active: M8, t_max: F32x8) -> Hits8 {
-        let mut best = F32x8::select(active, t_max, F32x8::ZERO);
-        let mut polygon = [u32::MAX; LANES];
+    pub fn intersect<const N: usize>(&self, o: &Vec3s<N>, d: &Vec3s<N>, active: Ms<N>, t_max: F32s<N>) -> Hits<N> {
+        let mut best = F32s::<N>::select(active, t_max, F32s::<N>::ZERO);
+        let mut polygon = [u32::MAX; N];
         for (k, plane) in self.quads.iter().enumerate() {
-            let (hit, t) = plane.test::<false>(o, d, best);
+            let (hit, t) = plane.test::<N, false>(o, d, best);
             record(hit, t, k as u32, &mut best, &mut polygon);
         }
         let first = self.quads.len() as u32;
         for (k, plane) in self.triangles.iter().enumerate() {
-            let (hit, t) = plane.test::<true>(o, d, best);
+            let (hit, t) = plane.test::<N, true>(o, d, best);
             record(hit, t, first + k as u32, &mut best, &mut polygon);
         }
-        Hits8 { t: best, polygon }
+        Hits { t: best, polygon }
     }
 
     /// Lanes of `active` whose ray meets a polygon with t ∈ [0, t_max).
     #[inline(always)]
-    pub fn occluded(&self, o: &Vec3x8, d: &Vec3x8, active: M8, t_max: F32x8) -> M8 {
-        let limit = F32x8::select(active, t_max, F32x8::ZERO);
-        let mut blocked = M8::NONE;
+    pub fn occluded<const N: usize>(&self, o: &Vec3s<N>, d: &Vec3s<N>, active: Ms<N>, t_max: F32s<N>) -> Ms<N> {
+        let limit = F32s::<N>::select(active, t_max, F32s::<N>::ZERO);
+        let mut blocked = Ms::<N>::NONE;
         for plane in &self.quads {
-            blocked = blocked | plane.test::<false>(o, d, limit).0;
-            if (blocked & active) == active {
+            blocked = blocked | plane.test::<N, false>(o, d, limit).0;
+            if !(active & !blocked).any() {
                 return active;
             }
         }
         for plane in &self.triangles {
-            blocked = blocked | plane.test::<true>(o, d, limit).0;
-            if (blocked & active) == active {
+            blocked = blocked | plane.test::<N, true>(o, d, limit).0;
+            if !(active & !blocked).any() {
                 return active;
             }
         }
@@ -120,9 +120,9 @@ impl FlatGeometry {
 }
 
 #[inline(always)]
-fn record(hit: M8, t: F32x8, k: u32, best: &mut F32x8, polygon: &mut [u32; LANES]) {
-    *best = F32x8::select(hit, t, *best);
-    for i in 0..LANES {
+fn record<const N: usize>(hit: Ms<N>, t: F32s<N>, k: u32, best: &mut F32s<N>, polygon: &mut [u32; N]) {
+    *best = F32s::<N>::select(hit, t, *best);
+    for i in 0..N {
         polygon[i] = (k & hit.0[i]) | (polygon[i] & !hit.0[i]);
     }
 }
@@ -130,18 +130,23 @@ fn record(hit: M8, t: F32x8, k: u32, best: &mut F32x8, polygon: &mut [u32; LANES
 impl Plane {
     /// Lanes hitting this polygon at 0 ≤ t < limit, and their t.
     #[inline(always)]
-    fn test<const TRIANGLE: bool>(&self, o: &Vec3x8, d: &Vec3x8, limit: F32x8) -> (M8, F32x8) {
-        let n = Vec3x8::splat(self.n);
+    fn test<const N: usize, const TRIANGLE: bool>(
+        &self,
+        o: &Vec3s<N>,
+        d: &Vec3s<N>,
+        limit: F32s<N>,
+    ) -> (Ms<N>, F32s<N>) {
+        let n = Vec3s::<N>::splat(self.n);
         let denom = n.dot(d);
-        let t = (F32x8::splat(self.n_dot_q) - n.dot(o)) / denom;
+        let t = (F32s::<N>::splat(self.n_dot_q) - n.dot(o)) / denom;
         // Ordered comparisons are false for NaN (rays parallel to the plane).
-        let in_range = t.ge(F32x8::ZERO) & t.lt(limit);
-        let q = Vec3x8::splat(self.q);
-        let h = Vec3x8 { x: o.x + t * d.x - q.x, y: o.y + t * d.y - q.y, z: o.z + t * d.z - q.z };
-        let a = h.dot(&Vec3x8::splat(self.e1_dual));
-        let b = h.dot(&Vec3x8::splat(self.e2_dual));
-        let lo = F32x8::splat(-EDGE_SLACK);
-        let hi = F32x8::splat(1.0 + EDGE_SLACK);
+        let in_range = t.ge(F32s::<N>::ZERO) & t.lt(limit);
+        let q = Vec3s::<N>::splat(self.q);
+        let h = Vec3s { x: o.x + t * d.x - q.x, y: o.y + t * d.y - q.y, z: o.z + t * d.z - q.z };
+        let a = h.dot(&Vec3s::<N>::splat(self.e1_dual));
+        let b = h.dot(&Vec3s::<N>::splat(self.e2_dual));
+        let lo = F32s::<N>::splat(-EDGE_SLACK);
+        let hi = F32s::<N>::splat(1.0 + EDGE_SLACK);
         let inside =
             if TRIANGLE { a.ge(lo) & b.ge(lo) & (a + b).le(hi) } else { a.ge(lo) & a.le(hi) & b.ge(lo) & b.le(hi) };
         (in_range & inside, t)
@@ -154,6 +159,7 @@ mod tests {
     use crate::math::Ray;
     use crate::sampling::Pcg32;
     use crate::shape::{Quad, Triangle};
+    use crate::wide::simd::LANES_256 as N;
 
     fn random_vec(rng: &mut Pcg32, scale: f32) -> Vec3 {
         Vec3::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, rng.next_f32() - 0.5) * scale
@@ -192,13 +198,12 @@ mod tests {
         };
         let (mut hits, mut disagreements) = (0, 0);
         for _ in 0..4000 {
-            let rays: Vec<Ray> = (0..LANES)
-                .map(|_| Ray::new(random_vec(&mut rng, 6.0), random_vec(&mut rng, 2.0).normalize()))
-                .collect();
-            let o = Vec3x8::from_fn(|i| rays[i].origin);
-            let d = Vec3x8::from_fn(|i| rays[i].dir);
-            let t_max = F32x8::from_fn(|i| if i == 5 { 1.5 } else { f32::INFINITY });
-            let active = M8::from_fn(|i| i != 2);
+            let rays: Vec<Ray> =
+                (0..N).map(|_| Ray::new(random_vec(&mut rng, 6.0), random_vec(&mut rng, 2.0).normalize())).collect();
+            let o = Vec3s::<N>::from_fn(|i| rays[i].origin);
+            let d = Vec3s::<N>::from_fn(|i| rays[i].dir);
+            let t_max = F32s::<N>::from_fn(|i| if i == 5 { 1.5 } else { f32::INFINITY });
+            let active = Ms::<N>::from_fn(|i| i != 2);
             let wide = geometry.intersect(&o, &d, active, t_max);
             let blocked = geometry.occluded(&o, &d, active, t_max);
             for (i, ray) in rays.iter().enumerate() {

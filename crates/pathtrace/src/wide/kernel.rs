@@ -5,7 +5,7 @@
 //! emission found by the hit (MIS-weighted against light sampling), next-event estimation
 //! (one shadow ray per lane), cosine-weighted continuation, Russian roulette.
 
-use super::simd::{F32x8, Vec3x8, LANES, M8};
+use super::simd::{F32s, Ms, Vec3s};
 use super::{warp, WideScene};
 use crate::camera::Camera;
 use crate::film::{PixelFilter, PixelStats};
@@ -82,33 +82,32 @@ impl<'a> Queue<'a> {
     }
 }
 
-/// The state of eight paths (structure of arrays; lanes outside `active` hold stale values).
-#[derive(Default)]
-struct Paths {
-    active: M8,
-    origin: Vec3x8,
-    dir: Vec3x8,
-    beta: [F32x8; 3],
-    radiance: [F32x8; 3],
+/// The state of `N` paths (structure of arrays; lanes outside `active` hold stale values).
+struct Paths<const N: usize> {
+    active: Ms<N>,
+    origin: Vec3s<N>,
+    dir: Vec3s<N>,
+    beta: [F32s<N>; 3],
+    radiance: [F32s<N>; 3],
     /// The previous vertex and the solid-angle pdf of the direction sampled there.
-    prev_p: Vec3x8,
-    prev_pdf: F32x8,
+    prev_p: Vec3s<N>,
+    prev_pdf: F32s<N>,
     /// The direction came from the camera: emission found counts in full.
-    prev_specular: M8,
+    prev_specular: Ms<N>,
     /// Pixel-filter weight of the camera sample.
-    filter_weight: F32x8,
-    segments: [u32; LANES],
-    pixel: [u32; LANES],
+    filter_weight: F32s<N>,
+    segments: [u32; N],
+    pixel: [u32; N],
 }
 
-/// The hit points of eight rays.
-struct Surfaces {
-    hit: M8,
-    p: Vec3x8,
-    n_geometric: Vec3x8,
-    n_shading: Vec3x8,
-    material: [u32; LANES],
-    light: [u32; LANES],
+/// The hit points of `N` rays.
+struct Surfaces<const N: usize> {
+    hit: Ms<N>,
+    p: Vec3s<N>,
+    n_geometric: Vec3s<N>,
+    n_shading: Vec3s<N>,
+    material: [u32; N],
+    light: [u32; N],
 }
 
 /// Where finished samples go.
@@ -118,7 +117,23 @@ struct Output {
     dropped: u64,
 }
 
-impl Paths {
+impl<const N: usize> Paths<N> {
+    fn new() -> Self {
+        Self {
+            active: Ms::default(),
+            origin: Vec3s::default(),
+            dir: Vec3s::default(),
+            beta: [F32s::default(); 3],
+            radiance: [F32s::default(); 3],
+            prev_p: Vec3s::default(),
+            prev_pdf: F32s::default(),
+            prev_specular: Ms::default(),
+            filter_weight: F32s::default(),
+            segments: [0; N],
+            pixel: [0; N],
+        }
+    }
+
     fn start(&mut self, i: usize, job: &Job, ray: Ray, filter_weight: f32) {
         self.active.0[i] = u32::MAX;
         self.origin.set(i, ray.origin);
@@ -148,7 +163,7 @@ impl Paths {
     }
 
     /// Ends every lane of `mask`.
-    fn finish_all(&mut self, mask: M8, out: &mut Output) {
+    fn finish_all(&mut self, mask: Ms<N>, out: &mut Output) {
         let mut bits = mask.bitmask();
         while bits != 0 {
             let i = bits.trailing_zeros() as usize;
@@ -162,15 +177,20 @@ impl Paths {
 /// sample's random numbers come from a copy of `proto` started at (pixel, sample index), as in
 /// the scalar kernel, so the result does not depend on the thread or the lane.
 #[inline(always)]
-pub(crate) fn render_tile_wide(job: &WideJob, proto: &Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
-    let mut samplers: [Sampler; LANES] = std::array::from_fn(|_| proto.clone());
+pub(crate) fn render_tile_wide<const N: usize>(
+    job: &WideJob,
+    proto: &Sampler,
+    tile: Tile,
+    samples: WaveSamples,
+) -> TileResult {
+    let mut samplers: [Sampler; N] = std::array::from_fn(|_| proto.clone());
     let mut out = Output {
         pixels: vec![PixelStats::default(); (tile.w * tile.h) as usize],
         stats: PathStats::default(),
         dropped: 0,
     };
     let mut queue = Queue::new(tile, samples);
-    let mut paths = Paths::default();
+    let mut paths = Paths::<N>::new();
     let max_depth = job.wide.settings.max_depth;
     loop {
         for (i, sampler) in samplers.iter_mut().enumerate() {
@@ -198,7 +218,7 @@ pub(crate) fn render_tile_wide(job: &WideJob, proto: &Sampler, tile: Tile, sampl
 
 /// One path vertex for every active lane.
 #[inline(always)]
-fn vertex(job: &WideJob, paths: &mut Paths, samplers: &mut [Sampler; LANES], out: &mut Output) {
+fn vertex<const N: usize>(job: &WideJob, paths: &mut Paths<N>, samplers: &mut [Sampler; N], out: &mut Output) {
     let WideJob { scene, wide, .. } = *job;
     let settings = &wide.settings;
     let lights = &scene.lights;
@@ -211,7 +231,7 @@ fn vertex(job: &WideJob, paths: &mut Paths, samplers: &mut [Sampler; LANES], out
     let wo = paths.dir.neg();
 
     // ---- Emission found by the hit (rare: lane by lane) ---------------------------------
-    for i in 0..LANES {
+    for i in 0..N {
         if !alive.lane(i) || s.light[i] == Primitive::NO_LIGHT {
             continue;
         }
@@ -232,8 +252,8 @@ fn vertex(job: &WideJob, paths: &mut Paths, samplers: &mut [Sampler; LANES], out
     }
 
     // ---- Depth limit and black surfaces end the path; albedos of the rest ------------------
-    let mut albedo = [F32x8::ZERO; 3];
-    for i in 0..LANES {
+    let mut albedo = [F32s::<N>::ZERO; 3];
+    for i in 0..N {
         if !alive.lane(i) {
             continue;
         }
@@ -252,18 +272,18 @@ fn vertex(job: &WideJob, paths: &mut Paths, samplers: &mut [Sampler; LANES], out
     }
 
     // Lambertian surfaces are two-sided: face the normals towards the viewer.
-    let back = s.n_geometric.dot(&wo).lt(F32x8::ZERO);
-    let n_g = Vec3x8::select(back, &s.n_geometric.neg(), &s.n_geometric);
-    let n_s = Vec3x8::select(back, &s.n_shading.neg(), &s.n_shading);
+    let back = s.n_geometric.dot(&wo).lt(F32s::<N>::ZERO);
+    let n_g = Vec3s::<N>::select(back, &s.n_geometric.neg(), &s.n_geometric);
+    let n_s = Vec3s::<N>::select(back, &s.n_shading.neg(), &s.n_shading);
     let wo_z = n_s.dot(&wo);
     // offset_ray_origin's scale; both rays leave on n_g's side (checked below).
     let offset = n_g.scale((s.p.max_abs() + 1.0) * 1e-4);
     let origin = s.p.add(&offset);
 
     // ---- Next-event estimation ----------------------------------------------------------
-    let mut u_select = F32x8::ZERO;
-    let (mut u1, mut u2) = (F32x8::ZERO, F32x8::ZERO);
-    for i in 0..LANES {
+    let mut u_select = F32s::<N>::ZERO;
+    let (mut u1, mut u2) = (F32s::<N>::ZERO, F32s::<N>::ZERO);
+    for i in 0..N {
         if alive.lane(i) {
             u_select.0[i] = samplers[i].next_1d();
             let u = samplers[i].next_2d();
@@ -272,7 +292,7 @@ fn vertex(job: &WideJob, paths: &mut Paths, samplers: &mut [Sampler; LANES], out
     }
     let ls = wide.lights.sample(lights, &s.p, alive, &u_select, u1, u2);
     let cos_i = n_s.dot(&ls.wi);
-    let zero = F32x8::ZERO;
+    let zero = F32s::<N>::ZERO;
     let lit = ls.valid & alive & wo_z.gt(zero) & cos_i.gt(zero) & n_g.dot(&ls.wi).gt(zero);
     if lit.any() {
         let to_light = ls.point.sub(&origin);
@@ -283,14 +303,14 @@ fn vertex(job: &WideJob, paths: &mut Paths, samplers: &mut [Sampler; LANES], out
         let pdf_bsdf = cos_i * INV_PI;
         let w = mis_weight(settings.strategy, ls.pdf, pdf_bsdf);
         // f·cos / pdf with f = albedo/π (the albedo is applied per channel below).
-        let factor = F32x8::select(lit & !blocked, cos_i * INV_PI * w / ls.pdf, zero);
+        let factor = F32s::<N>::select(lit & !blocked, cos_i * INV_PI * w / ls.pdf, zero);
         for c in 0..3 {
             paths.radiance[c] = paths.radiance[c] + paths.beta[c] * albedo[c] * ls.radiance[c] * factor;
         }
     }
 
     // ---- Continuation: cosine-weighted hemisphere ------------------------------------------
-    for i in 0..LANES {
+    for i in 0..N {
         if alive.lane(i) {
             // The lobe choice the scalar loop draws (one lobe here: unused, but drawn so every
             // later dimension matches the scalar kernel's).
@@ -311,7 +331,7 @@ fn vertex(job: &WideJob, paths: &mut Paths, samplers: &mut [Sampler; LANES], out
     }
 
     // ---- Russian roulette (Lambertian paths never refract: no η² to undo) -------------------
-    for i in 0..LANES {
+    for i in 0..N {
         if !alive.lane(i) || paths.segments[i] < settings.rr_depth {
             continue;
         }
@@ -327,12 +347,12 @@ fn vertex(job: &WideJob, paths: &mut Paths, samplers: &mut [Sampler; LANES], out
     }
 
     // ---- Next segment ------------------------------------------------------------------
-    paths.prev_p = Vec3x8::select(alive, &s.p, &paths.prev_p);
-    paths.prev_pdf = F32x8::select(alive, local.z * INV_PI, paths.prev_pdf);
+    paths.prev_p = Vec3s::<N>::select(alive, &s.p, &paths.prev_p);
+    paths.prev_pdf = F32s::<N>::select(alive, local.z * INV_PI, paths.prev_pdf);
     paths.prev_specular = paths.prev_specular & !alive;
-    paths.origin = Vec3x8::select(alive, &origin, &paths.origin);
-    paths.dir = Vec3x8::select(alive, &wi, &paths.dir);
-    for i in 0..LANES {
+    paths.origin = Vec3s::<N>::select(alive, &origin, &paths.origin);
+    paths.dir = Vec3s::<N>::select(alive, &wi, &paths.dir);
+    for i in 0..N {
         paths.segments[i] += alive.0[i] & 1;
     }
     out.stats.extension_rays += alive.bitmask().count_ones() as u64;
@@ -341,7 +361,7 @@ fn vertex(job: &WideJob, paths: &mut Paths, samplers: &mut [Sampler; LANES], out
 /// The MIS weight of a light sample (density `pdf_f`) against the material's density `pdf_g`,
 /// per lane: `strategy.mis_weight` as 1/(1 + (g/f)^β), which cannot overflow.
 #[inline(always)]
-fn mis_weight(strategy: Strategy, pdf_f: F32x8, pdf_g: F32x8) -> F32x8 {
+fn mis_weight<const N: usize>(strategy: Strategy, pdf_f: F32s<N>, pdf_g: F32s<N>) -> F32s<N> {
     let r = pdf_g / pdf_f;
     let r = if strategy == Strategy::MisBalance { r } else { r * r };
     1.0 / (1.0 + r)
@@ -349,19 +369,19 @@ fn mis_weight(strategy: Strategy, pdf_f: F32x8, pdf_g: F32x8) -> F32x8 {
 
 /// Closest hits of the active lanes' rays.
 #[inline(always)]
-fn intersect(job: &WideJob, paths: &Paths) -> Surfaces {
+fn intersect<const N: usize>(job: &WideJob, paths: &Paths<N>) -> Surfaces<N> {
     let active = paths.active;
     if let Some(geometry) = &job.wide.geometry {
-        let hits = geometry.intersect(&paths.origin, &paths.dir, active, F32x8::splat(f32::INFINITY));
+        let hits = geometry.intersect(&paths.origin, &paths.dir, active, F32s::<N>::splat(f32::INFINITY));
         let mut s = Surfaces {
-            hit: M8::NONE,
+            hit: Ms::<N>::NONE,
             p: paths.origin.add(&paths.dir.scale(hits.t)),
-            n_geometric: Vec3x8::default(),
-            n_shading: Vec3x8::default(),
-            material: [0; LANES],
-            light: [Primitive::NO_LIGHT; LANES],
+            n_geometric: Vec3s::<N>::default(),
+            n_shading: Vec3s::<N>::default(),
+            material: [0; N],
+            light: [Primitive::NO_LIGHT; N],
         };
-        for i in 0..LANES {
+        for i in 0..N {
             if active.lane(i) && hits.polygon[i] != u32::MAX {
                 let (n, material, light) = geometry.polygon(hits.polygon[i]);
                 s.hit.0[i] = u32::MAX;
@@ -375,14 +395,14 @@ fn intersect(job: &WideJob, paths: &Paths) -> Surfaces {
     }
     // Larger scenes: the BVH, one lane at a time.
     let mut s = Surfaces {
-        hit: M8::NONE,
-        p: Vec3x8::default(),
-        n_geometric: Vec3x8::default(),
-        n_shading: Vec3x8::default(),
-        material: [0; LANES],
-        light: [Primitive::NO_LIGHT; LANES],
+        hit: Ms::<N>::NONE,
+        p: Vec3s::<N>::default(),
+        n_geometric: Vec3s::<N>::default(),
+        n_shading: Vec3s::<N>::default(),
+        material: [0; N],
+        light: [Primitive::NO_LIGHT; N],
     };
-    for i in 0..LANES {
+    for i in 0..N {
         if !active.lane(i) {
             continue;
         }
@@ -402,9 +422,9 @@ fn intersect(job: &WideJob, paths: &Paths) -> Surfaces {
 
 /// Lanes of `active` whose shadow ray is blocked before `t_max`.
 #[inline(always)]
-fn occluded(job: &WideJob, origin: &Vec3x8, dir: &Vec3x8, active: M8, t_max: F32x8) -> M8 {
+fn occluded<const N: usize>(job: &WideJob, origin: &Vec3s<N>, dir: &Vec3s<N>, active: Ms<N>, t_max: F32s<N>) -> Ms<N> {
     if let Some(geometry) = &job.wide.geometry {
         return geometry.occluded(origin, dir, active, t_max);
     }
-    M8::from_fn(|i| active.lane(i) && job.scene.occluded(&Ray::new(origin.lane(i), dir.lane(i)), t_max.0[i]))
+    Ms::<N>::from_fn(|i| active.lane(i) && job.scene.occluded(&Ray::new(origin.lane(i), dir.lane(i)), t_max.0[i]))
 }

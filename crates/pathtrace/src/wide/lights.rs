@@ -6,7 +6,7 @@
 //! uniform by area, pdf_ω = pmf · r² / (|cos θ_l| · A), as `light/area.rs` (derived in
 //! docs/sampling.md). Triangles use the square-root warp of `sampling::warp`.
 
-use super::simd::{F32x8, Vec3x8, LANES, M8};
+use super::simd::{F32s, Ms, Vec3s};
 use crate::light::{LightSet, LightShape};
 use crate::math::{Rgb, Vec3};
 
@@ -31,16 +31,16 @@ pub struct WideLights {
 
 /// Eight light samples (meaningful in `valid` lanes).
 #[derive(Clone, Copy, Debug)]
-pub struct LightSamples8 {
-    pub point: Vec3x8,
+pub struct LightSamples<const N: usize> {
+    pub point: Vec3s<N>,
     /// Unit direction from the reference point to `point`.
-    pub wi: Vec3x8,
+    pub wi: Vec3s<N>,
     /// Solid-angle density, light selection included.
-    pub pdf: F32x8,
-    pub radiance: [F32x8; 3],
+    pub pdf: F32s<N>,
+    pub radiance: [F32s<N>; 3],
     /// A point was found, with a positive finite density, on a face that emits towards the
     /// reference point.
-    pub valid: M8,
+    pub valid: Ms<N>,
 }
 
 impl WideLights {
@@ -76,26 +76,26 @@ impl WideLights {
     /// Samples a light point for each lane of `active` from `p`, with the selection numbers
     /// `u_select` and the point numbers `(u1, u2)`.
     #[inline(always)]
-    pub fn sample(
+    pub fn sample<const N: usize>(
         &self,
         set: &LightSet,
-        p: &Vec3x8,
-        active: M8,
-        u_select: &F32x8,
-        u1: F32x8,
-        u2: F32x8,
-    ) -> LightSamples8 {
+        p: &Vec3s<N>,
+        active: Ms<N>,
+        u_select: &F32s<N>,
+        u1: F32s<N>,
+        u2: F32s<N>,
+    ) -> LightSamples<N> {
         // Gather each lane's light (scalar: one table lookup per lane).
-        let mut origin = Vec3x8::default();
-        let mut e1 = Vec3x8::default();
-        let mut e2 = Vec3x8::default();
-        let mut normal = Vec3x8::default();
-        let mut pmf_per_area = F32x8::ZERO;
-        let mut radiance = [F32x8::ZERO; 3];
-        let mut triangle = M8::NONE;
-        let mut two_sided = M8::NONE;
-        let mut picked = M8::NONE;
-        for i in 0..LANES {
+        let mut origin = Vec3s::<N>::default();
+        let mut e1 = Vec3s::<N>::default();
+        let mut e2 = Vec3s::<N>::default();
+        let mut normal = Vec3s::<N>::default();
+        let mut pmf_per_area = F32s::<N>::ZERO;
+        let mut radiance = [F32s::<N>::ZERO; 3];
+        let mut triangle = Ms::<N>::NONE;
+        let mut two_sided = Ms::<N>::NONE;
+        let mut picked = Ms::<N>::NONE;
+        for i in 0..N {
             if !active.lane(i) {
                 continue;
             }
@@ -113,8 +113,8 @@ impl WideLights {
         }
         // Triangles: (1 − √u1, u2·√u1) (sampling::warp::square_to_uniform_triangle).
         let su = u1.sqrt();
-        let s = F32x8::select(triangle, 1.0 - su, u1);
-        let t = F32x8::select(triangle, u2 * su, u2);
+        let s = F32s::<N>::select(triangle, 1.0 - su, u1);
+        let t = F32s::<N>::select(triangle, u2 * su, u2);
         let point = origin.add(&e1.scale(s)).add(&e2.scale(t));
         let d = point.sub(p);
         let dist2 = d.dot(&d);
@@ -123,8 +123,8 @@ impl WideLights {
         let cos_l = normal.dot(&wi);
         let pdf = dist2 * pmf_per_area / cos_l.abs();
         // One-sided lights emit along their normal: towards p when cos θ_l = n·wi < 0.
-        let faces_p = two_sided | cos_l.lt(F32x8::ZERO);
-        let valid = picked & faces_p & pdf.gt(F32x8::ZERO) & pdf.is_finite() & dist.gt(F32x8::ZERO);
-        LightSamples8 { point, wi, pdf, radiance, valid }
+        let faces_p = two_sided | cos_l.lt(F32s::<N>::ZERO);
+        let valid = picked & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
+        LightSamples { point, wi, pdf, radiance, valid }
     }
 }

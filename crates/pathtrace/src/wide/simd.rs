@@ -1,66 +1,81 @@
-//! Eight-lane vectors (one path per lane) as plain arrays with lane-wise loops.
+//! Lane groups (one path per lane; 8 lanes for AVX2, 16 for AVX-512) as plain arrays with
+//! lane-wise loops.
 //!
-//! Why arrays and not `std::arch`: every operation is a fixed eight-iteration loop over
-//! `[f32; 8]`, which LLVM turns into single 256-bit instructions when the caller is compiled
-//! for AVX2 (the render loop is, chosen at run time; see `render/tile.rs`) and into pairs of
-//! 128-bit instructions in the portable build. The code stays safe, portable and bit-identical
+//! Why arrays and not `std::arch`: every operation is a fixed N-iteration loop over
+//! `[f32; N]`, which LLVM turns into single 256-bit (512-bit) instructions when the caller is
+//! compiled for AVX2 (AVX-512) — the render loop is, chosen at run time (see `render/tile.rs`) —
+//! and into 128-bit instructions in the portable build. The code stays safe, portable and bit-identical
 //! across both builds (no fused multiply-adds are formed in either).
 
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
-/// Number of lanes.
-pub const LANES: usize = 8;
+/// Lanes per group where 256-bit vectors are the widest (AVX2, and the portable build).
+pub const LANES_256: usize = 8;
+/// Lanes per group on CPUs with AVX-512.
+pub const LANES_512: usize = 16;
 
-/// Eight `f32`s.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-#[repr(C, align(32))]
-pub struct F32x8(pub [f32; LANES]);
+/// `N` `f32`s, one per lane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(64))]
+pub struct F32s<const N: usize>(pub [f32; N]);
 
-/// Eight lane conditions: all bits set (true) or clear (false) per lane, as SIMD compares give.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[repr(C, align(32))]
-pub struct M8(pub [u32; LANES]);
+/// `N` lane conditions: all bits set (true) or clear (false) per lane, as SIMD compares give.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C, align(64))]
+pub struct Ms<const N: usize>(pub [u32; N]);
+
+impl<const N: usize> Default for F32s<N> {
+    fn default() -> Self {
+        Self([0.0; N])
+    }
+}
+
+impl<const N: usize> Default for Ms<N> {
+    fn default() -> Self {
+        Self([0; N])
+    }
+}
 
 #[inline(always)]
-fn map(a: F32x8, f: impl Fn(f32) -> f32) -> F32x8 {
-    let mut out = [0.0; LANES];
-    for i in 0..LANES {
+fn map<const N: usize>(a: F32s<N>, f: impl Fn(f32) -> f32) -> F32s<N> {
+    let mut out = [0.0; N];
+    for i in 0..N {
         out[i] = f(a.0[i]);
     }
-    F32x8(out)
+    F32s(out)
 }
 
 #[inline(always)]
-fn zip(a: F32x8, b: F32x8, f: impl Fn(f32, f32) -> f32) -> F32x8 {
-    let mut out = [0.0; LANES];
-    for i in 0..LANES {
+fn zip<const N: usize>(a: F32s<N>, b: F32s<N>, f: impl Fn(f32, f32) -> f32) -> F32s<N> {
+    let mut out = [0.0; N];
+    for i in 0..N {
         out[i] = f(a.0[i], b.0[i]);
     }
-    F32x8(out)
+    F32s(out)
 }
 
 #[inline(always)]
-fn compare(a: F32x8, b: F32x8, f: impl Fn(f32, f32) -> bool) -> M8 {
-    let mut out = [0u32; LANES];
-    for i in 0..LANES {
+fn compare<const N: usize>(a: F32s<N>, b: F32s<N>, f: impl Fn(f32, f32) -> bool) -> Ms<N> {
+    let mut out = [0u32; N];
+    for i in 0..N {
         out[i] = if f(a.0[i], b.0[i]) { u32::MAX } else { 0 };
     }
-    M8(out)
+    Ms(out)
 }
 
-impl F32x8 {
-    pub const ZERO: F32x8 = F32x8([0.0; LANES]);
-    pub const ONE: F32x8 = F32x8([1.0; LANES]);
+impl<const N: usize> F32s<N> {
+    pub const ZERO: F32s<N> = F32s([0.0; N]);
+    pub const ONE: F32s<N> = F32s([1.0; N]);
 
     #[inline(always)]
     pub fn splat(v: f32) -> Self {
-        F32x8([v; LANES])
+        F32s([v; N])
     }
 
     /// Lane `i` of the result is `f(i)`.
     #[inline(always)]
     pub fn from_fn(f: impl FnMut(usize) -> f32) -> Self {
-        F32x8(std::array::from_fn(f))
+        F32s(std::array::from_fn(f))
     }
 
     /// `a < b ? a : b` per lane (the SIMD min: with a NaN, `b`).
@@ -87,65 +102,65 @@ impl F32x8 {
 
     /// `mask ? a : b` per lane.
     #[inline(always)]
-    pub fn select(mask: M8, a: Self, b: Self) -> Self {
-        let mut out = [0.0; LANES];
-        for i in 0..LANES {
+    pub fn select(mask: Ms<N>, a: Self, b: Self) -> Self {
+        let mut out = [0.0; N];
+        for i in 0..N {
             out[i] = f32::from_bits((a.0[i].to_bits() & mask.0[i]) | (b.0[i].to_bits() & !mask.0[i]));
         }
-        F32x8(out)
+        F32s(out)
     }
 
     #[inline(always)]
-    pub fn lt(self, b: Self) -> M8 {
+    pub fn lt(self, b: Self) -> Ms<N> {
         compare(self, b, |a, b| a < b)
     }
 
     #[inline(always)]
-    pub fn le(self, b: Self) -> M8 {
+    pub fn le(self, b: Self) -> Ms<N> {
         compare(self, b, |a, b| a <= b)
     }
 
     #[inline(always)]
-    pub fn gt(self, b: Self) -> M8 {
+    pub fn gt(self, b: Self) -> Ms<N> {
         compare(self, b, |a, b| a > b)
     }
 
     #[inline(always)]
-    pub fn ge(self, b: Self) -> M8 {
+    pub fn ge(self, b: Self) -> Ms<N> {
         compare(self, b, |a, b| a >= b)
     }
 
     /// Finite lanes (neither infinite nor NaN).
     #[inline(always)]
-    pub fn is_finite(self) -> M8 {
-        let mut out = [0u32; LANES];
-        for i in 0..LANES {
+    pub fn is_finite(self) -> Ms<N> {
+        let mut out = [0u32; N];
+        for i in 0..N {
             out[i] = if self.0[i].is_finite() { u32::MAX } else { 0 };
         }
-        M8(out)
+        Ms(out)
     }
 }
 
 macro_rules! binary_op {
     ($trait:ident, $method:ident, $op:tt) => {
-        impl $trait for F32x8 {
-            type Output = F32x8;
+        impl<const N: usize> $trait for F32s<N> {
+            type Output = F32s<N>;
             #[inline(always)]
-            fn $method(self, b: F32x8) -> F32x8 {
+            fn $method(self, b: F32s<N>) -> F32s<N> {
                 zip(self, b, |a, b| a $op b)
             }
         }
-        impl $trait<f32> for F32x8 {
-            type Output = F32x8;
+        impl<const N: usize> $trait<f32> for F32s<N> {
+            type Output = F32s<N>;
             #[inline(always)]
-            fn $method(self, b: f32) -> F32x8 {
+            fn $method(self, b: f32) -> F32s<N> {
                 map(self, |a| a $op b)
             }
         }
-        impl $trait<F32x8> for f32 {
-            type Output = F32x8;
+        impl<const N: usize> $trait<F32s<N>> for f32 {
+            type Output = F32s<N>;
             #[inline(always)]
-            fn $method(self, b: F32x8) -> F32x8 {
+            fn $method(self, b: F32s<N>) -> F32s<N> {
                 map(b, |b| self $op b)
             }
         }
@@ -157,22 +172,22 @@ binary_op!(Sub, sub, -);
 binary_op!(Mul, mul, *);
 binary_op!(Div, div, /);
 
-impl Neg for F32x8 {
-    type Output = F32x8;
+impl<const N: usize> Neg for F32s<N> {
+    type Output = F32s<N>;
     #[inline(always)]
-    fn neg(self) -> F32x8 {
+    fn neg(self) -> F32s<N> {
         map(self, |a| -a)
     }
 }
 
-impl M8 {
-    pub const NONE: M8 = M8([0; LANES]);
-    pub const ALL: M8 = M8([u32::MAX; LANES]);
+impl<const N: usize> Ms<N> {
+    pub const NONE: Ms<N> = Ms([0; N]);
+    pub const ALL: Ms<N> = Ms([u32::MAX; N]);
 
     /// Lane `i` is `f(i)`.
     #[inline(always)]
     pub fn from_fn(mut f: impl FnMut(usize) -> bool) -> Self {
-        M8(std::array::from_fn(|i| if f(i) { u32::MAX } else { 0 }))
+        Ms(std::array::from_fn(|i| if f(i) { u32::MAX } else { 0 }))
     }
 
     #[inline(always)]
@@ -189,56 +204,56 @@ impl M8 {
     #[inline(always)]
     pub fn bitmask(self) -> u32 {
         let mut bits = 0;
-        for i in 0..LANES {
+        for i in 0..N {
             bits |= (self.0[i] & 1) << i;
         }
         bits
     }
 }
 
-impl BitAnd for M8 {
-    type Output = M8;
+impl<const N: usize> BitAnd for Ms<N> {
+    type Output = Ms<N>;
     #[inline(always)]
-    fn bitand(self, b: M8) -> M8 {
-        M8(std::array::from_fn(|i| self.0[i] & b.0[i]))
+    fn bitand(self, b: Ms<N>) -> Ms<N> {
+        Ms(std::array::from_fn(|i| self.0[i] & b.0[i]))
     }
 }
 
-impl BitOr for M8 {
-    type Output = M8;
+impl<const N: usize> BitOr for Ms<N> {
+    type Output = Ms<N>;
     #[inline(always)]
-    fn bitor(self, b: M8) -> M8 {
-        M8(std::array::from_fn(|i| self.0[i] | b.0[i]))
+    fn bitor(self, b: Ms<N>) -> Ms<N> {
+        Ms(std::array::from_fn(|i| self.0[i] | b.0[i]))
     }
 }
 
-impl Not for M8 {
-    type Output = M8;
+impl<const N: usize> Not for Ms<N> {
+    type Output = Ms<N>;
     #[inline(always)]
-    fn not(self) -> M8 {
-        M8(std::array::from_fn(|i| !self.0[i]))
+    fn not(self) -> Ms<N> {
+        Ms(std::array::from_fn(|i| !self.0[i]))
     }
 }
 
-/// Three coordinates of eight vectors.
+/// Three coordinates of `N` vectors.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Vec3x8 {
-    pub x: F32x8,
-    pub y: F32x8,
-    pub z: F32x8,
+pub struct Vec3s<const N: usize> {
+    pub x: F32s<N>,
+    pub y: F32s<N>,
+    pub z: F32s<N>,
 }
 
-impl Vec3x8 {
+impl<const N: usize> Vec3s<N> {
     #[inline(always)]
     pub fn splat(v: glam::Vec3) -> Self {
-        Self { x: F32x8::splat(v.x), y: F32x8::splat(v.y), z: F32x8::splat(v.z) }
+        Self { x: F32s::<N>::splat(v.x), y: F32s::<N>::splat(v.y), z: F32s::<N>::splat(v.z) }
     }
 
     /// Lane `i` is `f(i)`.
     #[inline(always)]
     pub fn from_fn(f: impl Fn(usize) -> glam::Vec3) -> Self {
         let mut out = Self::default();
-        for i in 0..LANES {
+        for i in 0..N {
             out.set(i, f(i));
         }
         out
@@ -258,17 +273,17 @@ impl Vec3x8 {
 
     /// `x·x' + y·y' + z·z'`, in glam's order.
     #[inline(always)]
-    pub fn dot(&self, o: &Self) -> F32x8 {
+    pub fn dot(&self, o: &Self) -> F32s<N> {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
     #[inline(always)]
-    pub fn length(&self) -> F32x8 {
+    pub fn length(&self) -> F32s<N> {
         self.dot(self).sqrt()
     }
 
     #[inline(always)]
-    pub fn scale(&self, s: F32x8) -> Self {
+    pub fn scale(&self, s: F32s<N>) -> Self {
         Self { x: self.x * s, y: self.y * s, z: self.z * s }
     }
 
@@ -289,14 +304,18 @@ impl Vec3x8 {
 
     /// Largest absolute coordinate per lane.
     #[inline(always)]
-    pub fn max_abs(&self) -> F32x8 {
+    pub fn max_abs(&self) -> F32s<N> {
         self.x.abs().max(self.y.abs()).max(self.z.abs())
     }
 
     /// `mask ? a : b` per lane.
     #[inline(always)]
-    pub fn select(mask: M8, a: &Self, b: &Self) -> Self {
-        Self { x: F32x8::select(mask, a.x, b.x), y: F32x8::select(mask, a.y, b.y), z: F32x8::select(mask, a.z, b.z) }
+    pub fn select(mask: Ms<N>, a: &Self, b: &Self) -> Self {
+        Self {
+            x: F32s::<N>::select(mask, a.x, b.x),
+            y: F32s::<N>::select(mask, a.y, b.y),
+            z: F32s::<N>::select(mask, a.z, b.z),
+        }
     }
 }
 
@@ -304,11 +323,13 @@ impl Vec3x8 {
 mod tests {
     use super::*;
 
+    const N: usize = LANES_256;
+
     #[test]
     fn lane_ops_match_scalar_ops() {
-        let a = F32x8::from_fn(|i| i as f32 - 3.5);
-        let b = F32x8::from_fn(|i| 0.25 * i as f32 + 1.0);
-        for i in 0..LANES {
+        let a = F32s::<N>::from_fn(|i| i as f32 - 3.5);
+        let b = F32s::<N>::from_fn(|i| 0.25 * i as f32 + 1.0);
+        for i in 0..N {
             let (x, y) = (a.0[i], b.0[i]);
             assert_eq!((a + b).0[i], x + y);
             assert_eq!((a - b).0[i], x - y);
@@ -318,19 +339,19 @@ mod tests {
             assert_eq!(a.max(b).0[i], x.max(y));
             assert_eq!(a.abs().sqrt().0[i], x.abs().sqrt());
             assert_eq!(a.lt(b).lane(i), x < y);
-            assert_eq!(F32x8::select(a.lt(b), a, b).0[i], if x < y { x } else { y });
+            assert_eq!(F32s::<N>::select(a.lt(b), a, b).0[i], if x < y { x } else { y });
         }
     }
 
     #[test]
     fn masks_combine_and_summarise() {
-        let m = M8::from_fn(|i| i % 3 == 0);
+        let m = Ms::<N>::from_fn(|i| i % 3 == 0);
         assert_eq!(m.bitmask(), 0b0100_1001);
         assert!(m.any());
         assert!(!(m & !m).any());
-        assert_eq!((m | !m), M8::ALL);
-        let nan = F32x8::splat(f32::NAN);
-        assert!(!nan.lt(F32x8::ONE).any() && !nan.ge(F32x8::ONE).any());
-        assert_eq!(F32x8::from_fn(|i| if i == 2 { f32::INFINITY } else { 1.0 }).is_finite().bitmask(), 0b1111_1011);
+        assert_eq!((m | !m), Ms::<N>::ALL);
+        let nan = F32s::<N>::splat(f32::NAN);
+        assert!(!nan.lt(F32s::<N>::ONE).any() && !nan.ge(F32s::<N>::ONE).any());
+        assert_eq!(F32s::<N>::from_fn(|i| if i == 2 { f32::INFINITY } else { 1.0 }).is_finite().bitmask(), 0b1111_1011);
     }
 }
