@@ -90,9 +90,11 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
         let avx512 = avx2
             && std::arch::is_x86_feature_detected!("avx512f")
             && std::arch::is_x86_feature_detected!("avx512vl")
+            && std::arch::is_x86_feature_detected!("avx512dq")
+            && std::arch::is_x86_feature_detected!("avx512bw")
             && std::env::var_os("PATHTRACE_NO_AVX512").is_none();
         if avx512 && job.wide.is_some() {
-            // SAFETY: `render_tile_avx512` only requires AVX-512 F/VL, which the CPU was just checked to have.
+            // SAFETY: `render_tile_avx512` only requires AVX-512 F/VL/DQ/BW, which the CPU was just checked to have.
             #[allow(unsafe_code)]
             return unsafe { render_tile_avx512(job, sampler, tile, samples) };
         }
@@ -112,7 +114,7 @@ fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: W
 }
 
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,avx512f,avx512vl")]
+#[target_feature(enable = "avx2,avx512f,avx512vl,avx512dq,avx512bw")]
 fn render_tile_avx512(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     render_tile_body::<LANES_512>(job, sampler, tile, samples)
 }

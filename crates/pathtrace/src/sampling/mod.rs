@@ -14,4 +14,5 @@ pub use distribution::Distribution1D;
 pub use distribution2d::Distribution2D;
 pub use mis::{balance_heuristic, power_heuristic};
 pub use pcg::Pcg32;
+pub(crate) use pcg::MULTIPLIER as PCG_MULTIPLIER;
 pub use sampler::{Sampler, SamplerKind};

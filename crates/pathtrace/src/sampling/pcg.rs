@@ -8,7 +8,8 @@ pub struct Pcg32 {
     inc: u64,
 }
 
-const MULTIPLIER: u64 = 6_364_136_223_846_793_005;
+/// The LCG multiplier (also used by the wide kernel's lane-parallel copy of `next_u32`).
+pub(crate) const MULTIPLIER: u64 = 6_364_136_223_846_793_005;
 
 impl Pcg32 {
     /// A generator on stream `stream`, started from `seed`.
@@ -18,6 +19,11 @@ impl Pcg32 {
         rng.state = rng.state.wrapping_add(seed);
         rng.next_u32();
         rng
+    }
+
+    /// The generator's `(state, increment)`, for the wide kernel's lane-parallel copy.
+    pub(crate) fn parts(&self) -> (u64, u64) {
+        (self.state, self.inc)
     }
 
     #[inline]

@@ -110,6 +110,13 @@ impl Sampler {
         self.rng = Pcg32::new(stream, stream >> 1);
     }
 
+    /// What the wide kernel needs to continue this sample's sequence in SIMD lanes:
+    /// `(round hash, sample index, next dimension, PCG state, PCG increment)`.
+    pub(crate) fn lane_state(&self) -> (u64, u32, u32, u64, u64) {
+        let (state, inc) = self.rng.parts();
+        (self.round_hash, self.index, self.dimension, state, inc)
+    }
+
     fn next_dimension_hash(&mut self) -> u64 {
         let d = self.dimension;
         self.dimension += 1;

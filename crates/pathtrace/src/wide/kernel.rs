@@ -5,6 +5,7 @@
 //! emission found by the hit (MIS-weighted against light sampling), next-event estimation
 //! (one shadow ray per lane), cosine-weighted continuation, Russian roulette.
 
+use super::sampler::LaneSamplers;
 use super::simd::{F32s, Ms, Vec3s};
 use super::{warp, WideScene};
 use crate::camera::Camera;
@@ -110,6 +111,20 @@ struct Surfaces<const N: usize> {
     light: [u32; N],
 }
 
+impl<const N: usize> Surfaces<N> {
+    /// No lane has hit anything (yet).
+    fn none() -> Self {
+        Self {
+            hit: Ms::NONE,
+            p: Vec3s::default(),
+            n_geometric: Vec3s::default(),
+            n_shading: Vec3s::default(),
+            material: [0; N],
+            light: [Primitive::NO_LIGHT; N],
+        }
+    }
+}
+
 /// Where finished samples go.
 struct Output {
     pixels: Vec<PixelStats>,
@@ -183,7 +198,7 @@ pub(crate) fn render_tile_wide<const N: usize>(
     tile: Tile,
     samples: WaveSamples,
 ) -> TileResult {
-    let mut samplers: [Sampler; N] = std::array::from_fn(|_| proto.clone());
+    let mut samplers = LaneSamplers::<N>::new(proto);
     let mut out = Output {
         pixels: vec![PixelStats::default(); (tile.w * tile.h) as usize],
         stats: PathStats::default(),
@@ -193,14 +208,13 @@ pub(crate) fn render_tile_wide<const N: usize>(
     let mut paths = Paths::<N>::new();
     let max_depth = job.wide.settings.max_depth;
     loop {
-        for (i, sampler) in samplers.iter_mut().enumerate() {
+        for i in 0..N {
             if paths.active.lane(i) {
                 continue;
             }
             let Some(next) = queue.pop() else { break };
-            sampler.start(next.x, next.y, next.sample);
             // As render/tile.rs: the filter picks the point in the pixel and weights it by f/pdf.
-            let fs = job.filter.sample(sampler.next_2d());
+            let fs = job.filter.sample(samplers.start(i, next.x, next.y, next.sample));
             let ray = job.camera.generate_ray(next.x, next.y, fs.jitter);
             out.stats.camera_rays += 1;
             paths.start(i, &next, ray, fs.weight);
@@ -218,7 +232,7 @@ pub(crate) fn render_tile_wide<const N: usize>(
 
 /// One path vertex for every active lane.
 #[inline(always)]
-fn vertex<const N: usize>(job: &WideJob, paths: &mut Paths<N>, samplers: &mut [Sampler; N], out: &mut Output) {
+fn vertex<const N: usize>(job: &WideJob, paths: &mut Paths<N>, samplers: &mut LaneSamplers<N>, out: &mut Output) {
     let WideJob { scene, wide, .. } = *job;
     let settings = &wide.settings;
     let lights = &scene.lights;
@@ -281,15 +295,8 @@ fn vertex<const N: usize>(job: &WideJob, paths: &mut Paths<N>, samplers: &mut [S
     let origin = s.p.add(&offset);
 
     // ---- Next-event estimation ----------------------------------------------------------
-    let mut u_select = F32s::<N>::ZERO;
-    let (mut u1, mut u2) = (F32s::<N>::ZERO, F32s::<N>::ZERO);
-    for i in 0..N {
-        if alive.lane(i) {
-            u_select.0[i] = samplers[i].next_1d();
-            let u = samplers[i].next_2d();
-            (u1.0[i], u2.0[i]) = (u.x, u.y);
-        }
-    }
+    let u_select = samplers.next_1d(alive);
+    let (u1, u2) = samplers.next_2d(alive);
     let ls = wide.lights.sample(lights, &s.p, alive, &u_select, u1, u2);
     let cos_i = n_s.dot(&ls.wi);
     let zero = F32s::<N>::ZERO;
@@ -310,15 +317,10 @@ fn vertex<const N: usize>(job: &WideJob, paths: &mut Paths<N>, samplers: &mut [S
     }
 
     // ---- Continuation: cosine-weighted hemisphere ------------------------------------------
-    for i in 0..N {
-        if alive.lane(i) {
-            // The lobe choice the scalar loop draws (one lobe here: unused, but drawn so every
-            // later dimension matches the scalar kernel's).
-            let _ = samplers[i].next_1d();
-            let u = samplers[i].next_2d();
-            (u1.0[i], u2.0[i]) = (u.x, u.y);
-        }
-    }
+    // The lobe choice the scalar loop draws (one lobe here: unused, but drawn so every later
+    // dimension matches the scalar kernel's).
+    let _ = samplers.next_1d(alive);
+    let (u1, u2) = samplers.next_2d(alive);
     let local = warp::square_to_cosine_hemisphere(u1, u2);
     let wi = warp::to_world(&n_s, &local);
     // Reflection must stay on the viewer's side of the true surface (shading normals can
@@ -331,12 +333,14 @@ fn vertex<const N: usize>(job: &WideJob, paths: &mut Paths<N>, samplers: &mut [S
     }
 
     // ---- Russian roulette (Lambertian paths never refract: no η² to undo) -------------------
+    let roulette = alive & Ms::from_fn(|i| paths.segments[i] >= settings.rr_depth);
+    let u_survive = if roulette.any() { samplers.next_1d(roulette) } else { F32s::ZERO };
     for i in 0..N {
-        if !alive.lane(i) || paths.segments[i] < settings.rr_depth {
+        if !roulette.lane(i) {
             continue;
         }
         let q = paths.beta[0].0[i].max(paths.beta[1].0[i]).max(paths.beta[2].0[i]).min(0.95);
-        if samplers[i].next_1d() >= q {
+        if u_survive.0[i] >= q {
             paths.finish(i, out);
             alive.0[i] = 0;
         } else {
@@ -373,14 +377,8 @@ fn intersect<const N: usize>(job: &WideJob, paths: &Paths<N>) -> Surfaces<N> {
     let active = paths.active;
     if let Some(geometry) = &job.wide.geometry {
         let hits = geometry.intersect(&paths.origin, &paths.dir, active, F32s::<N>::splat(f32::INFINITY));
-        let mut s = Surfaces {
-            hit: Ms::<N>::NONE,
-            p: paths.origin.add(&paths.dir.scale(hits.t)),
-            n_geometric: Vec3s::<N>::default(),
-            n_shading: Vec3s::<N>::default(),
-            material: [0; N],
-            light: [Primitive::NO_LIGHT; N],
-        };
+        let mut s = Surfaces::none();
+        s.p = paths.origin.add(&paths.dir.scale(hits.t));
         for i in 0..N {
             if active.lane(i) && hits.polygon[i] != u32::MAX {
                 let (n, material, light) = geometry.polygon(hits.polygon[i]);
@@ -394,14 +392,7 @@ fn intersect<const N: usize>(job: &WideJob, paths: &Paths<N>) -> Surfaces<N> {
         return s;
     }
     // Larger scenes: the BVH, one lane at a time.
-    let mut s = Surfaces {
-        hit: Ms::<N>::NONE,
-        p: Vec3s::<N>::default(),
-        n_geometric: Vec3s::<N>::default(),
-        n_shading: Vec3s::<N>::default(),
-        material: [0; N],
-        light: [Primitive::NO_LIGHT; N],
-    };
+    let mut s = Surfaces::none();
     for i in 0..N {
         if !active.lane(i) {
             continue;

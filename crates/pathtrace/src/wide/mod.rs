@@ -25,6 +25,7 @@
 mod geometry;
 mod kernel;
 mod lights;
+mod sampler;
 pub mod simd;
 pub mod warp;
 
