@@ -28,6 +28,10 @@ enum Mode {
 
 /// The samplers of `N` lanes.
 pub(crate) struct LaneSamplers<const N: usize> {
+    /// Starts every lane's samples: the queue hands out a pixel's samples one after another,
+    /// so one sampler reuses the pixel's hashes across lanes.
+    starter: Sampler,
+    /// Per lane (used by the stratified sampler only).
     scalar: [Sampler; N],
     mode: Mode,
     round_hash: [u64; N],
@@ -45,6 +49,7 @@ impl<const N: usize> LaneSamplers<N> {
             SamplerKind::Stratified => Mode::PerLane,
         };
         Self {
+            starter: proto.clone(),
             scalar: std::array::from_fn(|_| proto.clone()),
             mode,
             round_hash: [0; N],
@@ -58,10 +63,12 @@ impl<const N: usize> LaneSamplers<N> {
     /// Starts sample `index` of pixel `(x, y)` in lane `i` and returns its first 2D point (the
     /// pixel filter's).
     pub fn start(&mut self, i: usize, x: u32, y: u32, index: u32) -> Vec2 {
-        let s = &mut self.scalar[i];
+        let s = &mut self.starter;
         s.start(x, y, index);
         let u = s.next_2d();
-        if self.mode != Mode::PerLane {
+        if self.mode == Mode::PerLane {
+            self.scalar[i].clone_from(s);
+        } else {
             (self.round_hash[i], self.index[i], self.dimension[i], self.state[i], self.inc[i]) = s.lane_state();
         }
         u
@@ -198,12 +205,17 @@ mod tests {
     /// draws (masked out) and lanes at different dimensions.
     #[test]
     fn lanes_draw_the_scalar_samplers_numbers() {
-        for kind in [SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::Stratified] {
-            let proto = Sampler::new(kind, 11, 64);
+        // Strata of 4 make samples 3i + 1 span several rounds; lanes come in fours per pixel,
+        // so the starter's cached pixel and round hashes are both reused and replaced.
+        let cases = [SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::Stratified].map(|k| [(k, 64), (k, 4)]);
+        for (kind, strata) in cases.into_iter().flatten() {
+            let proto = Sampler::new(kind, 11, strata);
             let mut lanes = LaneSamplers::<N>::new(&proto);
             let mut reference: Vec<Sampler> = (0..N).map(|_| proto.clone()).collect();
             for (i, r) in reference.iter_mut().enumerate() {
-                let (x, y, s) = (i as u32 * 7 % 5, i as u32 / 3, 3 * i as u32 + 1);
+                let (x, y, s) = (i as u32 / 4 % 3, 1, 3 * (i as u32 % 5) + 1);
+                // A fresh scalar sampler per sample: what the lanes draw must not depend on caching.
+                *r = proto.clone();
                 assert_eq!(lanes.start(i, x, y, s), {
                     r.start(x, y, s);
                     r.next_2d()
