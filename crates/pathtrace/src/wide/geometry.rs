@@ -12,6 +12,7 @@
 //! ẽ1 = (e2 × n)/|n|², ẽ2 = (n × e1)/|n|². A quad holds a, b ∈ [0, 1]; a triangle a, b ≥ 0,
 //! a + b ≤ 1 (a and b are then its barycentric coordinates).
 
+use super::boxes::Parallelepiped;
 use super::simd::{F32s, Ms, Vec3s};
 use crate::math::Vec3;
 use crate::primitive_store::FlatPolygon;
@@ -34,9 +35,11 @@ struct Plane {
 /// The polygons of a small scene, with what shading needs at a hit.
 #[derive(Clone, Debug)]
 pub struct FlatGeometry {
+    boxes: Vec<Parallelepiped>,
     quads: Vec<Plane>,
     triangles: Vec<Plane>,
-    /// Per polygon (quads first, then triangles): unit normal along e1 × e2, material, light.
+    /// Per polygon (the boxes' faces first, six per box, then quads, then triangles): unit
+    /// normal along e1 × e2, material, light.
     normals: Vec<Vec3>,
     materials: Vec<u32>,
     lights: Vec<u32>,
@@ -52,7 +55,21 @@ pub struct Hits<const N: usize> {
 impl FlatGeometry {
     /// `None` when some polygon is degenerate (the scene builder rejects those already).
     pub(crate) fn new(polygons: &[FlatPolygon]) -> Option<Self> {
-        let (quads, triangles): (Vec<&FlatPolygon>, Vec<&FlatPolygon>) = polygons.iter().partition(|p| !p.triangle);
+        let (quad_list, triangles): (Vec<&FlatPolygon>, Vec<&FlatPolygon>) = polygons.iter().partition(|p| !p.triangle);
+        // Runs of six quads that bound a box (as `box` objects make them) become one box.
+        let (mut boxes, mut box_faces, mut quads) = (Vec::new(), Vec::new(), Vec::new());
+        let mut i = 0;
+        while i < quad_list.len() {
+            let run: Vec<FlatPolygon> = quad_list[i..(i + 6).min(quad_list.len())].iter().map(|p| **p).collect();
+            if let Some(b) = Parallelepiped::recognise(&run) {
+                boxes.push(b);
+                box_faces.extend(&quad_list[i..i + 6]);
+                i += 6;
+            } else {
+                quads.push(quad_list[i]);
+                i += 1;
+            }
+        }
         let plane = |p: &&FlatPolygon| {
             let n = p.e1.cross(p.e2);
             let n2 = n.length_squared();
@@ -64,8 +81,9 @@ impl FlatGeometry {
                 e2_dual: n.cross(p.e1) / n2,
             })
         };
-        let ordered = || quads.iter().chain(&triangles);
+        let ordered = || box_faces.iter().chain(&quads).chain(&triangles);
         Some(Self {
+            boxes,
             quads: quads.iter().map(plane).collect::<Option<_>>()?,
             triangles: triangles.iter().map(plane).collect::<Option<_>>()?,
             normals: ordered().map(|p| p.e1.cross(p.e2).normalize()).collect(),
@@ -86,11 +104,20 @@ impl FlatGeometry {
     pub fn intersect<const N: usize>(&self, o: &Vec3s<N>, d: &Vec3s<N>, active: Ms<N>, t_max: F32s<N>) -> Hits<N> {
         let mut best = F32s::<N>::select(active, t_max, F32s::<N>::ZERO);
         let mut polygon = [u32::MAX; N];
+        for (k, b) in self.boxes.iter().enumerate() {
+            let (hit, t, face) = b.test(o, d, best);
+            best = F32s::select(hit, t, best);
+            for i in 0..N {
+                let id = 6 * k as u32 + face.0[i] as u32;
+                polygon[i] = (id & hit.0[i]) | (polygon[i] & !hit.0[i]);
+            }
+        }
+        let first_quad = 6 * self.boxes.len() as u32;
         for (k, plane) in self.quads.iter().enumerate() {
             let (hit, t) = plane.test::<N, false>(o, d, best);
-            record(hit, t, k as u32, &mut best, &mut polygon);
+            record(hit, t, first_quad + k as u32, &mut best, &mut polygon);
         }
-        let first = self.quads.len() as u32;
+        let first = first_quad + self.quads.len() as u32;
         for (k, plane) in self.triangles.iter().enumerate() {
             let (hit, t) = plane.test::<N, true>(o, d, best);
             record(hit, t, first + k as u32, &mut best, &mut polygon);
@@ -103,6 +130,12 @@ impl FlatGeometry {
     pub fn occluded<const N: usize>(&self, o: &Vec3s<N>, d: &Vec3s<N>, active: Ms<N>, t_max: F32s<N>) -> Ms<N> {
         let limit = F32s::<N>::select(active, t_max, F32s::<N>::ZERO);
         let mut blocked = Ms::<N>::NONE;
+        for b in &self.boxes {
+            blocked = blocked | b.test(o, d, limit).0;
+            if !(active & !blocked).any() {
+                return active;
+            }
+        }
         for plane in &self.quads {
             blocked = blocked | plane.test::<N, false>(o, d, limit).0;
             if !(active & !blocked).any() {
@@ -157,6 +190,7 @@ impl Plane {
 mod tests {
     use super::*;
     use crate::math::Ray;
+    use crate::math::Transform;
     use crate::sampling::Pcg32;
     use crate::shape::{Quad, Triangle};
     use crate::wide::simd::LANES_256 as N;
@@ -165,24 +199,13 @@ mod tests {
         Vec3::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, rng.next_f32() - 0.5) * scale
     }
 
-    /// Random quads and triangles; eight rays at a time against the scalar shape tests.
-    #[test]
-    fn brute_force_hits_agree_with_the_scalar_shape_tests() {
-        let mut rng = Pcg32::new(7, 3);
-        let polygons: Vec<FlatPolygon> = (0..40)
-            .map(|k| FlatPolygon {
-                origin: random_vec(&mut rng, 4.0),
-                e1: random_vec(&mut rng, 2.0),
-                e2: random_vec(&mut rng, 2.0),
-                triangle: k % 3 == 0,
-                material: k,
-                light: u32::MAX,
-            })
-            .collect();
-        let geometry = FlatGeometry::new(&polygons).unwrap();
+    /// Casts 4000 groups of random rays at `polygons` and compares the brute-force hits with
+    /// the scalar quad and triangle tests; returns how many rays hit.
+    fn assert_agrees_with_scalar(polygons: &[FlatPolygon], rng: &mut Pcg32) -> u32 {
+        let geometry = FlatGeometry::new(polygons).unwrap();
         let scalar_hit = |ray: &Ray, t_max: f32| -> Option<(f32, u32)> {
             let mut best: Option<(f32, u32)> = None;
-            for p in &polygons {
+            for p in polygons {
                 let limit = best.map_or(t_max, |b| b.0);
                 let hit = if p.triangle {
                     Triangle::new(p.origin, p.origin + p.e1, p.origin + p.e2, Triangle::FLAT)?
@@ -199,11 +222,11 @@ mod tests {
         let (mut hits, mut disagreements) = (0, 0);
         for _ in 0..4000 {
             let rays: Vec<Ray> =
-                (0..N).map(|_| Ray::new(random_vec(&mut rng, 6.0), random_vec(&mut rng, 2.0).normalize())).collect();
+                (0..N).map(|_| Ray::new(random_vec(rng, 6.0), random_vec(rng, 2.0).normalize())).collect();
             let o = Vec3s::<N>::from_fn(|i| rays[i].origin);
             let d = Vec3s::<N>::from_fn(|i| rays[i].dir);
-            let t_max = F32s::<N>::from_fn(|i| if i == 5 { 1.5 } else { f32::INFINITY });
-            let active = Ms::<N>::from_fn(|i| i != 2);
+            let t_max = F32s::from_fn(|i| if i == 5 { 1.5 } else { f32::INFINITY });
+            let active = Ms::from_fn(|i| i != 2);
             let wide = geometry.intersect(&o, &d, active, t_max);
             let blocked = geometry.occluded(&o, &d, active, t_max);
             for (i, ray) in rays.iter().enumerate() {
@@ -227,7 +250,59 @@ mod tests {
                 assert_eq!(blocked.lane(i), got.is_some(), "any-hit agrees with closest-hit");
             }
         }
-        assert!(hits > 2000, "the test rays must hit often: {hits}");
         assert!(disagreements <= 2, "{disagreements} rays of {hits} hits disagree");
+        hits
+    }
+
+    fn random_polygon(rng: &mut Pcg32, k: u32) -> FlatPolygon {
+        FlatPolygon {
+            origin: random_vec(rng, 4.0),
+            e1: random_vec(rng, 2.0),
+            e2: random_vec(rng, 2.0),
+            triangle: k % 3 == 0,
+            material: k,
+            light: u32::MAX,
+        }
+    }
+
+    /// Random quads and triangles against the scalar shape tests.
+    #[test]
+    fn brute_force_hits_agree_with_the_scalar_shape_tests() {
+        let mut rng = Pcg32::new(7, 3);
+        let polygons: Vec<FlatPolygon> = (0..40).map(|k| random_polygon(&mut rng, k)).collect();
+        let hits = assert_agrees_with_scalar(&polygons, &mut rng);
+        assert!(hits > 2000, "the test rays must hit often: {hits}");
+    }
+
+    /// Rotated, sheared boxes made by `Quad::box_faces` are recognised and hit where their six
+    /// quads are, by rays from outside and inside them.
+    #[test]
+    fn boxes_are_recognised_and_agree_with_their_quads() {
+        let mut rng = Pcg32::new(9, 4);
+        let mut polygons = Vec::new();
+        let mut k = 0;
+        for b in 0..5 {
+            let place = Transform::rotate_y(37.0 * b as f32)
+                .then(&Transform::rotate_x(11.0 * b as f32))
+                .then(&Transform::scale(Vec3::new(1.0, 0.5 + 0.3 * b as f32, 1.2)).unwrap())
+                .then(&Transform::translate(random_vec(&mut rng, 5.0)));
+            let size = Vec3::new(1.0 + rng.next_f32(), 1.0 + rng.next_f32(), 0.5 + rng.next_f32());
+            for face in Quad::box_faces(-0.5 * size, 0.5 * size, &place).unwrap() {
+                polygons.push(FlatPolygon {
+                    origin: face.q,
+                    e1: face.u,
+                    e2: face.v,
+                    triangle: false,
+                    material: k,
+                    light: u32::MAX,
+                });
+                k += 1;
+            }
+            polygons.push(random_polygon(&mut rng, k));
+            k += 1;
+        }
+        assert_eq!(FlatGeometry::new(&polygons).unwrap().boxes.len(), 5);
+        let hits = assert_agrees_with_scalar(&polygons, &mut rng);
+        assert!(hits > 2000, "the test rays must hit often: {hits}");
     }
 }

@@ -22,6 +22,7 @@
 // chains over them would hide that and vectorise no better.
 #![allow(clippy::needless_range_loop)]
 
+mod boxes;
 mod geometry;
 mod kernel;
 mod lights;
