@@ -44,7 +44,7 @@ impl Parallelepiped {
         let matches =
             faces.iter().zip(&expected).all(|(f, &(q, u, v))| close(f.origin, q) && close(f.e1, u) && close(f.e2, v));
         let volume = e[0].dot(e[1].cross(e[2]));
-        if !matches || !(volume > 0.0 && volume.is_finite()) {
+        if !(matches && volume > 0.0 && volume.is_finite()) {
             return None;
         }
         // Rows of the inverse edge matrix: D_k = (E_{k+1} × E_{k+2}) / volume.
