@@ -40,6 +40,17 @@ def rel_mse(np, img, ref):
     return float(np.mean((img - ref) ** 2 / (ref * ref + 0.01)))
 
 
+def load_pfm(np, path):
+    """A colour PFM as written by pathtrace: header, then rows bottom to top, little-endian f32."""
+    with open(path, "rb") as fh:
+        if fh.readline().strip() != b"PF":
+            sys.exit(f"{path}: not a colour PFM")
+        width, height = (int(v) for v in fh.readline().split())
+        scale = float(fh.readline())
+        data = np.frombuffer(fh.read(), dtype="<f4" if scale < 0 else ">f4")
+    return data.reshape(height, width, 3)[::-1].astype(np.float64)
+
+
 def crossing(curve, target):
     """Time at which (time, error) points first reach target, log-log interpolated; None if never."""
     for i, (t, e) in enumerate(curve):
@@ -82,7 +93,11 @@ class Pathtrace:
 
     def render(self, np, spp, seed, tmp):
         a = self.args
-        out, stats = os.path.join(tmp, "pt.exr"), os.path.join(tmp, "pt.json")
+        # PFM, read by numpy alone: loading an EXR through mi.Bitmap wakes Dr.Jit's worker
+        # threads, which keep spinning for a while and took the CPUs from our next render
+        # (a 128x128, 16-spp render measured 0.034 s after an mi.Bitmap load instead of 0.023 s
+        # back to back; docs/benchmarks.md).
+        out, stats = os.path.join(tmp, "pt.pfm"), os.path.join(tmp, "pt.json")
         cmd = shlex.split(self.binary) + [
             "render", "cornell-box", "--size", f"{a.size}x{a.size}", "--spp", str(spp),
             "--max-depth", str(a.max_depth), "--strategy", "mis", "--sampler", self.sampler,
@@ -93,8 +108,7 @@ class Pathtrace:
             sys.exit(f"pathtrace failed: {' '.join(cmd)}\n{proc.stderr}")
         with open(stats) as fh:
             seconds = float(json.load(fh)["render_seconds"])
-        self.mi.set_variant("scalar_rgb")
-        return seconds, cm.load_exr(self.mi, np, out)[:, :, :3]
+        return seconds, load_pfm(np, out)
 
 
 def main(argv=None):
