@@ -179,10 +179,7 @@ impl<const N: usize> Paths<N> {
 
     /// Ends every lane of `mask`.
     fn finish_all(&mut self, mask: Ms<N>, out: &mut Output) {
-        let mut bits = mask.bitmask();
-        while bits != 0 {
-            let i = bits.trailing_zeros() as usize;
-            bits &= bits - 1;
+        for i in mask.lanes() {
             self.finish(i, out);
         }
     }
@@ -208,10 +205,7 @@ pub(crate) fn render_tile_wide<const N: usize>(
     let mut paths = Paths::<N>::new();
     let max_depth = job.wide.settings.max_depth;
     loop {
-        let mut idle = (!paths.active).bitmask();
-        while idle != 0 {
-            let i = idle.trailing_zeros() as usize;
-            idle &= idle - 1;
+        for i in (!paths.active).lanes() {
             let Some(next) = queue.pop() else { break };
             // As render/tile.rs: the filter picks the point in the pixel and weights it by f/pdf.
             let fs = job.filter.sample(samplers.start(i, next.x, next.y, next.sample));
@@ -245,10 +239,7 @@ fn vertex<const N: usize>(job: &WideJob, paths: &mut Paths<N>, samplers: &mut La
     let wo = paths.dir.neg();
 
     // ---- Emission found by the hit (rare: lane by lane) ---------------------------------
-    let mut emitters = (alive & Ms::from_fn(|i| s.light[i] != Primitive::NO_LIGHT)).bitmask();
-    while emitters != 0 {
-        let i = emitters.trailing_zeros() as usize;
-        emitters &= emitters - 1;
+    for i in (alive & Ms::from_fn(|i| s.light[i] != Primitive::NO_LIGHT)).lanes() {
         let Some(light) = lights.get(s.light[i]) else { continue };
         let le = light.emitted(s.n_geometric.lane(i), wo.lane(i));
         if le.is_black() {
@@ -267,10 +258,7 @@ fn vertex<const N: usize>(job: &WideJob, paths: &mut Paths<N>, samplers: &mut La
 
     // ---- Depth limit and black surfaces end the path; albedos of the rest ------------------
     let mut albedo = [F32s::<N>::ZERO; 3];
-    let mut lanes = alive.bitmask();
-    while lanes != 0 {
-        let i = lanes.trailing_zeros() as usize;
-        lanes &= lanes - 1;
+    for i in alive.lanes() {
         match wide.albedo.get(s.material[i] as usize).copied().flatten() {
             Some(a) if paths.segments[i] < max_depth => {
                 [albedo[0].0[i], albedo[1].0[i], albedo[2].0[i]] = [a.r, a.g, a.b];

@@ -200,6 +200,19 @@ impl<const N: usize> Ms<N> {
         self.0.iter().fold(0, |acc, &m| acc | m) != 0
     }
 
+    /// The indices of the set lanes, lowest first (walking the bitmask: no branch per lane).
+    #[inline(always)]
+    pub fn lanes(self) -> impl Iterator<Item = usize> {
+        let mut bits = self.bitmask();
+        std::iter::from_fn(move || {
+            (bits != 0).then(|| {
+                let i = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                i
+            })
+        })
+    }
+
     /// One bit per lane, lane 0 lowest.
     #[inline(always)]
     pub fn bitmask(self) -> u32 {
@@ -347,6 +360,8 @@ mod tests {
     fn masks_combine_and_summarise() {
         let m = Ms::<N>::from_fn(|i| i % 3 == 0);
         assert_eq!(m.bitmask(), 0b0100_1001);
+        assert_eq!(m.lanes().collect::<Vec<_>>(), vec![0, 3, 6]);
+        assert_eq!(Ms::<N>::NONE.lanes().count(), 0);
         assert!(m.any());
         assert!(!(m & !m).any());
         assert_eq!((m | !m), Ms::<N>::ALL);
