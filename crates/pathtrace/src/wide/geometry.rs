@@ -259,7 +259,7 @@ mod tests {
             origin: random_vec(rng, 4.0),
             e1: random_vec(rng, 2.0),
             e2: random_vec(rng, 2.0),
-            triangle: k % 3 == 0,
+            triangle: k.is_multiple_of(3),
             material: k,
             light: u32::MAX,
         }

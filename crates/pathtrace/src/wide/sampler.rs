@@ -222,7 +222,7 @@ mod tests {
                 });
             }
             for step in 0..40u32 {
-                let mask = Ms::from_fn(|i| (i as u32 + step) % 3 != 0);
+                let mask = Ms::from_fn(|i| !(i as u32 + step).is_multiple_of(3));
                 if step % 2 == 0 {
                     let got = lanes.next_1d(mask);
                     for (i, r) in reference.iter_mut().enumerate().filter(|(i, _)| mask.lane(*i)) {
