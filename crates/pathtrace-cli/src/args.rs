@@ -204,9 +204,9 @@ pub struct QualityArgs {
     /// (every light equally) [default: the scene's, else power]
     #[arg(long, value_name = "MODE", value_parser = parse_from_str::<LightSelection>)]
     pub light_selection: Option<LightSelection>,
-    /// Path loop: auto (the wide kernel where the scene allows it, else scalar), scalar (one path
-    /// at a time: every scene) or wide (eight paths per SIMD lane group: Lambertian surfaces,
-    /// flat area lights, mis; an error otherwise). Both converge to the same image
+    /// Paths traced at once: auto and wide (groups of 8 in SIMD lanes, 16 with AVX-512: every
+    /// scene) or scalar (one at a time: the same estimator in one lane, for debugging). At 1 spp
+    /// both give the same image to the bit; beyond, the same image within noise
     #[arg(long, value_parser = parse_from_str::<Kernel>, default_value = "auto")]
     pub kernel: Kernel,
     /// Random seed: the same seed, scene and settings give the same image [default: the scene's, else 0]

@@ -181,7 +181,13 @@ impl Scene {
     /// from one flag, so the constant case costs a predictable branch per hit.
     #[inline(always)]
     pub fn is_textured(&self, it: &Interaction) -> bool {
-        self.has_textures() && self.bindings.get(it.material_id as usize).is_some_and(|b| !b.is_empty())
+        self.is_material_textured(it.material_id)
+    }
+
+    /// True if material `id` has textured colours.
+    #[inline(always)]
+    pub fn is_material_textured(&self, id: u32) -> bool {
+        self.has_textures() && self.bindings.get(id as usize).is_some_and(|b| !b.is_empty())
     }
 
     /// The material at a hit with its textures evaluated at the hit's uv.

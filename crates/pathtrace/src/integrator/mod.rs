@@ -1,10 +1,14 @@
 //! Integrators: how a camera ray becomes a radiance estimate.
 
 mod aov;
+mod lanes;
 mod path;
+mod regenerate;
+mod shade;
 mod strategy;
 
 pub use aov::{first_hit_aovs, FirstHitAovs};
 
-pub use path::{radiance, PathSettings, PathStats};
+pub use path::{PathSettings, PathStats};
+pub(crate) use regenerate::{render_tile_lanes, LaneJob};
 pub use strategy::Strategy;

@@ -1,14 +1,31 @@
-//! The path tracer: one loop per camera sample, in four phases per vertex — emission hit,
-//! light sampling, direction sampling, Russian roulette.
+//! The path tracer's one estimator: each vertex of a group of paths, in banner-marked phases —
+//! escape, emission hit, light sampling, direction sampling, Russian roulette.
+//!
+//! Paths run in groups of `N` SIMD lanes (8 with AVX2, 16 with AVX-512, 1 for the one-lane
+//! instance of `Kernel::Scalar`); `integrator::regenerate` refills a lane with the tile's next
+//! camera sample as soon as its path ends. Each phase runs for all live lanes: lanes whose
+//! surface and lights have a lane-parallel form (Lambertian surfaces under flat area lights)
+//! are computed together in SIMD, every other lane by `integrator::shade` through the scene's
+//! own materials and lights. Both take the same random numbers in the same order, so every
+//! sampler keeps its properties.
 //!
 //! Depth counts path segments, as Mitsuba does: `max_depth = 1` shows only emitters seen
 //! directly, 2 adds direct lighting, -1 is unlimited.
 
+// Lane loops index several structure-of-arrays fields with the same lane or channel number;
+// iterator chains over them would hide that and vectorise no better.
+#![allow(clippy::needless_range_loop)]
+
+use super::lanes::{Output, Paths, Surfaces};
+use super::regenerate::LaneJob;
+use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
 use super::Strategy;
-use crate::material::Material;
-use crate::math::{offset_ray_origin, Frame, Ray, Rgb, Vec3};
-use crate::sampling::Sampler;
-use crate::scene::{Primitive, Scene};
+use crate::material::{lambertian, Material};
+use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2};
+use crate::scene::{Interaction, Primitive, Scene};
+use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::warp;
+use crate::wide::{LaneSamplers, LightSamples};
 
 /// Settings of the path loop.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,6 +40,17 @@ pub struct PathSettings {
 impl Default for PathSettings {
     fn default() -> Self {
         Self { strategy: Strategy::Mis, max_depth: -1, rr_depth: 5 }
+    }
+}
+
+impl PathSettings {
+    /// The segment limit as a count (`u32::MAX` for unlimited).
+    pub fn max_segments(&self) -> u32 {
+        if self.max_depth < 0 {
+            u32::MAX
+        } else {
+            self.max_depth as u32
+        }
     }
 }
 
@@ -46,241 +74,384 @@ impl PathStats {
     }
 }
 
-/// Where the path came from, for weighting emission found by the next hit.
-#[derive(Clone, Copy)]
-struct PrevVertex {
-    p: Vec3,
-    /// Solid-angle pdf of the direction chosen there (by the material, under MIS).
-    pdf: f32,
-    /// The direction came from a Dirac lobe (or the camera): emission counts in full.
-    specular: bool,
+/// The shadow rays and continuations of a vertex, per lane.
+struct Scattered<const N: usize> {
+    shadow: Ms<N>,
+    shadow_origin: Vec3s<N>,
+    shadow_dir: Vec3s<N>,
+    shadow_t_max: F32s<N>,
+    /// What an unoccluded shadow ray adds (throughput included).
+    contribution: [F32s<N>; 3],
+    goes_on: Ms<N>,
+    origin: Vec3s<N>,
+    dir: Vec3s<N>,
+    weight: [F32s<N>; 3],
+    pdf: F32s<N>,
+    specular: Ms<N>,
+    eta: F32s<N>,
 }
 
-/// Light-sampling shadow rays stop this fraction short of the light, so they do not hit it.
-const SHADOW_EPSILON: f32 = 1e-4;
+// Always inlined, as every helper of the lane loop: a helper compiled outside the loop's
+// AVX2/AVX-512 context would work on the lanes with narrower instructions.
+impl<const N: usize> Scattered<N> {
+    #[inline(always)]
+    fn none() -> Self {
+        Self {
+            shadow: Ms::NONE,
+            shadow_origin: Vec3s::default(),
+            shadow_dir: Vec3s::default(),
+            shadow_t_max: F32s::ZERO,
+            contribution: [F32s::ZERO; 3],
+            goes_on: Ms::NONE,
+            origin: Vec3s::default(),
+            dir: Vec3s::default(),
+            weight: [F32s::ZERO; 3],
+            pdf: F32s::ZERO,
+            specular: Ms::NONE,
+            eta: F32s::ONE,
+        }
+    }
 
-/// Estimates the radiance arriving along `ray` (a camera ray).
+    #[inline(always)]
+    fn set_shadow(&mut self, i: usize, s: &ShadowRay) {
+        self.shadow.0[i] = u32::MAX;
+        self.shadow_origin.set(i, s.origin);
+        self.shadow_dir.set(i, s.dir);
+        self.shadow_t_max.0[i] = s.t_max;
+        [self.contribution[0].0[i], self.contribution[1].0[i], self.contribution[2].0[i]] = s.contribution.to_array();
+    }
+
+    #[inline(always)]
+    fn set_next(&mut self, i: usize, c: &Continuation) {
+        self.goes_on.0[i] = u32::MAX;
+        self.origin.set(i, c.origin);
+        self.dir.set(i, c.dir);
+        [self.weight[0].0[i], self.weight[1].0[i], self.weight[2].0[i]] = c.weight.to_array();
+        self.pdf.0[i] = c.pdf;
+        self.specular.0[i] = if c.specular { u32::MAX } else { 0 };
+        self.eta.0[i] = c.eta;
+    }
+}
+
+/// One path vertex for every active lane.
 #[inline(always)]
-pub fn radiance(
-    scene: &Scene,
-    camera_ray: Ray,
-    sampler: &mut Sampler,
-    settings: &PathSettings,
-    stats: &mut PathStats,
-) -> Rgb {
-    stats.camera_rays += 1;
-    let max_depth = if settings.max_depth < 0 { u32::MAX } else { settings.max_depth as u32 };
-    if max_depth == 0 {
-        return Rgb::BLACK;
-    }
+pub(crate) fn vertex<const N: usize>(
+    job: &LaneJob,
+    paths: &mut Paths<N>,
+    samplers: &mut LaneSamplers<N>,
+    out: &mut Output,
+) {
+    let LaneJob { scene, lanes, .. } = *job;
+    let settings = &lanes.settings;
     let strategy = settings.strategy;
-    let lights = &scene.lights;
-    let mut l = Rgb::BLACK;
-    let mut beta = Rgb::WHITE;
-    let mut eta_scale = 1.0f32;
-    let mut ray = camera_ray;
-    let mut segments = 1u32;
-    let mut prev = PrevVertex { p: ray.origin, pdf: 0.0, specular: true };
-    // Asked once per path, so untextured scenes pay one register test per hit.
-    let has_textures = scene.has_textures();
+    let scene_lights = &scene.lights;
+    let materials = scene.materials();
 
-    loop {
-        // ---- Escape: the environment (if any) is seen, then the path ends ------------------
-        let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
-            if let Some(env) = lights.environment() {
-                let weight = if strategy.is_mis() && !prev.specular {
-                    strategy.mis_weight(prev.pdf, lights.pdf_environment(ray.dir))
-                } else {
-                    1.0
-                };
-                l += beta * env.radiance(ray.dir) * weight;
-            }
-            break;
-        };
-        let it = scene.interaction(&ray, &hit);
-        let p = it.surface.p;
-        let wo_world = -ray.dir;
+    // ---- Closest hits ----------------------------------------------------------------
+    let s = intersect(job, paths);
+    let wo = paths.dir.neg();
 
-        // ---- Emission hit -------------------------------------------------------------
-        if it.light != Primitive::NO_LIGHT {
-            if let Some(light) = lights.get(it.light) {
-                let le = light.emitted(it.surface.n_geometric, wo_world);
-                if !le.is_black() {
-                    let weight = if strategy.is_mis() && !prev.specular {
-                        let pdf_light = lights.pdf_hit(it.light, prev.p, p, it.surface.n_geometric);
-                        strategy.mis_weight(prev.pdf, pdf_light)
-                    } else {
-                        1.0
-                    };
-                    l += beta * le * weight;
-                }
-            }
+    // ---- Escape: the environment (if any) is seen, then the path ends ------------------
+    let escaped = paths.active & !s.hit;
+    if let Some(env) = scene_lights.environment() {
+        for i in escaped.lanes() {
+            let dir = paths.dir.lane(i);
+            let weight = if strategy.is_mis() && !paths.prev_specular.lane(i) {
+                strategy.mis_weight(paths.prev_pdf.0[i], scene_lights.pdf_environment(dir))
+            } else {
+                1.0
+            };
+            paths.add_weighted(i, env.radiance(dir) * weight);
         }
-        if segments >= max_depth || it.material.is_black() {
-            break;
-        }
-
-        // Textured colours at this hit (untextured materials are used as they are).
-        let textured: Material;
-        let material = if has_textures && scene.is_textured(&it) {
-            textured = scene.textured_material(&it);
-            &textured
-        } else {
-            it.material
-        };
-
-        // Shading frame, flipped to the viewer's side for two-sided materials.
-        let mut n_g = it.surface.n_geometric;
-        let mut n_s = it.surface.n_shading;
-        if material.is_two_sided() && n_g.dot(wo_world) < 0.0 {
-            n_g = -n_g;
-            n_s = -n_s;
-        }
-        // Anisotropic roughness is aligned with ∂p/∂u, as in Mitsuba; isotropic models do not
-        // depend on the tangent, and keep the cheaper (and historical) basis of the normal.
-        let frame = if material.is_anisotropic() {
-            Frame::from_normal_tangent(n_s, it.surface.tangent())
-        } else {
-            Frame::from_normal(n_s)
-        };
-        let wo = frame.to_local(wo_world);
-        let delta = material.is_delta();
-        let can_sample_lights = !delta && !lights.is_empty();
-        // The `light` and `mixture` strategies follow the sampled direction, which point
-        // lights (Dirac deltas) cannot provide: they sample the other lights only.
-        let can_follow_lights = !delta && lights.has_continuous();
-
-        // ---- Light sampling (next-event estimation, MIS only) ----------------------------
-        if strategy.is_mis() && can_sample_lights {
-            let u_select = sampler.next_1d();
-            let u_light = sampler.next_2d();
-            if let Some(ls) = lights.sample(p, u_select, u_light) {
-                let wi = frame.to_local(ls.wi);
-                let f = material.eval(wo, wi);
-                if !ls.radiance.is_black() && !f.is_black() && same_side(n_g, wo_world, ls.wi) {
-                    let origin = offset_ray_origin(p, n_g, ls.wi);
-                    let (shadow, t_max) = if ls.dist.is_infinite() {
-                        // The environment: unoccluded if the ray leaves the scene.
-                        (Ray::new(origin, ls.wi), f32::INFINITY)
-                    } else {
-                        let to_light = ls.point - origin;
-                        let dist = to_light.length();
-                        (Ray::new(origin, to_light / dist), dist * (1.0 - SHADOW_EPSILON))
-                    };
-                    stats.shadow_rays += 1;
-                    if !scene.occluded(&shadow, t_max) {
-                        // A point light cannot be found by bsdf sampling: its sample counts in full.
-                        let w = if ls.delta { 1.0 } else { strategy.mis_weight(ls.pdf, material.pdf(wo, wi)) };
-                        l += beta * f * ls.radiance * (w / ls.pdf);
-                    }
-                }
-            }
-        }
-
-        // ---- Direction sampling --------------------------------------------------------
-        let u_lobe = sampler.next_1d();
-        let u_dir = sampler.next_2d();
-        let next = match strategy {
-            // A Dirac lobe (plastic's coating) cannot be reached by light sampling alone: such
-            // materials are sampled by the material under the `light` strategy.
-            Strategy::Light if can_follow_lights && !material.has_delta_lobe() => {
-                sample_towards_lights(scene, material, &frame, p, wo, u_lobe, u_dir)
-            }
-            Strategy::Mixture if can_follow_lights => sample_mixture(scene, material, &frame, p, wo, u_lobe, u_dir),
-            _ => material.sample(wo, u_lobe, u_dir).map(|s| Scatter {
-                wi_world: frame.to_world(s.wi),
-                weight: s.weight,
-                pdf: s.pdf,
-                specular: s.delta,
-                eta: s.eta,
-            }),
-        };
-        let Some(next) = next else { break };
-        // Reject directions on the wrong geometric side (shading normals can disagree with the
-        // true surface): reflection must stay on wo's side, transmission must cross.
-        let wi_local_z = frame.to_local(next.wi_world).z;
-        let reflects = wi_local_z * wo.z > 0.0;
-        if reflects != same_side(n_g, wo_world, next.wi_world) || next.weight.is_black() {
-            break;
-        }
-        beta *= next.weight;
-        eta_scale *= next.eta * next.eta;
-
-        // ---- Russian roulette ------------------------------------------------------------
-        // Survival probability from the throughput, with the η² of refractions undone so that
-        // radiance compression inside glass does not kill paths (pbrt-v4 §13.4.3).
-        if segments >= settings.rr_depth {
-            let q = (beta.max_component() * eta_scale).min(0.95);
-            if sampler.next_1d() >= q {
-                break;
-            }
-            beta = beta / q;
-        }
-
-        prev = PrevVertex { p, pdf: next.pdf, specular: next.specular };
-        ray = Ray::new(offset_ray_origin(p, n_g, next.wi_world), next.wi_world);
-        stats.extension_rays += 1;
-        segments += 1;
     }
-    l
-}
+    paths.finish_all(escaped, out);
+    let mut alive = paths.active;
 
-/// A chosen continuation direction with its throughput weight `f·|cos|/pdf`.
-struct Scatter {
-    wi_world: Vec3,
-    weight: Rgb,
-    pdf: f32,
-    specular: bool,
-    eta: f32,
-}
-
-fn same_side(n: Vec3, a: Vec3, b: Vec3) -> bool {
-    n.dot(a) * n.dot(b) > 0.0
-}
-
-/// The `light` strategy: continue towards a light point; pdf of the direction summed over all
-/// lights (point lights excepted).
-fn sample_towards_lights(
-    scene: &Scene,
-    material: &Material,
-    frame: &Frame,
-    p: Vec3,
-    wo: Vec3,
-    u_select: f32,
-    u: crate::math::Vec2,
-) -> Option<Scatter> {
-    let ls = scene.lights.sample_continuous(p, u_select, u)?;
-    let pdf = scene.lights.pdf_direction(p, ls.wi);
-    let f = material.eval(wo, frame.to_local(ls.wi));
-    (pdf > 0.0).then(|| Scatter { wi_world: ls.wi, weight: f * (1.0 / pdf), pdf, specular: false, eta: 1.0 })
-}
-
-/// The `mixture` strategy: half the time towards a light, half by the material; weighted by the
-/// mixture density 0.5·p_light + 0.5·p_bsdf of the chosen direction.
-fn sample_mixture(
-    scene: &Scene,
-    material: &Material,
-    frame: &Frame,
-    p: Vec3,
-    wo: Vec3,
-    u_choice: f32,
-    u: crate::math::Vec2,
-) -> Option<Scatter> {
-    // Reuse the one number for both the coin flip and the sub-strategy's 1D choice.
-    let wi_world = if u_choice < 0.5 {
-        scene.lights.sample_continuous(p, u_choice * 2.0, u)?.wi
-    } else {
-        let s = material.sample(wo, u_choice * 2.0 - 1.0, u)?;
-        if s.delta {
-            // Only the material's half of the mixture produces a Dirac lobe's direction: its
-            // probability is 0.5·p_lobe, so the weight is f/(0.5·p_lobe) = 2·(f/p_lobe).
-            let wi_world = frame.to_world(s.wi);
-            return Some(Scatter { wi_world, weight: s.weight * 2.0, pdf: s.pdf, specular: true, eta: s.eta });
+    // ---- Emission hit (rare: lane by lane) ---------------------------------------------
+    for i in (alive & Ms::from_fn(|i| s.light[i] != Primitive::NO_LIGHT)).lanes() {
+        let Some(light) = scene_lights.get(s.light[i]) else { continue };
+        let le = light.emitted(s.n_geometric.lane(i), wo.lane(i));
+        if le.is_black() {
+            continue;
         }
-        frame.to_world(s.wi)
+        let weight = if strategy.is_mis() && !paths.prev_specular.lane(i) {
+            let pdf_light = scene_lights.pdf_hit(s.light[i], paths.prev_p.lane(i), s.p.lane(i), s.n_geometric.lane(i));
+            strategy.mis_weight(paths.prev_pdf.0[i], pdf_light)
+        } else {
+            1.0
+        };
+        paths.add_weighted(i, le * weight);
+    }
+
+    // ---- Depth limit and black surfaces end the path; the rest are classified -----------
+    // Which lanes sample a light, and which the lane-parallel Lambertian form serves.
+    let can_sample_lights = strategy.is_mis() && !scene_lights.is_empty();
+    let max_segments = settings.max_segments();
+    let mut nee = Ms::<N>::NONE;
+    let mut simd = Ms::<N>::NONE;
+    let mut albedo = [F32s::<N>::ZERO; 3];
+    for i in alive.lanes() {
+        let class = &lanes.classes[s.material[i] as usize];
+        if paths.segments[i] >= max_segments || class.black {
+            paths.finish(i, out);
+            alive.0[i] = 0;
+            continue;
+        }
+        if can_sample_lights && !class.delta {
+            nee.0[i] = u32::MAX;
+        }
+        if class.simd {
+            simd.0[i] = u32::MAX;
+            let a = if class.textured { textured_albedo(scene, &s, i) } else { class.albedo };
+            [albedo[0].0[i], albedo[1].0[i], albedo[2].0[i]] = a.to_array();
+        }
+    }
+    if !alive.any() {
+        return;
+    }
+
+    // The vertex's random numbers, in one path's dimension order: light selection and light
+    // point (light-sampling vertices only), lobe, direction; roulette's comes last.
+    let u_select = samplers.next_1d(nee);
+    let (ul1, ul2) = samplers.next_2d(nee);
+    let u_lobe = samplers.next_1d(alive);
+    let (ud1, ud2) = samplers.next_2d(alive);
+
+    let mut sc = Scattered::none();
+    let lambert_light = if simd.any() {
+        lambertian_lanes(job, &s, &wo, simd, nee, [&u_select, &ul1, &ul2, &ud1, &ud2], &mut sc)
+    } else {
+        LambertLight::none()
     };
-    let wi = frame.to_local(wi_world);
-    let pdf = 0.5 * scene.lights.pdf_direction(p, wi_world) + 0.5 * material.pdf(wo, wi);
-    let f = material.eval(wo, wi);
-    (pdf > 0.0).then(|| Scatter { wi_world, weight: f * (1.0 / pdf), pdf, specular: false, eta: 1.0 })
+    for i in (alive & !simd).lanes() {
+        let it = Interaction {
+            surface: s.surface(i),
+            material: &materials[s.material[i] as usize],
+            material_id: s.material[i],
+            light: s.light[i],
+        };
+        let u = VertexNumbers {
+            select: u_select.0[i],
+            light: Vec2::new(ul1.0[i], ul2.0[i]),
+            lobe: u_lobe.0[i],
+            direction: Vec2::new(ud1.0[i], ud2.0[i]),
+        };
+        let shading = shade(scene, strategy, &it, wo.lane(i), paths.beta(i), u, nee.lane(i));
+        if let Some(shadow) = &shading.shadow {
+            sc.set_shadow(i, shadow);
+        }
+        if let Some(next) = &shading.next {
+            sc.set_next(i, next);
+        }
+    }
+
+    // ---- Shadow rays: unoccluded light samples add their contribution -------------------
+    if sc.shadow.any() {
+        let blocked = occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, sc.shadow_t_max);
+        out.stats.shadow_rays += sc.shadow.bitmask().count_ones() as u64;
+        let seen = sc.shadow & !blocked;
+        // The Lambertian lanes' contributions are formed only now: their inputs were gathered
+        // lane by lane, and reading them back as vectors right away stalls on store forwarding.
+        let seen_lambert = seen & lambert_light.lit;
+        let seen_other = seen & !lambert_light.lit;
+        for c in 0..3 {
+            let lambert = paths.beta[c] * albedo[c] * lambert_light.radiance[c] * lambert_light.factor;
+            paths.radiance[c] = paths.radiance[c]
+                + F32s::select(seen_other, sc.contribution[c], F32s::ZERO)
+                + F32s::select(seen_lambert, lambert, F32s::ZERO);
+        }
+    }
+
+    // ---- Continuation: throughput × f·cos/pdf -------------------------------------------
+    paths.finish_all(alive & !sc.goes_on, out);
+    alive = alive & sc.goes_on;
+    for c in 0..3 {
+        // A Lambertian sample's weight f·cos/pdf is its albedo.
+        let weight = F32s::select(simd, albedo[c], sc.weight[c]);
+        paths.beta[c] = F32s::select(alive, paths.beta[c] * weight, paths.beta[c]);
+    }
+    paths.eta_scale = F32s::select(alive, paths.eta_scale * sc.eta * sc.eta, paths.eta_scale);
+
+    // ---- Russian roulette ------------------------------------------------------------
+    // Survival probability from the throughput, with the η² of refractions undone so that
+    // radiance compression inside glass does not kill paths (pbrt-v4 §13.4.3).
+    let roulette = alive & Ms::from_fn(|i| paths.segments[i] >= settings.rr_depth);
+    if roulette.any() {
+        let u_survive = samplers.next_1d(roulette);
+        for i in roulette.lanes() {
+            let q = (paths.beta(i).max_component() * paths.eta_scale.0[i]).min(0.95);
+            if u_survive.0[i] >= q {
+                paths.finish(i, out);
+                alive.0[i] = 0;
+            } else {
+                for c in 0..3 {
+                    paths.beta[c].0[i] /= q;
+                }
+            }
+        }
+    }
+
+    // ---- Next segment ------------------------------------------------------------------
+    paths.prev_p = Vec3s::select(alive, &s.p, &paths.prev_p);
+    paths.prev_pdf = F32s::select(alive, sc.pdf, paths.prev_pdf);
+    paths.prev_specular = (sc.specular & alive) | (paths.prev_specular & !alive);
+    paths.origin = Vec3s::select(alive, &sc.origin, &paths.origin);
+    paths.dir = Vec3s::select(alive, &sc.dir, &paths.dir);
+    for i in 0..N {
+        paths.segments[i] += alive.0[i] & 1;
+    }
+    out.stats.extension_rays += alive.bitmask().count_ones() as u64;
+}
+
+/// The albedo of lane `i`'s textured Lambertian surface at its hit.
+#[inline(never)]
+fn textured_albedo<const N: usize>(scene: &Scene, s: &Surfaces<N>, i: usize) -> Rgb {
+    let id = s.material[i];
+    let it = Interaction {
+        surface: s.surface(i),
+        material: &scene.materials()[id as usize],
+        material_id: id,
+        light: s.light[i],
+    };
+    match scene.textured_material(&it) {
+        Material::Lambertian(l) => l.albedo,
+        _ => Rgb::BLACK,
+    }
+}
+
+/// The light samples of the Lambertian lanes whose shadow rays were queued: what an unoccluded
+/// one adds is throughput × albedo × `radiance` × `factor`.
+struct LambertLight<const N: usize> {
+    lit: Ms<N>,
+    radiance: [F32s<N>; 3],
+    /// (f·cos / albedo) · w_MIS / pdf.
+    factor: F32s<N>,
+}
+
+impl<const N: usize> LambertLight<N> {
+    #[inline(always)]
+    fn none() -> Self {
+        Self { lit: Ms::NONE, radiance: [F32s::ZERO; 3], factor: F32s::ZERO }
+    }
+}
+
+/// The lane-parallel form of a Lambertian vertex (f = albedo/π, cosine-weighted continuation)
+/// for the lanes of `simd`: light samples in SIMD too when every light is a flat area light, else
+/// lane by lane from the scene's light set. Queues the shadow rays and continuations in `sc`.
+#[inline(always)]
+fn lambertian_lanes<const N: usize>(
+    job: &LaneJob,
+    s: &Surfaces<N>,
+    wo: &Vec3s<N>,
+    simd: Ms<N>,
+    nee: Ms<N>,
+    [u_select, ul1, ul2, ud1, ud2]: [&F32s<N>; 5],
+    sc: &mut Scattered<N>,
+) -> LambertLight<N> {
+    let LaneJob { scene, lanes, .. } = *job;
+    let strategy = lanes.settings.strategy;
+    let zero = F32s::<N>::ZERO;
+    // Lambertian surfaces are two-sided: face the normals towards the viewer.
+    let back = s.n_geometric.dot(wo).lt(zero);
+    let n_g = Vec3s::select(back, &s.n_geometric.neg(), &s.n_geometric);
+    let n_s = Vec3s::select(back, &s.n_shading.neg(), &s.n_shading);
+    let wo_z = n_s.dot(wo);
+    // Both rays leave on n_g's side (the viewer's; checked below), so they share one origin.
+    let origin = offset_ray_origin_lanes(&s.p, &n_g, wo);
+
+    // ---- Light sampling -------------------------------------------------------------
+    let mut light = LambertLight::none();
+    let nee = simd & nee;
+    if nee.any() {
+        let ls = match &lanes.lights {
+            Some(flat) => flat.sample(&scene.lights, &s.p, nee, u_select, *ul1, *ul2),
+            None => LightSamples::from_set(&scene.lights, &s.p, nee, u_select, ul1, ul2),
+        };
+        let cos_i = n_s.dot(&ls.wi);
+        // f·cos / albedo, and the material's density of the light's direction.
+        let f_cos = lambertian::cosine_over_pi(wo_z, cos_i);
+        let lit = ls.valid & nee & f_cos.gt(zero) & n_g.dot(&ls.wi).gt(zero);
+        if lit.any() {
+            let to_light = ls.point.sub(&origin);
+            let dist = to_light.length();
+            let finite = ls.dist_finite;
+            let dir = Vec3s::select(finite, &to_light.scale(1.0 / dist), &ls.wi);
+            let t_max = F32s::select(finite, dist * (1.0 - SHADOW_EPSILON), F32s::splat(f32::INFINITY));
+            // A point light cannot be found by material sampling: its sample counts in full.
+            let w = F32s::select(ls.delta, F32s::ONE, strategy.mis_weight_lanes(ls.pdf, f_cos));
+            sc.shadow = sc.shadow | lit;
+            sc.shadow_origin = Vec3s::select(lit, &origin, &sc.shadow_origin);
+            sc.shadow_dir = Vec3s::select(lit, &dir, &sc.shadow_dir);
+            sc.shadow_t_max = F32s::select(lit, t_max, sc.shadow_t_max);
+            light = LambertLight { lit, radiance: ls.radiance, factor: f_cos * w / ls.pdf };
+        }
+    }
+
+    // ---- Direction: cosine-weighted hemisphere (weight = albedo) ------------------------
+    let (local, valid, pdf) = lambertian::sample_lanes(wo_z, *ud1, *ud2);
+    let wi = warp::to_world(&n_s, &local);
+    // Reflection must stay on the viewer's side of the true surface (shading normals can
+    // disagree with it).
+    let goes_on = simd & valid & n_g.dot(&wi).gt(zero);
+    sc.goes_on = (sc.goes_on & !simd) | goes_on;
+    sc.origin = Vec3s::select(simd, &origin, &sc.origin);
+    sc.dir = Vec3s::select(simd, &wi, &sc.dir);
+    sc.pdf = F32s::select(simd, pdf, sc.pdf);
+    sc.specular = sc.specular & !simd;
+    sc.eta = F32s::select(simd, F32s::ONE, sc.eta);
+    light
+}
+
+/// Closest hits of the active lanes' rays.
+#[inline(always)]
+fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
+    let active = paths.active;
+    if let Some(geometry) = &job.lanes.geometry {
+        let hits = geometry.intersect(&paths.origin, &paths.dir, active, F32s::<N>::splat(f32::INFINITY));
+        let mut s = Surfaces::none();
+        s.p = paths.origin.add(&paths.dir.scale(hits.t));
+        for i in active.lanes() {
+            if hits.polygon[i] != u32::MAX {
+                let (n, material, light) = geometry.polygon(hits.polygon[i]);
+                s.hit.0[i] = u32::MAX;
+                s.n_geometric.set(i, n);
+                s.material[i] = material;
+                s.light[i] = light;
+            }
+        }
+        s.n_shading = s.n_geometric;
+        return s;
+    }
+    // Larger scenes: the BVH, one lane at a time.
+    let mut s = Surfaces::none();
+    for i in active.lanes() {
+        let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
+        if let Some(hit) = job.scene.intersect(&ray, f32::INFINITY) {
+            let it = job.scene.interaction(&ray, &hit);
+            s.hit.0[i] = u32::MAX;
+            s.p.set(i, it.surface.p);
+            s.n_geometric.set(i, it.surface.n_geometric);
+            s.n_shading.set(i, it.surface.n_shading);
+            s.uv[i] = it.surface.uv;
+            s.dpdu[i] = it.surface.dpdu;
+            s.material[i] = it.material_id;
+            s.light[i] = it.light;
+        }
+    }
+    s
+}
+
+/// Lanes of `active` whose shadow ray is blocked before `t_max`.
+#[inline(always)]
+fn occluded<const N: usize>(job: &LaneJob, origin: &Vec3s<N>, dir: &Vec3s<N>, active: Ms<N>, t_max: F32s<N>) -> Ms<N> {
+    if let Some(geometry) = &job.lanes.geometry {
+        return geometry.occluded(origin, dir, active, t_max);
+    }
+    let mut blocked = Ms::NONE;
+    for i in active.lanes() {
+        if job.scene.occluded(&Ray::new(origin.lane(i), dir.lane(i)), t_max.0[i]) {
+            blocked.0[i] = u32::MAX;
+        }
+    }
+    blocked
 }

@@ -1,6 +1,7 @@
 //! How the path tracer picks directions at each non-specular vertex.
 
-use crate::sampling::{balance_heuristic, power_heuristic};
+use crate::sampling::{balance_heuristic_lanes, power_heuristic_lanes};
+use crate::wide::simd::F32s;
 
 /// Direction-sampling strategy. All but `Light` converge to the same (correct) image.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -45,10 +46,16 @@ impl Strategy {
     /// balance heuristic for `MisBalance` (Veach & Guibas 1995).
     #[inline]
     pub fn mis_weight(self, pdf_f: f32, pdf_g: f32) -> f32 {
+        self.mis_weight_lanes(F32s([pdf_f]), F32s([pdf_g])).0[0]
+    }
+
+    /// [`Strategy::mis_weight`] in every lane.
+    #[inline(always)]
+    pub fn mis_weight_lanes<const N: usize>(self, pdf_f: F32s<N>, pdf_g: F32s<N>) -> F32s<N> {
         if self == Strategy::MisBalance {
-            balance_heuristic(pdf_f, pdf_g)
+            balance_heuristic_lanes(pdf_f, pdf_g)
         } else {
-            power_heuristic(pdf_f, pdf_g)
+            power_heuristic_lanes(pdf_f, pdf_g)
         }
     }
 

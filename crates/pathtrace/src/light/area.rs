@@ -11,6 +11,7 @@
 use crate::math::{Frame, Ray, Rgb, Vec2, Vec3, PI};
 use crate::sampling::warp;
 use crate::shape::{Disk, Quad, Sphere, Triangle};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// What an object emits.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,6 +66,52 @@ impl ShapeSample {
     }
 }
 
+/// Flat area lights (quads and triangles), one per lane: `origin + a·e1 + b·e2`, with unit
+/// `normal` along e1 × e2.
+pub(crate) struct FlatLights<const N: usize> {
+    pub origin: Vec3s<N>,
+    pub e1: Vec3s<N>,
+    pub e2: Vec3s<N>,
+    pub normal: Vec3s<N>,
+    pub triangle: Ms<N>,
+}
+
+/// Points sampled uniformly on flat lights, seen from reference points.
+pub(crate) struct FlatSamples<const N: usize> {
+    pub point: Vec3s<N>,
+    /// Unit direction from the reference point to `point`, and the distance.
+    pub wi: Vec3s<N>,
+    pub dist: F32s<N>,
+    /// cos θ_l = normal · wi (negative where the front face looks at the reference point).
+    pub cos_l: F32s<N>,
+    /// The solid-angle density times the light's area, r² / |cos θ_l|: divide by the area (and
+    /// multiply by the selection pmf) for the density.
+    pub pdf_area_one: F32s<N>,
+}
+
+/// Uniform points on flat lights by area: quads at `(u1, u2)`, triangles at the square-root
+/// warp (1 − √u1, u2·√u1) (`sampling::warp::square_to_uniform_triangle`), with the
+/// area-to-solid-angle factor r² / |cos θ_l| (derived in docs/sampling.md). Every lane count
+/// runs this one formula: the scalar light set (one lane) and the estimator's flat-light lanes.
+#[inline(always)]
+pub(crate) fn sample_flat_lanes<const N: usize>(
+    l: &FlatLights<N>,
+    ref_p: &Vec3s<N>,
+    u1: F32s<N>,
+    u2: F32s<N>,
+) -> FlatSamples<N> {
+    let (a, b) = crate::wide::warp::square_to_uniform_triangle(u1, u2);
+    let a = F32s::select(l.triangle, a, u1);
+    let b = F32s::select(l.triangle, b, u2);
+    let point = l.origin.add(&l.e1.scale(a)).add(&l.e2.scale(b));
+    let d = point.sub(ref_p);
+    let dist2 = d.dot(&d);
+    let dist = dist2.sqrt();
+    let wi = d.scale(1.0 / dist);
+    let cos_l = l.normal.dot(&wi);
+    FlatSamples { point, wi, dist, cos_l, pdf_area_one: dist2 / cos_l.abs() }
+}
+
 /// r² / (|cos θ_l| · A) from the distance and unit direction to the light point.
 #[inline]
 fn solid_angle_pdf(dist: f32, wi: Vec3, normal: Vec3, area: f32) -> f32 {
@@ -115,15 +162,37 @@ impl AreaLight {
     #[inline(always)]
     pub(super) fn sample(&self, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
         let point = match &self.shape {
-            LightShape::Quad(q) => q.point_at(u.x, u.y),
-            LightShape::Triangle(t) => {
-                let b = warp::square_to_uniform_triangle(u);
-                t.p0 + b.x * t.e1 + b.y * t.e2
-            }
+            LightShape::Quad(q) => return self.sample_flat(ref_p, q.q, q.u, q.v, false, u),
+            LightShape::Triangle(t) => return self.sample_flat(ref_p, t.p0, t.e1, t.e2, true, u),
             LightShape::Sphere(s) => return sample_sphere(s, ref_p, u),
             LightShape::Disk(d) => d.sample_uniform(u),
         };
         ShapeSample::new(ref_p, point, self.normal, |dist, wi| solid_angle_pdf(dist, wi, self.normal, self.area))
+    }
+
+    /// A quad or triangle: the one-lane instance of [`sample_flat_lanes`].
+    #[inline(always)]
+    fn sample_flat(
+        &self,
+        ref_p: Vec3,
+        origin: Vec3,
+        e1: Vec3,
+        e2: Vec3,
+        triangle: bool,
+        u: Vec2,
+    ) -> Option<ShapeSample> {
+        let one = Vec3s::<1>::splat;
+        let tri = if triangle { Ms::ALL } else { Ms::NONE };
+        let f = FlatLights { origin: one(origin), e1: one(e1), e2: one(e2), normal: one(self.normal), triangle: tri };
+        let s = sample_flat_lanes(&f, &one(ref_p), F32s([u.x]), F32s([u.y]));
+        let pdf = s.pdf_area_one.0[0] / self.area;
+        (s.dist.0[0] > 0.0 && pdf > 0.0 && pdf.is_finite()).then(|| ShapeSample {
+            point: s.point.lane(0),
+            normal: self.normal,
+            wi: s.wi.lane(0),
+            dist: s.dist.0[0],
+            pdf,
+        })
     }
 
     /// Density (solid angle at `ref_p`) with which [`AreaLight::sample`] picks the surface

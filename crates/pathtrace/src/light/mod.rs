@@ -1,7 +1,7 @@
 //! Lights: emissive surfaces (area lights), point and spot lights, the environment, and the light
 //! set that picks one by power or uniformly.
 
-mod area;
+pub(crate) mod area;
 mod environment;
 mod envmap;
 mod point;

@@ -13,7 +13,7 @@ mod diffuse;
 mod fresnel;
 mod glossy;
 mod ior;
-mod lambertian;
+pub(crate) mod lambertian;
 mod metals;
 pub mod microfacet;
 mod mirror;

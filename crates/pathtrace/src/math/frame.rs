@@ -1,5 +1,6 @@
 //! An orthonormal shading frame: local coordinates with the normal along +z.
 
+use crate::wide::simd::Vec3s;
 use glam::Vec3;
 
 /// An orthonormal basis (s, t, n). BSDFs work in this frame, where `cos θ = w.z`.
@@ -14,12 +15,8 @@ impl Frame {
     /// Builds a frame around a unit normal with the branchless construction of
     /// Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 2017).
     pub fn from_normal(n: Vec3) -> Self {
-        let sign = 1.0f32.copysign(n.z);
-        let a = -1.0 / (sign + n.z);
-        let b = n.x * n.y * a;
-        let s = Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-        let t = Vec3::new(b, sign + n.y * n.y * a, -n.y);
-        Self { s, t, n }
+        let (s, t) = crate::wide::warp::basis(&Vec3s::<1>::splat(n));
+        Self { s: s.lane(0), t: t.lane(0), n }
     }
 
     /// A frame around the unit normal `n` whose first tangent follows `tangent` (made

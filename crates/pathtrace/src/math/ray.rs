@@ -1,5 +1,6 @@
 //! Rays `R(t) = O + tD`, intersected over an interval `[t_min, t_max]`.
 
+use crate::wide::simd::{F32s, Vec3s};
 use glam::Vec3;
 
 /// A ray with origin `origin` and direction `dir` (not necessarily unit length for every use,
@@ -28,7 +29,15 @@ impl Ray {
 /// a few ulps of their largest coordinate, and 1e-4 of it keeps well clear of that while staying
 /// far below any feature size the scenes use (0.06 units in the 555-unit Cornell box).
 pub fn offset_ray_origin(p: Vec3, geometric_normal: Vec3, dir: Vec3) -> Vec3 {
-    let scale = 1e-4 * (1.0 + p.abs().max_element());
-    let n = if geometric_normal.dot(dir) >= 0.0 { geometric_normal } else { -geometric_normal };
-    p + n * scale
+    let one = |v: Vec3| Vec3s::<1>::splat(v);
+    offset_ray_origin_lanes(&one(p), &one(geometric_normal), &one(dir)).lane(0)
+}
+
+/// [`offset_ray_origin`] in every lane.
+#[inline(always)]
+pub fn offset_ray_origin_lanes<const N: usize>(p: &Vec3s<N>, geometric_normal: &Vec3s<N>, dir: &Vec3s<N>) -> Vec3s<N> {
+    let scale = (p.max_abs() + 1.0) * 1e-4;
+    let towards = geometric_normal.dot(dir).ge(F32s::ZERO);
+    let n = Vec3s::select(towards, geometric_normal, &geometric_normal.neg());
+    p.add(&n.scale(scale))
 }

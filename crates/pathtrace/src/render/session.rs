@@ -33,8 +33,6 @@ pub enum RenderError {
     Threads(String),
     #[error("nothing to render: give a sample count, a time limit or a target error")]
     NoBudget,
-    #[error("the wide kernel cannot render this scene: it has {0}; use the scalar or auto kernel")]
-    WideKernel(String),
 }
 
 /// A snapshot of how far a render is.
@@ -114,11 +112,11 @@ impl Shared {
     }
 }
 
-/// What a render computes once before its waves: the camera, and the scene prepared for the
-/// wide kernel when that kernel renders it.
+/// What a render computes once before its waves: the camera, and the scene's lane-parallel
+/// forms.
 struct Prepared {
     camera: Camera,
-    wide: Option<WideScene>,
+    lanes: WideScene,
 }
 
 /// A render in progress.
@@ -146,12 +144,7 @@ impl RenderSession {
             return Err(RenderError::NoBudget);
         }
         let camera = Camera::new(camera, settings.width, settings.height)?;
-        let wide = match settings.kernel {
-            Kernel::Scalar => None,
-            Kernel::Auto => WideScene::new(&scene, &settings.path).ok(),
-            Kernel::Wide => Some(WideScene::new(&scene, &settings.path).map_err(RenderError::WideKernel)?),
-        };
-        let prep = Prepared { camera, wide };
+        let prep = Prepared { camera, lanes: WideScene::new(&scene, &settings.path) };
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(settings.threads)
             .thread_name(|i| format!("pathtrace-worker-{i}"))
@@ -281,8 +274,8 @@ fn run_wave(
     let job = TileJob {
         scene,
         camera: &prep.camera,
-        wide: prep.wide.as_ref(),
-        path: &settings.path,
+        lanes: &prep.lanes,
+        one_lane: settings.kernel == Kernel::Scalar,
         filter: &settings.filter,
     };
     tile_list.par_iter().for_each_init(

@@ -30,7 +30,7 @@ pub struct RenderSettings {
     pub max_wave_spp: u32,
     /// Adaptive sampling (`None`, the default: every pixel gets `spp` samples).
     pub adaptive: Option<AdaptiveSettings>,
-    /// Which path loop renders (default: the wide kernel where the scene allows it).
+    /// How many paths run at once (default: groups of 8 or 16 SIMD lanes; `Scalar`: one).
     pub kernel: Kernel,
 }
 

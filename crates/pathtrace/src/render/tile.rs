@@ -2,11 +2,11 @@
 
 use crate::camera::Camera;
 use crate::film::{PixelFilter, PixelStats};
-use crate::integrator::{radiance, PathSettings, PathStats};
+use crate::integrator::{render_tile_lanes, LaneJob, PathStats};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::wide::simd::{LANES_256, LANES_512};
-use crate::wide::{render_tile_wide, WideJob, WideScene};
+use crate::wide::WideScene;
 
 /// A rectangle of pixels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,14 +29,14 @@ pub(super) fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     out
 }
 
-/// What every tile of a render shares: the scene, the camera, the path settings and the pixel
-/// filter.
+/// What every tile of a render shares: the scene and its lane-parallel forms (with the path
+/// settings), the camera and the pixel filter.
 pub(super) struct TileJob<'a> {
     pub scene: &'a Scene,
     pub camera: &'a Camera,
-    /// The scene prepared for the wide kernel, when that kernel renders it.
-    pub wide: Option<&'a WideScene>,
-    pub path: &'a PathSettings,
+    pub lanes: &'a WideScene,
+    /// Trace one path at a time (`Kernel::Scalar`) instead of a SIMD group.
+    pub one_lane: bool,
     pub filter: &'a PixelFilter,
 }
 
@@ -77,12 +77,11 @@ pub(crate) struct TileResult {
 /// on the thread.
 ///
 /// The same code runs compiled for the widest SIMD the CPU has, chosen at run time so the
-/// binary stays portable: the wide kernel in groups of 16 lanes with AVX-512, of 8 with AVX2
-/// (and in the portable build); the scalar kernel with AVX2 or portable. Rust never fuses
-/// multiply-adds on its own, so every build computes the same values per sample (the scalar
-/// kernel's images are bit-identical; the wide kernel's differ only in the order samples are
-/// summed, which depends on the group size). Setting `PATHTRACE_NO_AVX512` or
-/// `PATHTRACE_NO_AVX2` forces the narrower builds, to measure them (docs/benchmarks.md).
+/// binary stays portable: groups of 16 lanes with AVX-512, of 8 with AVX2 (and in the portable
+/// build). Rust never fuses multiply-adds on its own, so every build computes the same values
+/// per sample; images differ only in the order a pixel's samples are summed, which depends on
+/// the group size. Setting `PATHTRACE_NO_AVX512` or `PATHTRACE_NO_AVX2` forces the narrower
+/// builds, to measure them (docs/benchmarks.md).
 pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     #[cfg(target_arch = "x86_64")]
     {
@@ -93,7 +92,7 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
             && std::arch::is_x86_feature_detected!("avx512dq")
             && std::arch::is_x86_feature_detected!("avx512bw")
             && std::env::var_os("PATHTRACE_NO_AVX512").is_none();
-        if avx512 && job.wide.is_some() {
+        if avx512 && !job.one_lane {
             // SAFETY: `render_tile_avx512` only requires AVX-512 F/VL/DQ/BW, which the CPU was just checked to have.
             #[allow(unsafe_code)]
             return unsafe { render_tile_avx512(job, sampler, tile, samples) };
@@ -119,7 +118,7 @@ fn render_tile_avx512(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples:
     render_tile_body::<LANES_512>(job, sampler, tile, samples)
 }
 
-/// `N`: lanes per group of the wide kernel.
+/// `N`: lanes per group (the one-lane instance when the job asks for it).
 #[inline(always)]
 fn render_tile_body<const N: usize>(
     job: &TileJob,
@@ -127,34 +126,19 @@ fn render_tile_body<const N: usize>(
     tile: Tile,
     samples: WaveSamples,
 ) -> TileResult {
-    let TileJob { scene, camera, wide, path, filter } = *job;
-    if let Some(wide) = wide {
-        return render_tile_wide::<N>(&WideJob { scene, wide, camera, filter }, sampler, tile, samples);
+    let TileJob { scene, camera, lanes, one_lane, filter } = *job;
+    let job = LaneJob { scene, lanes, camera, filter };
+    if one_lane {
+        return render_tile_one_lane(&job, sampler, tile, samples);
     }
-    let mut pixels = vec![PixelStats::default(); (tile.w * tile.h) as usize];
-    let mut stats = PathStats::default();
-    let mut dropped = 0;
-    for ty in 0..tile.h {
-        for tx in 0..tile.w {
-            let (x, y) = (tile.x0 + tx, tile.y0 + ty);
-            let acc = &mut pixels[(ty * tile.w + tx) as usize];
-            let (first, count) = samples.range(x, y);
-            for s in first..first + count {
-                sampler.start(x, y, s);
-                // The filter picks where in (or around) the pixel the ray goes and weights the
-                // sample by f/pdf (exactly 1 for box and tent): see film/filter.rs.
-                let fs = filter.sample(sampler.next_2d());
-                let ray = camera.generate_ray(x, y, fs.jitter);
-                let l = radiance(scene, ray, sampler, path, &mut stats) * fs.weight;
-                if l.is_finite() {
-                    acc.add(l);
-                } else {
-                    dropped += 1;
-                }
-            }
-        }
-    }
-    TileResult { tile, pixels, stats, dropped }
+    render_tile_lanes::<N>(&job, sampler, tile, samples)
+}
+
+/// The one-lane instance, compiled on its own: inlined beside the wide loop it doubled that
+/// function's size, and the wide loop's code got slower.
+#[inline(never)]
+fn render_tile_one_lane(job: &LaneJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
+    render_tile_lanes::<1>(job, sampler, tile, samples)
 }
 
 #[cfg(test)]

@@ -2,8 +2,9 @@
 //! hash-driven permutations for stratification.
 
 /// 64-bit finaliser of SplitMix64 (Steele, Lea & Flood, "Fast splittable pseudorandom number
-/// generators", OOPSLA 2014): a bijective mixer with full avalanche.
-#[inline]
+/// generators", OOPSLA 2014): a bijective mixer with full avalanche. Always inlined, so the
+/// lane samplers' loops over it vectorise.
+#[inline(always)]
 pub fn mix64(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);

@@ -1,37 +1,41 @@
 //! Multiple importance sampling weights (Veach & Guibas, "Optimally Combining Sampling
 //! Techniques for Monte Carlo Rendering", SIGGRAPH 1995), for one sample from each technique.
 
+use crate::wide::simd::F32s;
+
 /// Balance heuristic: w_f = p_f / (p_f + p_g). Infinite `pdf_f` (a delta technique) takes all
 /// the weight.
 #[inline]
 pub fn balance_heuristic(pdf_f: f32, pdf_g: f32) -> f32 {
-    if pdf_f <= 0.0 {
-        return 0.0;
-    }
-    if pdf_f.is_infinite() {
-        return 1.0;
-    }
-    pdf_f / (pdf_f + pdf_g)
+    balance_heuristic_lanes(F32s([pdf_f]), F32s([pdf_g])).0[0]
 }
 
 /// Power heuristic with β = 2: w_f = p_f² / (p_f² + p_g²). Infinite `pdf_f` (a delta
 /// technique) takes all the weight.
 #[inline]
 pub fn power_heuristic(pdf_f: f32, pdf_g: f32) -> f32 {
-    if pdf_f <= 0.0 {
-        return 0.0;
-    }
-    if pdf_f.is_infinite() {
-        return 1.0;
-    }
-    let f2 = pdf_f * pdf_f;
-    let g2 = pdf_g * pdf_g;
-    if !(f2 + g2).is_finite() {
-        // Squares overflowed: compare ratios instead.
-        let r = pdf_g / pdf_f;
-        return 1.0 / (1.0 + r * r);
-    }
-    f2 / (f2 + g2)
+    power_heuristic_lanes(F32s([pdf_f]), F32s([pdf_g])).0[0]
+}
+
+/// [`balance_heuristic`] in every lane.
+#[inline(always)]
+pub fn balance_heuristic_lanes<const N: usize>(pdf_f: F32s<N>, pdf_g: F32s<N>) -> F32s<N> {
+    heuristic(pdf_f, pdf_g, |r| r)
+}
+
+/// [`power_heuristic`] in every lane.
+#[inline(always)]
+pub fn power_heuristic_lanes<const N: usize>(pdf_f: F32s<N>, pdf_g: F32s<N>) -> F32s<N> {
+    heuristic(pdf_f, pdf_g, |r| r * r)
+}
+
+/// w_f = 1 / (1 + (p_g / p_f)^β), the heuristics' common form, which cannot overflow (squares of
+/// large densities would); 0 where `pdf_f` ≤ 0, 1 where it is infinite.
+#[inline(always)]
+fn heuristic<const N: usize>(pdf_f: F32s<N>, pdf_g: F32s<N>, power: impl Fn(F32s<N>) -> F32s<N>) -> F32s<N> {
+    let w = 1.0 / (1.0 + power(pdf_g / pdf_f));
+    let w = F32s::select(pdf_f.is_finite(), w, F32s::ONE);
+    F32s::select(pdf_f.gt(F32s::ZERO), w, F32s::ZERO)
 }
 
 #[cfg(test)]
@@ -47,5 +51,9 @@ mod tests {
         assert_eq!(power_heuristic(0.0, 1.0), 0.0);
         assert_eq!(power_heuristic(f32::INFINITY, 1.0), 1.0);
         assert_eq!(balance_heuristic(f32::INFINITY, 1.0), 1.0);
+        assert_eq!(power_heuristic(f32::INFINITY, f32::INFINITY), 1.0);
+        assert_eq!(power_heuristic(0.0, 0.0), 0.0);
+        // Squares of these overflow f32; the ratio form does not.
+        assert!((power_heuristic(3e30, 4e30) - 0.36).abs() < 1e-6);
     }
 }

@@ -5,14 +5,13 @@ mod distribution;
 mod distribution2d;
 pub mod hash;
 mod mis;
-mod pcg;
-mod sampler;
+pub(crate) mod pcg;
+pub(crate) mod sampler;
 pub mod sobol;
 pub mod warp;
 
 pub use distribution::Distribution1D;
 pub use distribution2d::Distribution2D;
-pub use mis::{balance_heuristic, power_heuristic};
+pub use mis::{balance_heuristic, balance_heuristic_lanes, power_heuristic, power_heuristic_lanes};
 pub use pcg::Pcg32;
-pub(crate) use pcg::MULTIPLIER as PCG_MULTIPLIER;
 pub use sampler::{Sampler, SamplerKind};

@@ -8,8 +8,8 @@ pub struct Pcg32 {
     inc: u64,
 }
 
-/// The LCG multiplier (also used by the wide kernel's lane-parallel copy of `next_u32`).
-pub(crate) const MULTIPLIER: u64 = 6_364_136_223_846_793_005;
+/// The LCG multiplier.
+const MULTIPLIER: u64 = 6_364_136_223_846_793_005;
 
 impl Pcg32 {
     /// A generator on stream `stream`, started from `seed`.
@@ -29,17 +29,36 @@ impl Pcg32 {
     #[inline]
     pub fn next_u32(&mut self) -> u32 {
         let old = self.state;
-        self.state = old.wrapping_mul(MULTIPLIER).wrapping_add(self.inc);
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        let rot = (old >> 59) as u32;
-        xorshifted.rotate_right(rot)
+        self.state = advance(old, self.inc);
+        output(old)
     }
 
     /// Uniform in `[0, 1)`: the top 24 bits, so the result is exactly representable and < 1.
     #[inline]
     pub fn next_f32(&mut self) -> f32 {
-        (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+        unit_f32(self.next_u32())
     }
+}
+
+/// The LCG step. These three steps are free functions, always inlined, so the lane samplers
+/// (`wide/sampler.rs`) run the same generator in SIMD lanes.
+#[inline(always)]
+pub(crate) fn advance(state: u64, inc: u64) -> u64 {
+    state.wrapping_mul(MULTIPLIER).wrapping_add(inc)
+}
+
+/// The XSH-RR output permutation of the state before a step.
+#[inline(always)]
+pub(crate) fn output(old: u64) -> u32 {
+    let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
+    let rot = (old >> 59) as u32;
+    xorshifted.rotate_right(rot)
+}
+
+/// An output as a float in `[0, 1)`: its top 24 bits, so exactly representable and < 1.
+#[inline(always)]
+pub(crate) fn unit_f32(x: u32) -> f32 {
+    (x >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
 #[cfg(test)]

@@ -122,7 +122,7 @@ impl Sampler {
         }
     }
 
-    /// What the wide kernel needs to continue this sample's sequence in SIMD lanes:
+    /// What the lane samplers need to continue this sample's sequence in SIMD lanes:
     /// `(round hash, sample index, next dimension, PCG state, PCG increment)`.
     pub(crate) fn lane_state(&self) -> (u64, u32, u32, u64, u64) {
         let (state, inc) = self.rng.parts();
@@ -132,8 +132,7 @@ impl Sampler {
     fn next_dimension_hash(&mut self) -> u64 {
         let d = self.dimension;
         self.dimension += 1;
-        // One SplitMix64 step per dimension: the golden-ratio increment decorrelates dimensions.
-        mix64(self.round_hash.wrapping_add((d as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15)))
+        dimension_hash(self.round_hash, d)
     }
 
     /// One uniform number in `[0, 1)`.
@@ -197,6 +196,14 @@ impl Sampler {
 
 /// The largest f32 below 1, so `[0,1)` stays half-open after rounding.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// The hash of dimension `d` of a sample whose round hash is `round_hash`: one SplitMix64 step
+/// per dimension, the golden-ratio increment decorrelating dimensions. Always inlined, so the
+/// lane samplers' loop over it vectorises.
+#[inline(always)]
+pub(crate) fn dimension_hash(round_hash: u64, d: u32) -> u64 {
+    mix64(round_hash.wrapping_add((d as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15)))
+}
 
 #[cfg(test)]
 mod tests {

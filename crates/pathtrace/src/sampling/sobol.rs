@@ -12,8 +12,9 @@
 /// Owen scrambling of a 32-bit fraction by a hash that only lets bits influence less
 /// significant ones (computed on the bit-reversed value, where "less significant" becomes
 /// "more significant", with the multiply/xor steps of Laine & Karras, "Stratified Sampling for
-/// Stochastic Transparency", EGSR 2011).
-#[inline]
+/// Stochastic Transparency", EGSR 2011). Always inlined, so the lane samplers' loops over it
+/// vectorise.
+#[inline(always)]
 pub fn owen_scramble(x: u32, seed: u32) -> u32 {
     let mut v = x.reverse_bits();
     v = v.wrapping_add(seed);
@@ -38,14 +39,23 @@ pub fn sobol_dim0(i: u32) -> u32 {
     i.reverse_bits()
 }
 
-/// Generator columns of Sobol' dimension 1: c₀ = 2³¹, cᵢ = cᵢ₋₁ ⊕ (cᵢ₋₁ ≫ 1).
+/// The first generator column of Sobol' dimension 1, c₀ = 2³¹.
+pub(crate) const DIM1_FIRST_COLUMN: u32 = 1 << 31;
+
+/// The generator column after `c`: cᵢ = cᵢ₋₁ ⊕ (cᵢ₋₁ ≫ 1) (primitive polynomial x + 1).
+#[inline(always)]
+pub(crate) const fn dim1_next_column(c: u32) -> u32 {
+    c ^ (c >> 1)
+}
+
+/// Generator columns of Sobol' dimension 1.
 const fn columns() -> [u32; 32] {
     let mut c = [0u32; 32];
-    let mut v = 1u32 << 31;
+    let mut v = DIM1_FIRST_COLUMN;
     let mut i = 0;
     while i < 32 {
         c[i] = v;
-        v ^= v >> 1;
+        v = dim1_next_column(v);
         i += 1;
     }
     c
@@ -89,7 +99,7 @@ pub fn sobol_dim1(i: u32) -> u32 {
 }
 
 /// A 32-bit fraction as a float in `[0, 1)` (the top 24 bits, exactly representable).
-#[inline]
+#[inline(always)]
 pub fn to_unit(v: u32) -> f32 {
     (v >> 8) as f32 * (1.0 / 16_777_216.0)
 }

@@ -5,17 +5,14 @@
 //! sampler against its pdf.
 
 use crate::math::{Vec2, Vec3, INV_2PI, INV_4PI, INV_PI, PI};
+use crate::wide::simd::F32s;
+use crate::wide::warp as lanes;
 
 /// Concentric map from square to unit disk (Shirley & Chiu, "A Low Distortion Map Between Disk
-/// and Square", JGT 1997); uniform density 1/π.
+/// and Square", JGT 1997); uniform density 1/π. The one-lane instance of the lane-parallel map.
 pub fn square_to_uniform_disk(u: Vec2) -> Vec2 {
-    let a = 2.0 * u.x - 1.0;
-    let b = 2.0 * u.y - 1.0;
-    if a == 0.0 && b == 0.0 {
-        return Vec2::ZERO;
-    }
-    let (r, phi) = if a.abs() > b.abs() { (a, (PI / 4.0) * (b / a)) } else { (b, PI / 2.0 - (PI / 4.0) * (a / b)) };
-    Vec2::new(r * phi.cos(), r * phi.sin())
+    let (x, y) = lanes::square_to_uniform_disk(F32s([u.x]), F32s([u.y]));
+    Vec2::new(x.0[0], y.0[0])
 }
 
 /// Uniform direction on the unit sphere: z = 1 - 2u, φ = 2πv; pdf = 1/(4π).
@@ -47,11 +44,9 @@ pub fn uniform_hemisphere_pdf(w: Vec3) -> f32 {
 }
 
 /// Cosine-weighted hemisphere by Malley's method (project a uniform disk point up);
-/// pdf = cos θ / π.
+/// pdf = cos θ / π. The one-lane instance of the lane-parallel warp.
 pub fn square_to_cosine_hemisphere(u: Vec2) -> Vec3 {
-    let d = square_to_uniform_disk(u);
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    Vec3::new(d.x, d.y, z)
+    lanes::square_to_cosine_hemisphere(F32s([u.x]), F32s([u.y])).lane(0)
 }
 
 pub fn cosine_hemisphere_pdf(w: Vec3) -> f32 {
@@ -99,8 +94,8 @@ pub fn power_cosine_pdf(w: Vec3, exponent: f32) -> f32 {
 /// Uniform barycentric coordinates (b1, b2) on a triangle (the square-root parameterisation,
 /// pbrt-v3 §13.6.4); the point is (1-b1-b2)·p0 + b1·p1 + b2·p2 with density 1/area.
 pub fn square_to_uniform_triangle(u: Vec2) -> Vec2 {
-    let su = u.x.sqrt();
-    Vec2::new(1.0 - su, u.y * su)
+    let (a, b) = lanes::square_to_uniform_triangle(F32s([u.x]), F32s([u.y]));
+    Vec2::new(a.0[0], b.0[0])
 }
 
 #[cfg(test)]

@@ -1,14 +1,14 @@
-//! Next-event estimation for eight lanes at once, over scenes lit only by flat area lights
-//! (quads and triangles).
+//! Light samples for a group of lanes: computed together when every light is a flat area light
+//! (quads and triangles), else gathered lane by lane from the scene's light set.
 //!
 //! Each lane picks its light with the scene's own selection distribution ([`LightSet::pick`]),
-//! then the point on it, the direction and the density are computed for all lanes together:
-//! uniform by area, pdf_ω = pmf · r² / (|cos θ_l| · A), as `light/area.rs` (derived in
-//! docs/sampling.md). Triangles use the square-root warp of `sampling::warp`.
+//! then the point on it, the direction and the density are computed for all lanes together by
+//! `light::area::sample_flat_lanes`, the formula the scalar light set runs in one lane.
 
 use super::simd::{F32s, Ms, Vec3s};
+use crate::light::area::{sample_flat_lanes, FlatLights, FlatSamples};
 use crate::light::{LightSet, LightShape};
-use crate::math::{Rgb, Vec3};
+use crate::math::{Rgb, Vec2, Vec3};
 
 /// One flat light: `origin + s·e1 + t·e2`.
 #[derive(Clone, Copy, Debug)]
@@ -29,18 +29,62 @@ pub struct WideLights {
     lights: Vec<FlatLight>,
 }
 
-/// Eight light samples (meaningful in `valid` lanes).
+/// `N` light samples (meaningful in `valid` lanes).
 #[derive(Clone, Copy, Debug)]
 pub struct LightSamples<const N: usize> {
     pub point: Vec3s<N>,
     /// Unit direction from the reference point to `point`.
     pub wi: Vec3s<N>,
-    /// Solid-angle density, light selection included.
+    /// Solid-angle density, light selection included (for delta lights: the selection pmf).
     pub pdf: F32s<N>,
     pub radiance: [F32s<N>; 3],
     /// A point was found, with a positive finite density, on a face that emits towards the
     /// reference point.
     pub valid: Ms<N>,
+    /// The sample lies at a finite distance (not the environment, seen along `wi`).
+    pub dist_finite: Ms<N>,
+    /// The sample comes from a Dirac light (point, spot): no other strategy can find it.
+    pub delta: Ms<N>,
+}
+
+impl<const N: usize> LightSamples<N> {
+    /// One sample per lane of `active` from the scene's light set (`LightSet::sample`), for
+    /// lights without a lane-parallel form (points, spots, spheres, disks, environments).
+    #[inline(never)]
+    pub fn from_set(
+        set: &LightSet,
+        p: &Vec3s<N>,
+        active: Ms<N>,
+        u_select: &F32s<N>,
+        u1: &F32s<N>,
+        u2: &F32s<N>,
+    ) -> Self {
+        let mut out = Self {
+            point: Vec3s::default(),
+            wi: Vec3s::default(),
+            pdf: F32s::ONE,
+            radiance: [F32s::ZERO; 3],
+            valid: Ms::NONE,
+            dist_finite: Ms::NONE,
+            delta: Ms::NONE,
+        };
+        for i in active.lanes() {
+            let u = Vec2::new(u1.0[i], u2.0[i]);
+            let Some(ls) = set.sample(p.lane(i), u_select.0[i], u) else { continue };
+            // NaN-safe: a sample without a positive density cannot be weighted.
+            if ls.pdf.is_nan() || ls.pdf <= 0.0 {
+                continue;
+            }
+            out.point.set(i, ls.point);
+            out.wi.set(i, ls.wi);
+            out.pdf.0[i] = ls.pdf;
+            [out.radiance[0].0[i], out.radiance[1].0[i], out.radiance[2].0[i]] = ls.radiance.to_array();
+            out.valid.0[i] = u32::MAX;
+            out.dist_finite.0[i] = if ls.dist.is_finite() { u32::MAX } else { 0 };
+            out.delta.0[i] = if ls.delta { u32::MAX } else { 0 };
+        }
+        out
+    }
 }
 
 impl WideLights {
@@ -86,45 +130,35 @@ impl WideLights {
         u2: F32s<N>,
     ) -> LightSamples<N> {
         // Gather each lane's light (scalar: one table lookup per lane).
-        let mut origin = Vec3s::<N>::default();
-        let mut e1 = Vec3s::<N>::default();
-        let mut e2 = Vec3s::<N>::default();
-        let mut normal = Vec3s::<N>::default();
+        let mut f = FlatLights {
+            origin: Vec3s::default(),
+            e1: Vec3s::default(),
+            e2: Vec3s::default(),
+            normal: Vec3s::default(),
+            triangle: Ms::NONE,
+        };
         let mut pmf_per_area = F32s::<N>::ZERO;
         let mut radiance = [F32s::<N>::ZERO; 3];
-        let mut triangle = Ms::<N>::NONE;
         let mut two_sided = Ms::<N>::NONE;
         let mut picked = Ms::<N>::NONE;
-        for i in 0..N {
-            if !active.lane(i) {
-                continue;
-            }
+        for i in active.lanes() {
             let Some((id, pmf)) = set.pick(u_select.0[i]) else { continue };
             let Some(l) = self.lights.get(id) else { continue };
-            origin.set(i, l.origin);
-            e1.set(i, l.e1);
-            e2.set(i, l.e2);
-            normal.set(i, l.normal);
+            f.origin.set(i, l.origin);
+            f.e1.set(i, l.e1);
+            f.e2.set(i, l.e2);
+            f.normal.set(i, l.normal);
+            f.triangle.0[i] = if l.triangle { u32::MAX } else { 0 };
             pmf_per_area.0[i] = pmf / l.area;
-            [radiance[0].0[i], radiance[1].0[i], radiance[2].0[i]] = [l.radiance.r, l.radiance.g, l.radiance.b];
-            triangle.0[i] = if l.triangle { u32::MAX } else { 0 };
+            [radiance[0].0[i], radiance[1].0[i], radiance[2].0[i]] = l.radiance.to_array();
             two_sided.0[i] = if l.two_sided { u32::MAX } else { 0 };
             picked.0[i] = u32::MAX;
         }
-        // Triangles: (1 − √u1, u2·√u1) (sampling::warp::square_to_uniform_triangle).
-        let su = u1.sqrt();
-        let s = F32s::<N>::select(triangle, 1.0 - su, u1);
-        let t = F32s::<N>::select(triangle, u2 * su, u2);
-        let point = origin.add(&e1.scale(s)).add(&e2.scale(t));
-        let d = point.sub(p);
-        let dist2 = d.dot(&d);
-        let dist = dist2.sqrt();
-        let wi = d.scale(1.0 / dist);
-        let cos_l = normal.dot(&wi);
-        let pdf = dist2 * pmf_per_area / cos_l.abs();
+        let FlatSamples { point, wi, dist, cos_l, pdf_area_one } = sample_flat_lanes(&f, p, u1, u2);
+        let pdf = pdf_area_one * pmf_per_area;
         // One-sided lights emit along their normal: towards p when cos θ_l = n·wi < 0.
         let faces_p = two_sided | cos_l.lt(F32s::<N>::ZERO);
         let valid = picked & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
-        LightSamples { point, wi, pdf, radiance, valid }
+        LightSamples { point, wi, pdf, radiance, valid, dist_finite: Ms::ALL, delta: Ms::NONE }
     }
 }

@@ -1,22 +1,13 @@
-//! The wide kernel: eight paths traced side by side in SIMD lanes, for scenes made of
-//! Lambertian surfaces lit by flat area lights (the Cornell box and its kin).
+//! The lane-parallel building blocks of the path estimator (`integrator::path`): lane-group
+//! types, the samplers continued in SIMD lanes, the brute-force intersector for small scenes,
+//! flat area-light sampling and the warps of the Lambertian form.
 //!
-//! Why: the scalar path loop spends ~5,300 instructions per camera sample spread thinly over
-//! traversal, shading and sampling, with nothing left to vectorise inside one path. Lanes of
-//! *paths* are what Mitsuba 3's `llvm_ad_rgb` variant and wavefront renderers vectorise. A lane
-//! whose path ends starts the next camera sample of its tile at once ("path regeneration"),
-//! so lanes stay busy instead of waiting for the longest path of a packet.
-//!
-//! The kernel computes the same estimator as `integrator::path` with the `mis` and
-//! `mis-balance` strategies: the same random dimensions in the same order from the same
-//! per-sample sampler (so stratified and Sobol samplers keep their properties), the same
-//! next-event estimation, MIS weights, cosine sampling and Russian roulette. Its images agree
-//! with the scalar kernel's within confidence intervals (tests/wide_kernel.rs); they are not
-//! bit-identical (different rounding, polynomial sin/cos).
-//!
-//! Scenes outside its reach (other materials, textures, spheres, point, spot, sphere or
-//! environment lights, other strategies) render with the scalar kernel: see
-//! [`WideScene::new`] and `RenderSettings::kernel`.
+//! Why lanes of *paths*: one path leaves nothing to vectorise (the scalar loop spent ~5,300
+//! instructions per Cornell-box sample spread thinly over traversal, shading and sampling);
+//! groups of paths are what Mitsuba 3's `llvm_ad_rgb` variant and wavefront renderers
+//! vectorise. [`WideScene`] holds what a scene offers these forms, prepared once per render;
+//! lanes it cannot serve are shaded one at a time through the scene's own materials and
+//! lights, within the same estimator.
 
 // Lane loops index several structure-of-arrays fields with the same lane number; iterator
 // chains over them would hide that and vectorise no better.
@@ -24,31 +15,31 @@
 
 mod boxes;
 mod geometry;
-mod kernel;
 mod lights;
 mod sampler;
 pub mod simd;
 pub mod warp;
 
+pub(crate) use geometry::FlatGeometry;
 pub use geometry::MAX_FLAT_POLYGONS;
-pub(crate) use kernel::{render_tile_wide, WideJob};
+pub(crate) use lights::{LightSamples, WideLights};
+pub(crate) use sampler::LaneSamplers;
 
-use crate::integrator::{PathSettings, Strategy};
+use crate::integrator::PathSettings;
 use crate::material::Material;
 use crate::math::Rgb;
 use crate::scene::Scene;
-use geometry::FlatGeometry;
-use lights::WideLights;
 
-/// Which path loop renders.
+/// How many paths the estimator traces at once.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Kernel {
-    /// The wide kernel when the scene and settings allow it, else the scalar one (the default).
+    /// Groups of 8 paths in SIMD lanes (16 with AVX-512): the default. `auto` and `wide` are
+    /// the same since every scene runs in lanes; both names are kept for scripts.
     #[default]
     Auto,
-    /// One path at a time (`integrator::path`): every scene and strategy.
+    /// One path at a time: the one-lane instance of the same estimator, for debugging and tests.
     Scalar,
-    /// Eight paths at a time; rendering fails if the scene or settings do not allow it.
+    /// Groups of 8 (16) paths, as `auto`.
     Wide,
 }
 
@@ -86,50 +77,72 @@ impl std::fmt::Display for Kernel {
     }
 }
 
-/// What the wide kernel needs of a scene, prepared once per render.
+/// How the estimator treats a material, looked up once per lane and vertex.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MaterialClass {
+    /// A Lambertian surface, shaded in SIMD lanes with this albedo (or its texture's value at
+    /// the hit); otherwise shaded lane by lane through `Material`.
+    pub simd: bool,
+    pub albedo: Rgb,
+    /// Some colour is textured: evaluated per hit.
+    pub textured: bool,
+    /// Only Dirac lobes (mirror, smooth glass): no light sampling.
+    pub delta: bool,
+    /// Reflects nothing (pure emitters): the path ends there.
+    pub black: bool,
+}
+
+/// What a scene offers the lane-parallel forms, prepared once per render.
 #[derive(Clone, Debug)]
 pub struct WideScene {
     /// Brute-force polygons for small scenes; `None`: intersect through the scene's BVH.
-    geometry: Option<FlatGeometry>,
-    lights: WideLights,
-    /// Per material: Lambertian albedo, or `None` for black (pure emitters).
-    albedo: Vec<Option<Rgb>>,
-    settings: PathSettings,
+    pub(crate) geometry: Option<FlatGeometry>,
+    /// The lights, when every one is a flat area light; `None`: sampled lane by lane.
+    pub(crate) lights: Option<WideLights>,
+    /// Per material: how the estimator treats it.
+    pub(crate) classes: Vec<MaterialClass>,
+    pub(crate) settings: PathSettings,
 }
 
 impl WideScene {
-    /// Prepares `scene` for the wide kernel, or says why it cannot take it.
-    pub fn new(scene: &Scene, settings: &PathSettings) -> Result<Self, String> {
-        if !matches!(settings.strategy, Strategy::Mis | Strategy::MisBalance) {
-            return Err(format!("strategy '{}' (only mis and mis-balance)", settings.strategy.name()));
-        }
-        if scene.has_textures() {
-            return Err("textures".into());
-        }
-        if scene.has_unbounded() || scene.has_instances() {
-            return Err("infinite planes or instances".into());
-        }
-        let albedo = scene
+    /// Prepares `scene` for rendering with `settings`.
+    pub fn new(scene: &Scene, settings: &PathSettings) -> Self {
+        let classes = scene
             .materials()
             .iter()
-            .map(|m| match m {
-                Material::Lambertian(l) => Ok(Some(l.albedo)),
-                Material::Black => Ok(None),
-                other => Err(format!("material '{}' (only lambertian)", other.name())),
+            .enumerate()
+            .map(|(id, m)| {
+                let simd = match m {
+                    Material::Lambertian(l) => Some(l.albedo),
+                    _ => None,
+                };
+                MaterialClass {
+                    albedo: simd.unwrap_or(Rgb::BLACK),
+                    simd: simd.is_some(),
+                    textured: scene.is_material_textured(id as u32),
+                    delta: m.is_delta(),
+                    black: m.is_black(),
+                }
             })
-            .collect::<Result<Vec<_>, _>>()?;
-        let lights = WideLights::new(&scene.lights)
-            .ok_or("lights other than quad or triangle area lights (point, spot, sphere, disk, environment)")?;
-        if scene.lights.is_empty() {
-            return Err("no light with power".into());
-        }
-        let geometry =
-            scene.flat_polygons().filter(|p| p.len() <= MAX_FLAT_POLYGONS).and_then(|p| FlatGeometry::new(&p));
-        Ok(Self { geometry, lights, albedo, settings: *settings })
+            .collect();
+        // The brute-force intersector reports normals, material and light, not uv or ∂p/∂u:
+        // it serves scenes whose shading needs neither (no textures, no anisotropic frames).
+        let needs_uv = scene.has_textures() || scene.materials().iter().any(Material::is_anisotropic);
+        let geometry = if needs_uv || scene.has_unbounded() || scene.has_instances() {
+            None
+        } else {
+            scene.flat_polygons().filter(|p| p.len() <= MAX_FLAT_POLYGONS).and_then(|p| FlatGeometry::new(&p))
+        };
+        Self { geometry, lights: WideLights::new(&scene.lights), classes, settings: *settings }
     }
 
     /// True when rays are tested against every polygon (small scenes) rather than the BVH.
     pub fn brute_force(&self) -> bool {
         self.geometry.is_some()
+    }
+
+    /// True when every light is sampled in SIMD lanes (flat area lights only).
+    pub fn flat_lights(&self) -> bool {
+        self.lights.is_some()
     }
 }

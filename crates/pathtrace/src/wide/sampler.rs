@@ -10,12 +10,11 @@
 
 use super::simd::{F32s, Ms};
 use crate::math::Vec2;
+use crate::sampling::hash::mix64;
+use crate::sampling::pcg;
+use crate::sampling::sampler::dimension_hash;
+use crate::sampling::sobol::{dim1_next_column, owen_scramble, to_unit, DIM1_FIRST_COLUMN};
 use crate::sampling::{Sampler, SamplerKind};
-
-/// SplitMix64's golden-ratio increment (as `Sampler::next_dimension_hash`).
-const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
-/// Scale of a 24-bit integer to [0, 1) (as `Pcg32::next_f32` and `sobol::to_unit`).
-const UNIT: f32 = 1.0 / 16_777_216.0;
 
 /// How the group draws its numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -133,7 +132,7 @@ impl<const N: usize> LaneSamplers<N> {
     fn dimension_hash(&mut self, mask: Ms<N>) -> [u64; N] {
         let mut h = [0u64; N];
         for i in 0..N {
-            h[i] = mix64(self.round_hash[i].wrapping_add((self.dimension[i] as u64 + 1).wrapping_mul(GOLDEN)));
+            h[i] = dimension_hash(self.round_hash[i], self.dimension[i]);
             self.dimension[i] += mask.0[i] & 1;
         }
         h
@@ -145,53 +144,26 @@ impl<const N: usize> LaneSamplers<N> {
         let mut out = F32s::default();
         for i in 0..N {
             let old = self.state[i];
-            let next = old.wrapping_mul(crate::sampling::PCG_MULTIPLIER).wrapping_add(self.inc[i]);
+            let next = pcg::advance(old, self.inc[i]);
             let keep = (mask.0[i] as u64) | ((mask.0[i] as u64) << 32);
             self.state[i] = (next & keep) | (old & !keep);
-            let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-            let rot = (old >> 59) as u32;
-            out.0[i] = (xorshifted.rotate_right(rot) >> 8) as f32 * UNIT;
+            out.0[i] = pcg::unit_f32(pcg::output(old));
         }
         out
     }
 }
 
-/// `hash::mix64`, inlined here so it vectorises with its callers.
-#[inline(always)]
-fn mix64(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
-
-/// `sobol::owen_scramble`, inlined here so it vectorises with its callers.
-#[inline(always)]
-fn owen_scramble(x: u32, seed: u32) -> u32 {
-    let mut v = x.reverse_bits();
-    v = v.wrapping_add(seed);
-    v ^= v.wrapping_mul(0x6c50_b47c);
-    v ^= v.wrapping_mul(0xb82f_1e52);
-    v ^= v.wrapping_mul(0xc7af_e638);
-    v ^= v.wrapping_mul(0x8d22_f6e6);
-    v.reverse_bits()
-}
-
-#[inline(always)]
-fn to_unit(v: u32) -> f32 {
-    (v >> 8) as f32 * UNIT
-}
-
-/// `sobol::sobol_dim1` of every lane, as a loop over the 32 generator columns
-/// (cᵢ = cᵢ₋₁ ⊕ (cᵢ₋₁ ≫ 1)) instead of per-lane table lookups, so it vectorises.
+/// `sobol::sobol_dim1` of every lane, as a loop over the 32 generator columns instead of
+/// per-lane table lookups, so it vectorises.
 #[inline(always)]
 fn sobol_dim1<const N: usize>(j: &[u32; N]) -> [u32; N] {
     let mut out = [0u32; N];
-    let mut column = 1u32 << 31;
+    let mut column = DIM1_FIRST_COLUMN;
     for bit in 0..32 {
         for i in 0..N {
             out[i] ^= ((j[i] >> bit) & 1).wrapping_neg() & column;
         }
-        column ^= column >> 1;
+        column = dim1_next_column(column);
     }
     out
 }

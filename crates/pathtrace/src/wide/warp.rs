@@ -1,6 +1,7 @@
-//! Eight-lane versions of the warps the wide kernel needs: the cosine-weighted hemisphere
-//! (Malley's method over the concentric disk, as `sampling::warp`) and the orthonormal basis
-//! of a normal (Duff et al. 2017, as `math::Frame::from_normal`).
+//! The warps of the Lambertian form, written once for every lane count: the concentric disk
+//! and the cosine-weighted hemisphere (Malley's method), and the orthonormal basis of a normal
+//! (Duff et al. 2017). `sampling::warp` and `math::Frame::from_normal` are their one-lane
+//! instances.
 //!
 //! The concentric map only needs sin and cos of angles in [-π/4, π/4] (the other octants are
 //! reached by swapping the two and by the radius' sign), where short Taylor polynomials are
@@ -46,6 +47,14 @@ pub fn square_to_cosine_hemisphere<const N: usize>(u1: F32s<N>, u2: F32s<N>) -> 
     Vec3s { x, y, z }
 }
 
+/// Uniform barycentric coordinates on a triangle by the square-root warp, (1 − √u1, u2·√u1)
+/// (pbrt-v3 §13.6.4), per lane.
+#[inline(always)]
+pub fn square_to_uniform_triangle<const N: usize>(u1: F32s<N>, u2: F32s<N>) -> (F32s<N>, F32s<N>) {
+    let su = u1.sqrt();
+    (1.0 - su, u2 * su)
+}
+
 /// ±1 with the sign bit of each lane (copysign(1, v)).
 #[inline(always)]
 fn sign_of<const N: usize>(v: F32s<N>) -> F32s<N> {
@@ -56,23 +65,29 @@ fn sign_of<const N: usize>(v: F32s<N>) -> F32s<N> {
     F32s(out)
 }
 
-/// Local direction `v` (normal along +z) to world space around the unit normal `n`, with the
-/// tangents of Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 2017).
+/// The two tangents `(s, t)` completing the unit normal `n` to a right-handed orthonormal
+/// basis, from Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 2017).
 #[inline(always)]
-pub fn to_world<const N: usize>(n: &Vec3s<N>, v: &Vec3s<N>) -> Vec3s<N> {
+pub fn basis<const N: usize>(n: &Vec3s<N>) -> (Vec3s<N>, Vec3s<N>) {
     let sign = sign_of(n.z);
     let a = -1.0 / (sign + n.z);
     let b = n.x * n.y * a;
     let s = Vec3s { x: 1.0 + sign * n.x * n.x * a, y: sign * b, z: -(sign * n.x) };
     let t = Vec3s { x: b, y: sign + n.y * n.y * a, z: -n.y };
+    (s, t)
+}
+
+/// Local direction `v` (normal along +z) to world space around the unit normal `n`, in the
+/// basis of [`basis`].
+#[inline(always)]
+pub fn to_world<const N: usize>(n: &Vec3s<N>, v: &Vec3s<N>) -> Vec3s<N> {
+    let (s, t) = basis(n);
     s.scale(v.x).add(&t.scale(v.y)).add(&n.scale(v.z))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::{Frame, Vec2, Vec3};
-    use crate::sampling::warp;
     use crate::wide::simd::LANES_256 as N;
 
     #[test]
@@ -82,46 +97,6 @@ mod tests {
         for i in 0..N {
             assert!((s.0[i] - xs.0[i].sin()).abs() < 5e-7, "sin {}", xs.0[i]);
             assert!((c.0[i] - xs.0[i].cos()).abs() < 5e-7, "cos {}", xs.0[i]);
-        }
-    }
-
-    #[test]
-    fn disk_and_hemisphere_agree_with_the_scalar_warps() {
-        // The same map as sampling::warp, so the same points up to rounding.
-        for k in 0..64 {
-            let u1 = F32s::<N>::from_fn(|i| ((k * 8 + i) as f32 * 0.618_034).fract());
-            let u2 = F32s::<N>::from_fn(|i| ((k * 8 + i) as f32 * 0.414_214 + 0.5 * (i == 3) as u8 as f32).fract());
-            let w = square_to_cosine_hemisphere(u1, u2);
-            for i in 0..N {
-                let expect = warp::square_to_cosine_hemisphere(Vec2::new(u1.0[i], u2.0[i]));
-                let got = w.lane(i);
-                // The disk point agrees to rounding; z = √(1 − r²) amplifies it at the rim, so
-                // compare z².
-                assert!((got.truncate() - expect.truncate()).length() < 2e-6, "{got:?} vs {expect:?}");
-                assert!((got.z * got.z - expect.z * expect.z).abs() < 4e-6, "{got:?} vs {expect:?}");
-            }
-        }
-        let centre = square_to_uniform_disk(F32s::<N>::splat(0.5), F32s::<N>::splat(0.5));
-        assert_eq!((centre.0 .0[0], centre.1 .0[0]), (0.0, 0.0));
-    }
-
-    #[test]
-    fn basis_matches_the_scalar_frame() {
-        let normals = [
-            Vec3::Z,
-            -Vec3::Z,
-            Vec3::X,
-            Vec3::new(0.3, -0.5, 0.8).normalize(),
-            Vec3::new(-0.7, 0.1, -0.2).normalize(),
-            Vec3::new(0.0, 1.0, -1e-8).normalize(),
-            Vec3::new(1e-3, 0.2, -0.9).normalize(),
-            -Vec3::Y,
-        ];
-        let n = Vec3s::<N>::from_fn(|i| normals[i]);
-        let v = Vec3::new(0.36, -0.48, 0.8);
-        let w = to_world(&n, &Vec3s::<N>::splat(v));
-        for (i, &normal) in normals.iter().enumerate() {
-            assert!((w.lane(i) - Frame::from_normal(normal).to_world(v)).length() < 1e-6);
         }
     }
 }

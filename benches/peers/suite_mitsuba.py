@@ -1,0 +1,254 @@
+#!/usr/bin/env python3
+"""Every suite scene rendered by Mitsuba 3 and by pathtrace, interleaved: samples/s and the
+estimated time to relative MSE 1e-2, with the ratio ours / Mitsuba.
+
+Each scene is the same Mitsuba 3 XML file for both renderers, at its own film size, with its own
+integrator, depth and filter; only the sample count is set (Mitsuba: `mi.render(spp=...)`;
+pathtrace: `--spp`). Mitsuba's time is its render call after a warm-up render (the llvm variant
+compiles kernels on first use); ours is pathtrace's own `render_seconds` (both exclude loading).
+Rounds interleave the two renderers scene by scene, so both see the same machine load; medians
+over rounds are reported.
+
+Time to relative MSE 1e-2: each renderer's images are compared with a reference rendered once by
+Mitsuba at `--ref-spp` samples (cached under target/bench-references/, keyed by scene and size),
+with pathtrace's relative MSE, mean of (a - b)^2 / (b^2 + 0.01). For an unbiased estimator at
+fixed settings the error falls as 1/spp and the time grows as spp, so time x relMSE is a constant
+of the renderer and scene: the estimate is time_to_target = time x relMSE / target, from the same
+renders that give samples/s. (The reference's own error, 1/ref-spp of the relMSE at 1 spp, adds
+to both renderers alike.)
+
+    bash benches/peers/setup.sh --llvm
+    .venv-peers/bin/python benches/peers/suite_mitsuba.py --pathtrace target/release/pathtrace
+
+The 1M-triangle scene is generated (a displaced grid of 1,000,000 triangles, PLY, under a quad
+light) into target/bench-scenes/. See docs/benchmarks.md for the measured table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import math
+import os
+import shlex
+import statistics
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cornell_mitsuba as cm  # noqa: E402  (find_libllvm)
+from equal_quality import load_pfm, rel_mse  # noqa: E402
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+SHARED = os.path.abspath(os.path.join(REPO, "..", "shared", "scenes"))
+
+# (label, XML path under ../shared/scenes or "mesh-1m", defines, spp per timed render)
+SCENES = (
+    ("cornell-box-bitterli", "cornell-box-bitterli/scene_v3.xml", {}, 16),
+    ("cbox", "cbox/cbox.xml", {}, 64),
+    ("veach-mis", "veach-mis/docs/scenes/integrator_direct_both.xml", {}, 16),
+    ("veach-mis-bitterli", "veach-mis-bitterli/scene_v3.xml", {"integrator": "path"}, 8),
+    ("matpreview-copper", "matpreview/docs/scenes/bsdf_roughconductor_copper.xml", {}, 4),
+    ("matpreview-glass", "matpreview/docs/scenes/bsdf_dielectric_glass.xml", {}, 4),
+    ("matpreview-plastic", "matpreview/docs/scenes/bsdf_plastic_shiny.xml", {}, 4),
+    ("bunny", "bunny/docs/scenes/shape_ply_bunny.xml", {}, 4),
+    ("teapot-simple", "teapot-simple/simple.xml", {}, 64),
+    ("mesh-1m", "mesh-1m", {}, 16),
+)
+
+
+def mesh_1m_scene(folder):
+    """A 708 x 707-cell displaced grid (1,000,000+ triangles, no normals: face normals in both
+    renderers) on the floor of an open box, lit by one quad light; written once."""
+    os.makedirs(folder, exist_ok=True)
+    ply, xml = os.path.join(folder, "grid.ply"), os.path.join(folder, "mesh-1m.xml")
+    if os.path.exists(xml):
+        return xml
+    nx, nz = 708, 707
+    verts = []
+    for j in range(nz + 1):
+        for i in range(nx + 1):
+            x, z = i / nx * 2 - 1, j / nz * 2 - 1
+            y = 0.15 * math.sin(7 * x) * math.cos(5 * z) + 0.05 * math.sin(31 * x + 17 * z)
+            verts.append((x, y, z))
+    faces = []
+    for j in range(nz):
+        for i in range(nx):
+            a = j * (nx + 1) + i
+            faces.append((a, a + nx + 1, a + 1))
+            faces.append((a + 1, a + nx + 1, a + nx + 2))
+    with open(ply, "wb") as fh:
+        fh.write(("ply\nformat binary_little_endian 1.0\n"
+                  f"element vertex {len(verts)}\nproperty float x\nproperty float y\nproperty float z\n"
+                  f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n").encode())
+        fh.write(b"".join(struct.pack("<3f", *v) for v in verts))
+        fh.write(b"".join(struct.pack("<B3i", 3, *f) for f in faces))
+    with open(xml, "w") as fh:
+        fh.write("""<scene version="3.0.0">
+    <integrator type="path"><integer name="max_depth" value="8"/></integrator>
+    <sensor type="perspective">
+        <float name="fov" value="45"/>
+        <transform name="to_world"><lookat origin="0, 2.2, 3.2" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <sampler type="independent"><integer name="sample_count" value="16"/></sampler>
+        <film type="hdrfilm"><integer name="width" value="512"/><integer name="height" value="512"/>
+            <rfilter type="box"/></film>
+    </sensor>
+    <bsdf type="diffuse" id="grey"><rgb name="reflectance" value="0.6, 0.6, 0.6"/></bsdf>
+    <shape type="ply"><string name="filename" value="grid.ply"/><boolean name="face_normals" value="true"/>
+        <ref id="grey"/></shape>
+    <shape type="rectangle">
+        <transform name="to_world"><scale value="0.5"/><rotate x="1" angle="90"/><translate value="0, 2, 0"/></transform>
+        <emitter type="area"><rgb name="radiance" value="20, 20, 20"/></emitter>
+    </shape>
+</scene>
+""")
+    return xml
+
+
+def scene_path(rel, args):
+    if rel == "mesh-1m":
+        return mesh_1m_scene(os.path.join(REPO, "target", "bench-scenes"))
+    return os.path.join(args.scenes, rel)
+
+
+class Mitsuba:
+    def __init__(self, mi, dr, variant, path, defines):
+        self.mi, self.dr, self.variant = mi, dr, variant
+        mi.set_variant(variant)
+        self.scene = mi.load_file(path, **defines)
+        film = self.scene.sensors()[0].film()
+        self.size = tuple(int(v) for v in film.crop_size())
+
+    def render(self, np, spp, seed):
+        mi, dr = self.mi, self.dr
+        mi.set_variant(self.variant)
+        t0 = time.perf_counter()
+        img = mi.render(self.scene, spp=spp, seed=seed)
+        if self.variant.startswith("llvm"):
+            dr.eval(img)
+            dr.sync_thread()
+        seconds = time.perf_counter() - t0
+        return seconds, np.array(img, dtype=np.float64)[:, :, :3]
+
+
+def ours(np, binary, path, defines, spp, seed, threads, tmp):
+    out, stats = os.path.join(tmp, "pt.pfm"), os.path.join(tmp, "pt.json")
+    cmd = shlex.split(binary) + ["render", path, "--spp", str(spp), "--seed", str(seed),
+                                 "--threads", str(threads), "--quiet", "--stats-json", stats, "-o", out]
+    for k, v in defines.items():
+        cmd += ["-D", f"{k}={v}"]
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    if proc.returncode != 0:
+        sys.exit(f"pathtrace failed: {' '.join(cmd)}\n{proc.stderr}")
+    with open(stats) as fh:
+        seconds = float(json.load(fh)["render_seconds"])
+    return seconds, load_pfm(np, out)
+
+
+def reference(np, mi, dr, label, path, defines, args):
+    """A high-spp Mitsuba render of the scene, cached by (scene, defines, spp)."""
+    key = hashlib.sha1(json.dumps([label, defines, args.ref_spp, os.path.getmtime(path)]).encode()).hexdigest()[:12]
+    cache = os.path.join(REPO, "target", "bench-references", f"{label}-{key}.npy")
+    if os.path.exists(cache):
+        return np.load(cache)
+    m = Mitsuba(mi, dr, args.ref_variant, path, defines)
+    t0 = time.time()
+    _, img = m.render(np, args.ref_spp, 12345)
+    os.makedirs(os.path.dirname(cache), exist_ok=True)
+    np.save(cache, img)
+    print(f"  reference {label}: {args.ref_spp} spp by {args.ref_variant} in {time.time() - t0:.0f} s", flush=True)
+    return img
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p.add_argument("--pathtrace", required=True, metavar="BIN", help="our binary")
+    p.add_argument("--scenes", default=SHARED, help="the shared scenes folder")
+    p.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant timed")
+    p.add_argument("--ref-variant", default="llvm_ad_rgb", help="Mitsuba variant of the references")
+    p.add_argument("--ref-spp", type=int, default=1024)
+    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--runs", type=int, default=3, help="interleaved rounds")
+    p.add_argument("--target", type=float, default=1e-2, help="relative MSE to reach")
+    p.add_argument("--only", default=None, help="only scenes whose label contains this text")
+    p.add_argument("--spp-scale", type=float, default=1.0, help="multiply every scene's spp")
+    p.add_argument("--json", metavar="FILE", help="also write the table as JSON")
+    args = p.parse_args(argv)
+    if "llvm" in args.variant + args.ref_variant and "DRJIT_LIBLLVM_PATH" not in os.environ:
+        lib = cm.find_libllvm()
+        if lib:
+            os.environ["DRJIT_LIBLLVM_PATH"] = lib
+
+    import numpy as np
+    import drjit as dr
+    import mitsuba as mi
+
+    mi.set_variant(args.variant)
+    mi.set_log_level(mi.LogLevel.Error)
+    dr.set_thread_count(args.threads)
+    print(f"mitsuba {mi.__version__} {args.variant} vs {args.pathtrace}, {args.threads} threads, "
+          f"{args.runs} interleaved rounds, target relative MSE {args.target:g}", flush=True)
+
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="suite-") as tmp:
+        for label, rel, defines, spp in SCENES:
+            if args.only and args.only not in label:
+                continue
+            path = scene_path(rel, args)
+            if not os.path.exists(path):
+                print(f"{label}: {path} is absent, skipped")
+                continue
+            spp = max(1, round(spp * args.spp_scale))
+            ref = reference(np, mi, dr, label, path, defines, args)
+            theirs = Mitsuba(mi, dr, args.variant, path, defines)
+            w, h = theirs.size
+            theirs.render(np, spp, 0)  # warm-up: kernels compiled, files cached
+            ours(np, args.pathtrace, path, defines, 1, 0, args.threads, tmp)
+            r = {"scene": label, "size": f"{w}x{h}", "spp": spp, "mitsuba": [], "ours": []}
+            for run in range(args.runs):
+                for who in ("mitsuba", "ours"):
+                    if who == "mitsuba":
+                        seconds, img = theirs.render(np, spp, 1 + run)
+                    else:
+                        seconds, img = ours(np, args.pathtrace, path, defines, spp, 1 + run, args.threads, tmp)
+                    err = rel_mse(np, img, ref)
+                    r[who].append({"seconds": seconds, "samples_per_s": w * h * spp / seconds, "rel_mse": err,
+                                   "time_to_target": seconds * err / args.target})
+            rows.append(r)
+            med = {who: {k: statistics.median(x[k] for x in r[who]) for k in r[who][0]} for who in ("mitsuba", "ours")}
+            r["median"] = med
+            print(f"{label:<22} {w}x{h} {spp:>3} spp  samples/s: ours {med['ours']['samples_per_s'] / 1e6:7.3f} M, "
+                  f"mitsuba {med['mitsuba']['samples_per_s'] / 1e6:7.3f} M, ratio "
+                  f"{med['ours']['samples_per_s'] / med['mitsuba']['samples_per_s']:5.2f}x   "
+                  f"time to {args.target:g}: ours {med['ours']['time_to_target']:.3f} s, "
+                  f"mitsuba {med['mitsuba']['time_to_target']:.3f} s, ratio "
+                  f"{med['ours']['time_to_target'] / med['mitsuba']['time_to_target']:5.2f}x", flush=True)
+
+    print()
+    print("| scene | size, spp | ours M samples/s | Mitsuba M samples/s | ours ÷ Mitsuba speed "
+          "| time to relMSE 1e-2, ours ÷ Mitsuba |")
+    print("| --- | --- | --- | --- | --- | --- |")
+    ratios = []
+    for r in rows:
+        m = r["median"]
+        ratio = m["ours"]["samples_per_s"] / m["mitsuba"]["samples_per_s"]
+        ratios.append(ratio)
+        print(f"| {r['scene']} | {r['size']}, {r['spp']} | {m['ours']['samples_per_s'] / 1e6:.3f} | "
+              f"{m['mitsuba']['samples_per_s'] / 1e6:.3f} | {ratio:.2f}× | "
+              f"{m['ours']['time_to_target'] / m['mitsuba']['time_to_target']:.2f}× |")
+    if ratios:
+        gm = math.exp(sum(math.log(x) for x in ratios) / len(ratios))
+        print(f"\ngeometric mean of the speed ratios: {gm:.2f}×  (min {min(ratios):.2f}×)")
+    if args.json:
+        with open(args.json, "w") as fh:
+            json.dump(rows, fh, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

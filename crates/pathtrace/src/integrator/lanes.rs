@@ -1,0 +1,159 @@
+//! The state of a group of `N` paths, one per SIMD lane (structure of arrays), and where their
+//! finished estimates go.
+//!
+//! `N` is 8 with AVX2 (and in the portable build), 16 with AVX-512, and 1 for the one-lane
+//! instance of the same estimator (`Kernel::Scalar`, kept for debugging and tests).
+
+use crate::film::PixelStats;
+use crate::integrator::PathStats;
+use crate::math::{Ray, Rgb, Vec2, Vec3};
+use crate::scene::Primitive;
+use crate::shape::SurfacePoint;
+use crate::wide::simd::{F32s, Ms, Vec3s};
+
+/// The state of `N` paths (lanes outside `active` hold stale values).
+pub(crate) struct Paths<const N: usize> {
+    pub active: Ms<N>,
+    pub origin: Vec3s<N>,
+    pub dir: Vec3s<N>,
+    pub beta: [F32s<N>; 3],
+    pub radiance: [F32s<N>; 3],
+    /// Product of η² over the refractions so far, undone by Russian roulette (pbrt-v4 §13.4.3).
+    pub eta_scale: F32s<N>,
+    /// The previous vertex and the solid-angle pdf of the direction sampled there.
+    pub prev_p: Vec3s<N>,
+    pub prev_pdf: F32s<N>,
+    /// The direction came from a Dirac lobe or the camera: emission found counts in full.
+    pub prev_specular: Ms<N>,
+    /// Pixel-filter weight of the camera sample.
+    pub filter_weight: F32s<N>,
+    /// Path segments so far (Mitsuba's depth convention).
+    pub segments: [u32; N],
+    /// The pixel (index in the tile) each lane's sample belongs to.
+    pub pixel: [u32; N],
+}
+
+/// Where finished samples go.
+pub(crate) struct Output {
+    pub pixels: Vec<PixelStats>,
+    pub stats: PathStats,
+    pub dropped: u64,
+}
+
+impl<const N: usize> Paths<N> {
+    #[inline(always)]
+    pub fn new() -> Self {
+        Self {
+            active: Ms::default(),
+            origin: Vec3s::default(),
+            dir: Vec3s::default(),
+            beta: [F32s::default(); 3],
+            radiance: [F32s::default(); 3],
+            eta_scale: F32s::default(),
+            prev_p: Vec3s::default(),
+            prev_pdf: F32s::default(),
+            prev_specular: Ms::default(),
+            filter_weight: F32s::default(),
+            segments: [0; N],
+            pixel: [0; N],
+        }
+    }
+
+    /// Starts a camera path in lane `i` for pixel `pixel` of the tile.
+    #[inline(always)]
+    pub fn start(&mut self, i: usize, pixel: u32, ray: Ray, filter_weight: f32) {
+        self.active.0[i] = u32::MAX;
+        self.origin.set(i, ray.origin);
+        self.dir.set(i, ray.dir);
+        for c in 0..3 {
+            self.beta[c].0[i] = 1.0;
+            self.radiance[c].0[i] = 0.0;
+        }
+        self.eta_scale.0[i] = 1.0;
+        self.prev_p.set(i, ray.origin);
+        self.prev_pdf.0[i] = 0.0;
+        self.prev_specular.0[i] = u32::MAX;
+        self.filter_weight.0[i] = filter_weight;
+        self.segments[i] = 1;
+        self.pixel[i] = pixel;
+    }
+
+    /// Lane `i`'s throughput.
+    #[inline(always)]
+    pub fn beta(&self, i: usize) -> Rgb {
+        Rgb::new(self.beta[0].0[i], self.beta[1].0[i], self.beta[2].0[i])
+    }
+
+    /// Adds `throughput × l` to lane `i`'s estimate.
+    #[inline(always)]
+    pub fn add_weighted(&mut self, i: usize, l: Rgb) {
+        for (c, v) in l.to_array().into_iter().enumerate() {
+            self.radiance[c].0[i] += self.beta[c].0[i] * v;
+        }
+    }
+
+    /// Ends lane `i`'s path: its estimate goes to its pixel (non-finite ones are dropped and
+    /// counted).
+    #[inline(always)]
+    pub fn finish(&mut self, i: usize, out: &mut Output) {
+        self.active.0[i] = 0;
+        let w = self.filter_weight.0[i];
+        let l = Rgb::new(self.radiance[0].0[i] * w, self.radiance[1].0[i] * w, self.radiance[2].0[i] * w);
+        if l.is_finite() {
+            out.pixels[self.pixel[i] as usize].add(l);
+        } else {
+            out.dropped += 1;
+        }
+    }
+
+    /// Ends every lane of `mask`.
+    #[inline(always)]
+    pub fn finish_all(&mut self, mask: Ms<N>, out: &mut Output) {
+        for i in mask.lanes() {
+            self.finish(i, out);
+        }
+    }
+}
+
+/// The hit points of `N` rays.
+pub(crate) struct Surfaces<const N: usize> {
+    pub hit: Ms<N>,
+    pub p: Vec3s<N>,
+    pub n_geometric: Vec3s<N>,
+    pub n_shading: Vec3s<N>,
+    /// Texture coordinates and ∂p/∂u, for textures and anisotropic frames (zero where the
+    /// brute-force intersector found the hit: it serves only scenes that need neither).
+    pub uv: [Vec2; N],
+    pub dpdu: [Vec3; N],
+    pub material: [u32; N],
+    pub light: [u32; N],
+}
+
+impl<const N: usize> Surfaces<N> {
+    /// No lane has hit anything (yet).
+    #[inline(always)]
+    pub fn none() -> Self {
+        Self {
+            hit: Ms::NONE,
+            p: Vec3s::default(),
+            n_geometric: Vec3s::default(),
+            n_shading: Vec3s::default(),
+            uv: [Vec2::ZERO; N],
+            dpdu: [Vec3::ZERO; N],
+            material: [0; N],
+            light: [Primitive::NO_LIGHT; N],
+        }
+    }
+
+    /// Lane `i`'s hit as the shapes describe it.
+    #[inline(always)]
+    pub fn surface(&self, i: usize) -> SurfacePoint {
+        SurfacePoint {
+            p: self.p.lane(i),
+            n_geometric: self.n_geometric.lane(i),
+            n_shading: self.n_shading.lane(i),
+            uv: self.uv[i],
+            dpdu: self.dpdu[i],
+        }
+    }
+}

@@ -1,0 +1,119 @@
+//! Path regeneration: a tile's pixel samples flow through a group of `N` lanes, and a lane
+//! whose path ends starts the tile's next camera sample at once, so lanes stay busy instead of
+//! waiting for the longest path of a batch (as wavefront renderers and Mitsuba 3's vectorised
+//! variants do).
+
+use super::lanes::{Output, Paths};
+use super::path::vertex;
+use crate::camera::Camera;
+use crate::film::{PixelFilter, PixelStats};
+use crate::integrator::PathStats;
+use crate::render::tile::{Tile, TileResult, WaveSamples};
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+use crate::wide::{LaneSamplers, WideScene};
+
+/// What every tile of a render shares.
+pub(crate) struct LaneJob<'a> {
+    pub scene: &'a Scene,
+    /// The scene's lane-parallel forms.
+    pub lanes: &'a WideScene,
+    pub camera: &'a Camera,
+    pub filter: &'a PixelFilter,
+}
+
+/// The tile's pixel samples, pixel by pixel (so the camera rays of a batch are neighbours).
+struct Queue<'a> {
+    tile: Tile,
+    samples: WaveSamples<'a>,
+    pixel: u32,
+    next: u32,
+    end: u32,
+}
+
+/// One pixel sample to start: index of the pixel in the tile, its coordinates, sample index.
+struct Job {
+    pixel: u32,
+    x: u32,
+    y: u32,
+    sample: u32,
+}
+
+impl<'a> Queue<'a> {
+    fn new(tile: Tile, samples: WaveSamples<'a>) -> Self {
+        let mut q = Self { tile, samples, pixel: 0, next: 0, end: 0 };
+        q.enter_pixel();
+        q
+    }
+
+    fn enter_pixel(&mut self) {
+        if self.pixel < self.tile.w * self.tile.h {
+            let (x, y) = self.coordinates();
+            let (first, count) = self.samples.range(x, y);
+            self.next = first;
+            self.end = first + count;
+        }
+    }
+
+    fn coordinates(&self) -> (u32, u32) {
+        (self.tile.x0 + self.pixel % self.tile.w, self.tile.y0 + self.pixel / self.tile.w)
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Job> {
+        while self.next >= self.end {
+            if self.pixel >= self.tile.w * self.tile.h {
+                return None;
+            }
+            self.pixel += 1;
+            self.enter_pixel();
+        }
+        if self.pixel >= self.tile.w * self.tile.h {
+            return None;
+        }
+        let (x, y) = self.coordinates();
+        let sample = self.next;
+        self.next += 1;
+        Some(Job { pixel: self.pixel, x, y, sample })
+    }
+}
+
+/// Renders the wave's samples of every pixel in `tile` in groups of `N` lanes. Each pixel
+/// sample's random numbers come from a copy of `proto` started at (pixel, sample index), so the
+/// result does not depend on the thread, the lane or the lane count.
+#[inline(always)]
+pub(crate) fn render_tile_lanes<const N: usize>(
+    job: &LaneJob,
+    proto: &Sampler,
+    tile: Tile,
+    samples: WaveSamples,
+) -> TileResult {
+    let mut samplers = LaneSamplers::<N>::new(proto);
+    let mut out = Output {
+        pixels: vec![PixelStats::default(); (tile.w * tile.h) as usize],
+        stats: PathStats::default(),
+        dropped: 0,
+    };
+    let mut queue = Queue::new(tile, samples);
+    let mut paths = Paths::<N>::new();
+    let max_depth = job.lanes.settings.max_depth;
+    loop {
+        for i in (!paths.active).lanes() {
+            let Some(next) = queue.pop() else { break };
+            // The filter picks where in (or around) the pixel the ray goes and weights the
+            // sample by f/pdf (exactly 1 for box and tent): see film/filter.rs.
+            let fs = job.filter.sample(samplers.start(i, next.x, next.y, next.sample));
+            let ray = job.camera.generate_ray(next.x, next.y, fs.jitter);
+            out.stats.camera_rays += 1;
+            paths.start(i, next.pixel, ray, fs.weight);
+            if max_depth == 0 {
+                paths.finish(i, &mut out);
+            }
+        }
+        if !paths.active.any() {
+            break;
+        }
+        vertex(job, &mut paths, &mut samplers, &mut out);
+    }
+    TileResult { tile, pixels: out.pixels, stats: out.stats, dropped: out.dropped }
+}

@@ -1,0 +1,227 @@
+//! Shading one lane's vertex through the scene's own materials and lights: the material at the
+//! hit (textures applied), its shading frame, the light sample of next-event estimation and the
+//! continuation direction by the path's strategy.
+//!
+//! Every material, light, texture and strategy is served here, one lane at a time, by the same
+//! `Material` and `LightSet` code the sampling tests check; the lane-parallel forms in
+//! `integrator::path` take over only the lanes they can compute identically (Lambertian
+//! surfaces under flat area lights).
+
+use super::Strategy;
+use crate::material::Material;
+use crate::math::{offset_ray_origin, Frame, Rgb, Vec2, Vec3};
+use crate::scene::{Interaction, Scene};
+
+/// Light-sampling shadow rays stop this fraction short of the light, so they do not hit it.
+pub(crate) const SHADOW_EPSILON: f32 = 1e-4;
+
+/// The random numbers of one vertex, in the sampler's dimension order.
+#[derive(Clone, Copy)]
+pub(crate) struct VertexNumbers {
+    pub select: f32,
+    pub light: Vec2,
+    pub lobe: f32,
+    pub direction: Vec2,
+}
+
+/// A shadow ray towards a light sample and what it adds if unoccluded (throughput included).
+#[derive(Clone, Copy)]
+pub(crate) struct ShadowRay {
+    pub origin: Vec3,
+    pub dir: Vec3,
+    pub t_max: f32,
+    pub contribution: Rgb,
+}
+
+/// A chosen continuation: the next ray and the throughput weight `f·|cos|/pdf`.
+#[derive(Clone, Copy)]
+pub(crate) struct Continuation {
+    pub origin: Vec3,
+    pub dir: Vec3,
+    pub weight: Rgb,
+    /// Solid-angle pdf of the direction (for MIS at the next emission hit).
+    pub pdf: f32,
+    pub specular: bool,
+    pub eta: f32,
+}
+
+/// What one lane's vertex produced.
+pub(crate) struct Shading {
+    pub shadow: Option<ShadowRay>,
+    pub next: Option<Continuation>,
+}
+
+/// Shades the hit `it`, seen along `-wo_world`, for a path of throughput `beta`. `nee` says
+/// whether this vertex samples a light (the caller drew `u.select` and `u.light` only then).
+/// Not inlined: it holds every material and light, and the lane loop stays small without it.
+#[inline(never)]
+pub(crate) fn shade(
+    scene: &Scene,
+    strategy: Strategy,
+    it: &Interaction,
+    wo_world: Vec3,
+    beta: Rgb,
+    u: VertexNumbers,
+    nee: bool,
+) -> Shading {
+    let lights = &scene.lights;
+    let p = it.surface.p;
+    // Textured colours at this hit (untextured materials are used as they are).
+    let textured: Material;
+    let material = if scene.is_textured(it) {
+        textured = scene.textured_material(it);
+        &textured
+    } else {
+        it.material
+    };
+
+    // Shading frame, flipped to the viewer's side for two-sided materials.
+    let mut n_g = it.surface.n_geometric;
+    let mut n_s = it.surface.n_shading;
+    if material.is_two_sided() && n_g.dot(wo_world) < 0.0 {
+        n_g = -n_g;
+        n_s = -n_s;
+    }
+    // Anisotropic roughness is aligned with ∂p/∂u, as in Mitsuba; isotropic models do not
+    // depend on the tangent, and keep the cheaper basis of the normal.
+    let frame = if material.is_anisotropic() {
+        Frame::from_normal_tangent(n_s, it.surface.tangent())
+    } else {
+        Frame::from_normal(n_s)
+    };
+    let wo = frame.to_local(wo_world);
+
+    // ---- Light sampling (next-event estimation, MIS only) ----------------------------
+    let shadow =
+        if nee { light_sample(scene, strategy, material, &frame, n_g, p, wo, wo_world, beta, u) } else { None };
+
+    // ---- Direction sampling --------------------------------------------------------
+    // The `light` and `mixture` strategies follow the sampled direction, which point lights
+    // (Dirac deltas) cannot provide: they sample the other lights only.
+    let can_follow_lights = !material.is_delta() && lights.has_continuous();
+    let next = match strategy {
+        // A Dirac lobe (plastic's coating) cannot be reached by light sampling alone: such
+        // materials are sampled by the material under the `light` strategy.
+        Strategy::Light if can_follow_lights && !material.has_delta_lobe() => {
+            sample_towards_lights(scene, material, &frame, p, wo, u.lobe, u.direction)
+        }
+        Strategy::Mixture if can_follow_lights => sample_mixture(scene, material, &frame, p, wo, u.lobe, u.direction),
+        _ => material.sample(wo, u.lobe, u.direction).map(|s| Scatter {
+            wi_world: frame.to_world(s.wi),
+            weight: s.weight,
+            pdf: s.pdf,
+            specular: s.delta,
+            eta: s.eta,
+        }),
+    };
+    // Reject directions on the wrong geometric side (shading normals can disagree with the
+    // true surface): reflection must stay on wo's side, transmission must cross.
+    let next = next.filter(|s| {
+        let reflects = frame.to_local(s.wi_world).z * wo.z > 0.0;
+        reflects == same_side(n_g, wo_world, s.wi_world) && !s.weight.is_black()
+    });
+    let next = next.map(|s| Continuation {
+        origin: offset_ray_origin(p, n_g, s.wi_world),
+        dir: s.wi_world,
+        weight: s.weight,
+        pdf: s.pdf,
+        specular: s.specular,
+        eta: s.eta,
+    });
+    Shading { shadow, next }
+}
+
+/// One light sample and its shadow ray, weighted by MIS against the material's density.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn light_sample(
+    scene: &Scene,
+    strategy: Strategy,
+    material: &Material,
+    frame: &Frame,
+    n_g: Vec3,
+    p: Vec3,
+    wo: Vec3,
+    wo_world: Vec3,
+    beta: Rgb,
+    u: VertexNumbers,
+) -> Option<ShadowRay> {
+    let ls = scene.lights.sample(p, u.select, u.light)?;
+    let wi = frame.to_local(ls.wi);
+    let f = material.eval(wo, wi);
+    if ls.radiance.is_black() || f.is_black() || !same_side(n_g, wo_world, ls.wi) {
+        return None;
+    }
+    let origin = offset_ray_origin(p, n_g, ls.wi);
+    let (dir, t_max) = if ls.dist.is_infinite() {
+        // The environment: unoccluded if the ray leaves the scene.
+        (ls.wi, f32::INFINITY)
+    } else {
+        let to_light = ls.point - origin;
+        let dist = to_light.length();
+        (to_light / dist, dist * (1.0 - SHADOW_EPSILON))
+    };
+    // A point light cannot be found by material sampling: its sample counts in full.
+    let w = if ls.delta { 1.0 } else { strategy.mis_weight(ls.pdf, material.pdf(wo, wi)) };
+    Some(ShadowRay { origin, dir, t_max, contribution: beta * f * ls.radiance * (w / ls.pdf) })
+}
+
+/// A chosen continuation direction with its throughput weight `f·|cos|/pdf`.
+struct Scatter {
+    wi_world: Vec3,
+    weight: Rgb,
+    pdf: f32,
+    specular: bool,
+    eta: f32,
+}
+
+fn same_side(n: Vec3, a: Vec3, b: Vec3) -> bool {
+    n.dot(a) * n.dot(b) > 0.0
+}
+
+/// The `light` strategy: continue towards a light point; pdf of the direction summed over all
+/// lights (point lights excepted).
+fn sample_towards_lights(
+    scene: &Scene,
+    material: &Material,
+    frame: &Frame,
+    p: Vec3,
+    wo: Vec3,
+    u_select: f32,
+    u: Vec2,
+) -> Option<Scatter> {
+    let ls = scene.lights.sample_continuous(p, u_select, u)?;
+    let pdf = scene.lights.pdf_direction(p, ls.wi);
+    let f = material.eval(wo, frame.to_local(ls.wi));
+    (pdf > 0.0).then(|| Scatter { wi_world: ls.wi, weight: f * (1.0 / pdf), pdf, specular: false, eta: 1.0 })
+}
+
+/// The `mixture` strategy: half the time towards a light, half by the material; weighted by the
+/// mixture density 0.5·p_light + 0.5·p_bsdf of the chosen direction.
+fn sample_mixture(
+    scene: &Scene,
+    material: &Material,
+    frame: &Frame,
+    p: Vec3,
+    wo: Vec3,
+    u_choice: f32,
+    u: Vec2,
+) -> Option<Scatter> {
+    // Reuse the one number for both the coin flip and the sub-strategy's 1D choice.
+    let wi_world = if u_choice < 0.5 {
+        scene.lights.sample_continuous(p, u_choice * 2.0, u)?.wi
+    } else {
+        let s = material.sample(wo, u_choice * 2.0 - 1.0, u)?;
+        if s.delta {
+            // Only the material's half of the mixture produces a Dirac lobe's direction: its
+            // probability is 0.5·p_lobe, so the weight is f/(0.5·p_lobe) = 2·(f/p_lobe).
+            let wi_world = frame.to_world(s.wi);
+            return Some(Scatter { wi_world, weight: s.weight * 2.0, pdf: s.pdf, specular: true, eta: s.eta });
+        }
+        frame.to_world(s.wi)
+    };
+    let wi = frame.to_local(wi_world);
+    let pdf = 0.5 * scene.lights.pdf_direction(p, wi_world) + 0.5 * material.pdf(wo, wi);
+    let f = material.eval(wo, wi);
+    (pdf > 0.0).then(|| Scatter { wi_world, weight: f * (1.0 / pdf), pdf, specular: false, eta: 1.0 })
+}
