@@ -4,12 +4,12 @@ use crate::args::CompareArgs;
 use crate::CliError;
 use pathtrace::film::ToneMapSettings;
 use pathtrace::metrics::{compare, difference_image};
-use pathtrace_scene::image_io::{read_image, write_image, ImageFormat};
+use pathtrace_scene::image_io::{read_image, write_image};
 use std::process::ExitCode;
 
 pub fn run(a: CompareArgs) -> Result<ExitCode, CliError> {
     if let Some(diff) = &a.diff {
-        ImageFormat::from_path(diff).map_err(|e| CliError::usage(e.to_string()))?;
+        crate::destination::check_image_destination(diff, "--diff")?;
     }
     let image = read_image(&a.image).map_err(|e| CliError::usage(e.to_string()))?;
     let reference = read_image(&a.reference).map_err(|e| CliError::usage(e.to_string()))?;

@@ -77,7 +77,7 @@ fn render(
     s.sampler = method.sampler;
     s.path.strategy = method.strategy;
     s.adaptive = method.adaptive.then(|| AdaptiveSettings { min_spp, ..Default::default() });
-    let out = pathtrace::render(Arc::clone(scene), s).map_err(|e| CliError::runtime(e.to_string()))?;
+    let out = pathtrace::render(Arc::clone(scene), s)?;
     Ok((out.film.image(), out.progress.elapsed.as_secs_f64()))
 }
 
@@ -92,6 +92,7 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
     let loaded = scene_arg::load(&a.scene)?;
     let d = loaded.defaults;
     let (width, height) = a.size.unwrap_or((d.width.min(256), d.height.min(256)));
+    crate::memory::check_render_fits(width, height)?;
     let mut base = RenderSettings { width, height, threads: a.threads.unwrap_or(0), ..RenderSettings::default() };
     base.path.max_depth = a.max_depth.unwrap_or(d.max_depth);
     let out_dir = a.out.clone().unwrap_or_else(|| PathBuf::from(format!("converge-{}", scene_arg::stem(&a.scene))));

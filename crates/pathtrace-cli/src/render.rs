@@ -1,6 +1,7 @@
 //! `pathtrace render`.
 
 use crate::args::{AdaptiveArgs, QualityArgs, RenderArgs};
+use crate::destination::{check_destination, check_image_destination};
 use crate::interrupt::Interrupt;
 use crate::progress::{format_rate, Bar};
 use crate::stats_json::RenderStats;
@@ -8,9 +9,9 @@ use crate::{scene_arg, CliError};
 use pathtrace::film::{Film, Image, ToneMapSettings};
 use pathtrace::math::Rgb;
 use pathtrace::{AdaptiveSettings, RenderSession, RenderSettings};
-use pathtrace_scene::image_io::{write_image, ImageFormat};
+use pathtrace_scene::image_io::write_image;
 use pathtrace_scene::RenderDefaults;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Duration;
@@ -34,19 +35,6 @@ pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &R
     s.path.strategy = q.strategy.or(d.strategy).unwrap_or_default();
     s.path.max_depth = q.max_depth.unwrap_or(d.max_depth);
     s
-}
-
-fn check_output(path: &Path) -> Result<(), CliError> {
-    ImageFormat::from_path(path).map_err(|e| CliError::usage(e.to_string()))?;
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    if !dir.is_dir() {
-        return Err(CliError::usage(format!(
-            "cannot write {}: folder {} does not exist",
-            path.display(),
-            dir.display()
-        )));
-    }
-    Ok(())
 }
 
 /// Adaptive settings from `--adaptive`, `--target-error` and `--min-spp`; with a target error and
@@ -82,18 +70,21 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
             settings.path.strategy
         );
     }
+    crate::memory::check_render_fits(settings.width, settings.height)?;
     let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", scene_arg::stem(&a.scene))));
-    check_output(&output)?;
+    check_image_destination(&output, "-o")?;
     if let Some(path) = &a.adaptive.spp_image {
-        check_output(path)?;
+        check_image_destination(path, "--spp-image")?;
+    }
+    if let Some(path) = &a.stats_json {
+        check_destination(path, "--stats-json")?;
     }
     if !a.exposure.is_finite() {
         return Err(CliError::usage("--exposure must be a finite number of stops"));
     }
 
     let interrupt = Interrupt::install();
-    let session =
-        RenderSession::start(Arc::new(loaded.scene), settings.clone()).map_err(|e| CliError::runtime(e.to_string()))?;
+    let session = RenderSession::start(Arc::new(loaded.scene), settings.clone())?;
     let pixels = settings.width as u64 * settings.height as u64;
     let bar = Bar::new(pixels, settings.spp, settings.time_limit, a.quiet);
     while !session.is_finished() {
@@ -156,5 +147,5 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
         std::fs::write(path, json + "\n")
             .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
     }
-    Ok(if interrupted { ExitCode::from(130) } else { ExitCode::SUCCESS })
+    Ok(if interrupted { ExitCode::from(crate::interrupt::EXIT_INTERRUPTED) } else { ExitCode::SUCCESS })
 }

@@ -14,6 +14,7 @@ mod png_codec;
 #[cfg(test)]
 mod scratch;
 mod size_guard;
+mod stale_temps;
 #[cfg(test)]
 mod tests;
 mod texture_codec;

@@ -13,7 +13,7 @@ use super::adaptive::{allocate, AdaptiveSettings};
 use super::settings::RenderSettings;
 use super::tile::{render_tile, tiles, Tile, TileJob, TileResult, WaveSamples};
 use crate::camera::{Camera, CameraDesc, CameraError};
-use crate::film::{Film, Image};
+use crate::film::{Film, FilmTooLarge, Image};
 use crate::integrator::PathStats;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -35,6 +35,16 @@ pub enum RenderError {
     NoBudget,
     #[error("the wide kernel cannot render this scene: it has {0}; use the scalar or auto kernel")]
     WideKernel(String),
+    #[error(transparent)]
+    Film(#[from] FilmTooLarge),
+}
+
+impl RenderError {
+    /// True when the request itself cannot be rendered (a bad setting for this scene or machine),
+    /// false when the system failed (threads could not start).
+    pub fn is_bad_request(&self) -> bool {
+        !matches!(self, RenderError::Threads(_))
+    }
 }
 
 /// A snapshot of how far a render is.
@@ -152,13 +162,14 @@ impl RenderSession {
             Kernel::Wide => Some(WideScene::new(&scene, &settings.path).map_err(RenderError::WideKernel)?),
         };
         let prep = Prepared { camera, wide };
+        let film = Film::try_new(settings.width, settings.height)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(settings.threads)
             .thread_name(|i| format!("pathtrace-worker-{i}"))
             .build()
             .map_err(|e| RenderError::Threads(e.to_string()))?;
         let shared = Arc::new(Shared {
-            film: Mutex::new(Film::new(settings.width, settings.height)),
+            film: Mutex::new(film),
             cancel: AtomicBool::new(false),
             finished: AtomicBool::new(false),
             spp_done: AtomicU32::new(0),

@@ -1,0 +1,48 @@
+//! Whether a render fits in this machine's memory, checked before it starts: the operating system
+//! may promise a huge film and then kill the process once the render touches it, minutes later.
+
+use crate::CliError;
+use pathtrace::film::FILM_BYTES_PER_PIXEL;
+
+/// The bytes per pixel a render holds at its peak: the film, then the image taken from it
+/// (linear RGB f32) and its 8-bit encoding for PNG.
+pub const RENDER_BYTES_PER_PIXEL: u64 = FILM_BYTES_PER_PIXEL + 12 + 3;
+
+/// Refuses a `width` × `height` render that needs more memory than the machine has.
+pub fn check_render_fits(width: u32, height: u32) -> Result<(), CliError> {
+    let needed = u64::from(width) * u64::from(height) * RENDER_BYTES_PER_PIXEL;
+    match physical_memory() {
+        Some(total) if needed > total => Err(CliError::usage(format!(
+            "a {width}x{height} render needs {:.1} GB of memory ({RENDER_BYTES_PER_PIXEL} bytes per pixel), more than \
+             this machine's {:.1} GB; choose a smaller --size",
+            needed as f64 / 1e9,
+            total as f64 / 1e9
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// The machine's physical memory in bytes, where the system tells it (Linux's `/proc/meminfo`).
+fn physical_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_film_larger_than_any_machine_is_refused_with_the_memory_it_needs() {
+        if physical_memory().is_none() {
+            return; // Nothing to compare against on this system.
+        }
+        assert!(check_render_fits(64, 64).is_ok());
+        // 2^40 pixels need 78 TB.
+        let err = check_render_fits(1 << 20, 1 << 20).unwrap_err();
+        assert_eq!(err.exit_code, 2);
+        assert!(err.message.contains("GB of memory") && err.message.contains("--size"), "{}", err.message);
+    }
+}

@@ -1,0 +1,144 @@
+//! Hostile input and farm conditions, run as a careless user or pipeline would: images whose
+//! headers lie, sizes and thread counts beyond reason, outputs that cannot be written. Every case
+//! runs the binary under a memory limit and must end in exit 0 or 2 with a message that points the
+//! right way, never an abort.
+
+mod hostile {
+    pub mod harness;
+}
+
+use hostile::harness::{assert_refused, run_limited, temp_dir};
+use pathtrace::film::Image;
+use pathtrace::film::ToneMapSettings;
+use std::path::{Path, PathBuf};
+
+/// A small scene: an emissive sphere, optionally textured with `texture` and lit by `envmap`.
+fn scene(texture: Option<&str>, envmap: Option<&str>) -> String {
+    let albedo = texture
+        .map_or("albedo = 0.5\n".to_owned(), |t| format!("albedo = {{ type = \"bitmap\", filename = \"{t}\" }}\n"));
+    let light = envmap.map_or(String::new(), |e| format!("\n[[lights]]\ntype = \"envmap\"\nfilename = \"{e}\"\n"));
+    format!(
+        "[render]\nwidth = 8\nheight = 8\nspp = 1\n\n[camera]\nlook_from = [0, 0, -4]\nlook_at = [0, 0, 0]\n\n\
+         [materials.lamp]\ntype = \"emissive\"\nradiance = 2\n\n[materials.skin]\ntype = \"lambertian\"\n{albedo}\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"lamp\"\n\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0, 2, 0]\nradius = 0.5\nmaterial = \"skin\"\n{light}"
+    )
+}
+
+/// A small EXR whose data window is rewritten to claim `side` × `side` pixels.
+fn lying_exr(dir: &Path, name: &str, side: i32) -> PathBuf {
+    let path = dir.join(name);
+    let image = Image { width: 4, height: 4, pixels: vec![pathtrace::math::Rgb::splat(0.5); 16] };
+    pathtrace_scene::image_io::write_image(&path, &image, &ToneMapSettings::default()).unwrap();
+    let mut bytes = std::fs::read(&path).unwrap();
+    let tag = b"dataWindow\0box2i\0";
+    let at = bytes.windows(tag.len()).position(|w| w == tag).unwrap() + tag.len() + 4;
+    bytes[at + 8..at + 12].copy_from_slice(&(side - 1).to_le_bytes());
+    bytes[at + 12..at + 16].copy_from_slice(&(side - 1).to_le_bytes());
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+/// A Radiance HDR header claiming `side` × `side` pixels, followed by almost nothing.
+fn lying_hdr(dir: &Path, name: &str, side: u32) -> PathBuf {
+    let path = dir.join(name);
+    let header = format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {side} +X {side}\n");
+    std::fs::write(&path, [header.as_bytes(), b"\x02\x02\x80\x00"].concat()).unwrap();
+    path
+}
+
+#[test]
+fn images_with_lying_headers_are_refused_everywhere_without_allocating() {
+    let dir = temp_dir("liars");
+    let mut liars = Vec::new();
+    for side in [20_000, 100_000] {
+        liars.push(lying_exr(&dir, &format!("exr{side}.exr"), side as i32));
+        liars.push(lying_hdr(&dir, &format!("hdr{side}.hdr"), side));
+    }
+    liars.push(lying_hdr(&dir, "empty.hdr", 0));
+    let good = dir.join("good.exr");
+    let image = Image { width: 8, height: 8, pixels: vec![pathtrace::math::Rgb::splat(0.5); 64] };
+    pathtrace_scene::image_io::write_image(&good, &image, &ToneMapSettings::default()).unwrap();
+    for liar in &liars {
+        let name = liar.file_name().unwrap().to_str().unwrap();
+        let as_texture = dir.join("texture.toml");
+        std::fs::write(&as_texture, scene(Some(name), None)).unwrap();
+        assert_refused(&run_limited(&dir, &["render", "texture.toml", "-q", "-o", "t.pfm"]), &[name]);
+        let as_envmap = dir.join("envmap.toml");
+        std::fs::write(&as_envmap, scene(None, Some(name))).unwrap();
+        assert_refused(&run_limited(&dir, &["render", "envmap.toml", "-q", "-o", "e.pfm"]), &[name]);
+        let xml = format!(
+            "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"/>\n<shape type=\"sphere\">\n<bsdf type=\"diffuse\"><texture type=\"bitmap\" \
+             name=\"reflectance\"><string name=\"filename\" value=\"{name}\"/></texture></bsdf>\n</shape>\n\
+             <emitter type=\"constant\"/>\n</scene>\n"
+        );
+        std::fs::write(dir.join("bitmap.xml"), xml).unwrap();
+        assert_refused(&run_limited(&dir, &["render", "bitmap.xml", "-q", "--size", "8x8", "-o", "b.pfm"]), &[name]);
+        if liar.extension().unwrap() == "exr" {
+            assert_refused(&run_limited(&dir, &["compare", name, "good.exr"]), &[name]);
+            assert_refused(&run_limited(&dir, &["compare", "good.exr", name]), &[name]);
+        }
+    }
+    assert!(!dir.join("t.pfm").exists() && !dir.join("e.pfm").exists() && !dir.join("b.pfm").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn films_too_large_for_memory_are_refused_with_the_size_they_need() {
+    let dir = temp_dir("films");
+    for size in ["32768x32768", "16384x16384"] {
+        let o = run_limited(&dir, &["render", "cornell-box", "--size", size, "--spp", "1", "-q", "-o", "big.png"]);
+        assert_refused(&o, &[size, "GB"]);
+    }
+    assert!(!dir.join("big.png").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn thread_counts_beyond_reason_are_refused_at_once() {
+    let dir = temp_dir("threads");
+    let start = std::time::Instant::now();
+    let o = run_limited(&dir, &["render", "cornell-box", "--threads", "100000", "--size", "8x8", "--spp", "1"]);
+    assert_refused(&o, &["--threads", "0 (one per core)", "1024"]);
+    assert!(start.elapsed().as_secs_f64() < 5.0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_kernel_the_scene_cannot_use_is_a_bad_argument() {
+    let dir = temp_dir("kernel");
+    std::fs::write(dir.join("s.toml"), scene(None, None)).unwrap();
+    let o = run_limited(&dir, &["render", "s.toml", "--kernel", "wide", "-q", "-o", "s.png"]);
+    assert_refused(&o, &["wide kernel"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn every_output_destination_is_checked_before_rendering() {
+    let dir = temp_dir("destinations");
+    let cases: Vec<(&str, &str)> = vec![
+        ("--stats-json", "missing/stats.json"),
+        ("--stats-json", "/dev/full"),
+        ("--stats-json", "."),
+        ("-o", "missing/out.png"),
+        ("-o", "out.txt"),
+        ("--spp-image", "missing/spp.png"),
+    ];
+    for (option, value) in cases {
+        let start = std::time::Instant::now();
+        // A render of many minutes: the refusal must come before it.
+        let mut args = vec!["render", "cornell-box", "--size", "64x64", "--spp", "1000000", "-q"];
+        if option != "-o" {
+            args.extend(["-o", "out.png"]);
+        }
+        args.extend([option, value]);
+        let o = run_limited(&dir, &args);
+        if value == "/dev/full" && !Path::new(value).exists() {
+            continue;
+        }
+        assert_refused(&o, &[option]);
+        assert!(start.elapsed().as_secs_f64() < 10.0, "{option} {value} was checked late");
+        assert!(!dir.join("out.png").exists());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
