@@ -101,7 +101,12 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
     let scene = Arc::new(loaded.scene);
 
     let reference = match &a.reference {
-        Some(path) => read_image(path).map_err(|e| CliError::usage(e.to_string()))?,
+        Some(path) => {
+            let image = read_image(path).map_err(|e| CliError::usage(e.to_string()))?;
+            pathtrace::metrics::check_finite(&image, "reference")
+                .map_err(|e| CliError::usage(format!("{}: {e}", path.display())))?;
+            image
+        }
         None => {
             eprintln!("rendering the reference: mis + sobol, {} spp at {width}×{height}…", a.reference_spp);
             let method = Method { strategy: Strategy::Mis, sampler: SamplerKind::Sobol, adaptive: false };

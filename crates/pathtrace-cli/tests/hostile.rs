@@ -142,3 +142,30 @@ fn every_output_destination_is_checked_before_rendering() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn compare_and_converge_refuse_non_finite_images_and_never_call_different_images_identical() {
+    let dir = temp_dir("compare");
+    let write = |name: &str, values: [f32; 4]| {
+        let pixels = values.iter().map(|&v| pathtrace::math::Rgb::splat(v)).collect();
+        let image = Image { width: 2, height: 2, pixels };
+        pathtrace_scene::image_io::write_image(&dir.join(name), &image, &ToneMapSettings::default()).unwrap();
+    };
+    write("nan.pfm", [f32::NAN, 0.5, 0.5, 0.5]);
+    write("inf.pfm", [f32::INFINITY, f32::NEG_INFINITY, 0.5, 0.5]);
+    write("grey.pfm", [0.5; 4]);
+    write("black.pfm", [0.0; 4]);
+    assert_refused(&run_limited(&dir, &["compare", "nan.pfm", "grey.pfm"]), &["test image has 1 NaN or infinite"]);
+    assert_refused(&run_limited(&dir, &["compare", "grey.pfm", "inf.pfm"]), &["reference image has 2 NaN"]);
+    assert_refused(&run_limited(&dir, &["compare", "nan.pfm", "nan.pfm", "--json"]), &["NaN"]);
+    let black = run_limited(&dir, &["compare", "grey.pfm", "black.pfm"]);
+    assert!(black.status.success());
+    let text = String::from_utf8_lossy(&black.stdout);
+    assert!(!text.contains("identical") && text.contains("undefined"), "{text}");
+    let same = run_limited(&dir, &["compare", "grey.pfm", "grey.pfm", "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&same.stdout).unwrap();
+    assert_eq!(json["identical"], true);
+    let o = run_limited(&dir, &["converge", "cornell-box", "--reference", "nan.pfm", "--size", "2x2", "--out", "c"]);
+    assert_refused(&o, &["nan.pfm", "NaN"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
