@@ -576,7 +576,7 @@ fn matpreview_scenes_load_their_environment_map() {
         let env = loaded.scene.lights.environment().unwrap_or_else(|| panic!("{s}: no environment"));
         let map = env.env_map().unwrap_or_else(|| panic!("{s}: the environment is not a map"));
         // museum.exr at scale 3 is bright somewhere: its mean radiance over the sphere.
-        let mean = map.luminance_integral() / (4.0 * std::f32::consts::PI);
+        let mean = map.luminance_integral() / (4.0 * std::f64::consts::PI);
         eprintln!("{s}: envmap mean luminance {mean:.4}, {} warning(s)", w.len());
         assert!(mean.is_finite() && mean > 0.0, "{s}: {mean}");
     }
