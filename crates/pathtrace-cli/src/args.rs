@@ -457,7 +457,7 @@ pub fn report_parse_error(e: clap::Error) -> ExitCode {
                 rendered.lines().map(str::trim).skip_while(|l| l.is_empty()).take_while(|l| !l.is_empty()).collect();
             let message =
                 if paragraph.is_empty() { "error: invalid arguments".to_string() } else { paragraph.join(" ") };
-            eprintln!("{message} (see 'pathtrace --help')");
+            eprintln!("{} (see 'pathtrace --help')", pathtrace_scene::elide::elide_long_runs(&message));
             ExitCode::from(crate::EXIT_USAGE)
         }
     }

@@ -44,7 +44,7 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {}", e.message);
+            eprintln!("error: {}", pathtrace_scene::elide::elide_long_runs(&e.message));
             ExitCode::from(e.exit_code)
         }
     }

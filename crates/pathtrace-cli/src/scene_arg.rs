@@ -20,7 +20,7 @@ pub fn is_xml(path: &Path) -> bool {
 /// Prints each import warning to stderr as `warning: ...`.
 pub fn print_warnings(warnings: &[String]) {
     for w in warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", pathtrace_scene::elide::elide_long_runs(w));
     }
 }
 
