@@ -68,7 +68,7 @@ pub struct Interaction<'a> {
 pub enum BuildError {
     #[error("material id {0} does not exist")]
     UnknownMaterial(u32),
-    #[error("degenerate {0}: zero area, zero radius or non-finite coordinates")]
+    #[error("degenerate {0}: zero area or radius, or coordinates or an area beyond single precision (3.4e38)")]
     Degenerate(&'static str),
     #[error("an infinite plane cannot be emissive (it has no finite area to sample)")]
     EmissivePlane,

@@ -440,17 +440,26 @@ impl<L: Locate> Ctx<'_, L> {
                 }
                 Shape::Plane(Plane::new(vec3(point), vec3(normal)).ok_or_else(|| degenerate("plane: zero normal"))?)
             }
-            ShapeDef::Quad { q, u, v } => Shape::Quad(
-                Quad::new(vec3(q), vec3(u), vec3(v)).ok_or_else(|| degenerate("quad: u and v must span an area"))?,
-            ),
+            ShapeDef::Quad { q, u, v } => Shape::Quad(Quad::new(vec3(q), vec3(u), vec3(v)).ok_or_else(|| {
+                if vec3(u).cross(vec3(v)).is_finite() {
+                    degenerate("quad: u and v must span an area")
+                } else {
+                    degenerate("quad: its area |u × v| overflows single precision (3.4e38)")
+                }
+            })?),
             ShapeDef::Disk { center, normal, radius } => Shape::Disk(
                 Disk::round(vec3(center), vec3(normal), radius.f32())
                     .ok_or_else(|| degenerate("disk: the radius must be positive and the normal non-zero"))?,
             ),
-            ShapeDef::Triangle { a, b, c } => Shape::Triangle(
-                Triangle::new(vec3(a), vec3(b), vec3(c), Triangle::FLAT)
-                    .ok_or_else(|| degenerate("triangle: its corners are on one line"))?,
-            ),
+            ShapeDef::Triangle { a, b, c } => {
+                Shape::Triangle(Triangle::new(vec3(a), vec3(b), vec3(c), Triangle::FLAT).ok_or_else(|| {
+                    if (vec3(b) - vec3(a)).cross(vec3(c) - vec3(a)).is_finite() {
+                        degenerate("triangle: its corners are on one line")
+                    } else {
+                        degenerate("triangle: its area overflows single precision (3.4e38)")
+                    }
+                })?)
+            }
             ShapeDef::Box { min, max } => {
                 return self.put_box(vec3(min), vec3(max), id, &t).map_err(|_| {
                     degenerate("box: `max` must exceed `min` on every axis and the transform keep it solid")
@@ -483,7 +492,9 @@ impl<L: Locate> Ctx<'_, L> {
                 self.src.error_at(&object.field("part"), format!("part {i} does not exist: `{file}` has {n} part(s)"))
             })?,
         };
+        let (mut triangles, mut skipped) = (0, 0);
         for (_, mesh) in chosen {
+            triangles += mesh.indices.len();
             let flipped;
             let mesh = match (&mesh.uvs, flip_v) {
                 (Some(uvs), true) => {
@@ -494,7 +505,21 @@ impl<L: Locate> Ctx<'_, L> {
                 }
                 _ => mesh,
             };
-            self.put_mesh(mesh, id, t).map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
+            skipped += self
+                .put_mesh(mesh, id, t)
+                .map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
+        }
+        // A mesh that adds nothing is a mistake to report here, not an object silently missing
+        // (or, when it was the only one, "the scene has no objects" at 1:1).
+        if skipped == triangles {
+            let why = if triangles == 0 {
+                "has no triangles".to_owned()
+            } else {
+                format!(
+                    "has no usable triangles: all {triangles} are degenerate (zero area, or beyond single precision)"
+                )
+            };
+            return Err(self.src.error_at(at, format!("mesh `{file}` {why}")));
         }
         Ok(())
     }
