@@ -52,9 +52,11 @@ pub fn load(arg: &str) -> Result<LoadedScene, CliError> {
 /// [`load`] with Mitsuba parameter overrides (`-D NAME=VALUE`); import warnings go to stderr.
 pub fn load_with(arg: &str, defines: &[(String, String)]) -> Result<LoadedScene, CliError> {
     if is_xml(Path::new(arg)) {
+        let (warnings, built) =
+            mitsuba::convert_and_build(Path::new(arg), &pairs(defines)).map_err(|e| CliError::usage(e.to_string()))?;
         // Warnings first, so they are seen even when the scene then fails to build.
-        let file = read_model(Path::new(arg), defines)?;
-        return mitsuba::build_model(&file, Path::new(arg)).map_err(|e| CliError::usage(e.to_string()));
+        print_warnings(&warnings);
+        return built.map_err(|e| CliError::usage(e.to_string()));
     }
     if !defines.is_empty() {
         return Err(CliError::usage("-D/--define applies only to Mitsuba .xml scenes"));

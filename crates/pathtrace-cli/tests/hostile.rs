@@ -169,3 +169,91 @@ fn compare_and_converge_refuse_non_finite_images_and_never_call_different_images
     assert_refused(&o, &["nan.pfm", "NaN"]);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Writes `text` as `name` in `dir` and renders it (8×8, 1 spp) under the memory limit.
+fn render_file(dir: &Path, name: &str, text: &str) -> std::process::Output {
+    std::fs::write(dir.join(name), text).unwrap();
+    run_limited(dir, &["render", name, "-q", "--size", "8x8", "--spp", "1", "-o", "out.pfm"])
+}
+
+#[test]
+fn mitsuba_build_errors_point_at_their_xml_element() {
+    let dir = temp_dir("mitsuba");
+    let scene = |extra: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"/>\n<shape type=\"sphere\">\n<bsdf \
+             type=\"diffuse\"/>\n</shape>\n<emitter type=\"constant\"/>\n{extra}\n</scene>\n"
+        )
+    };
+    let cases = [
+        ("<emitter type=\"spot\"><float name=\"cutoff_angle\" value=\"500\"/></emitter>", "spot"),
+        ("<emitter type=\"spot\"><float name=\"cutoff_angle\" value=\"0\"/></emitter>", "spot"),
+        (
+            "<shape type=\"rectangle\"><emitter type=\"area\"><rgb name=\"radiance\" value=\"-1\"/></emitter></shape>",
+            "≥ 0",
+        ),
+        ("<emitter type=\"constant\"><rgb name=\"radiance\" value=\"-1\"/></emitter>", "≥ 0"),
+        ("<integrator type=\"path\"><integer name=\"max_depth\" value=\"99999999999\"/></integrator>", "2147483647"),
+    ];
+    for (extra, needle) in cases {
+        let o = render_file(&dir, "x.xml", &scene(extra));
+        assert_refused(&o, &["x.xml:7:", needle]);
+    }
+    let o = render_file(
+        &dir,
+        "x.xml",
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><sampler type=\"independent\">\n<integer \
+         name=\"sample_count\" value=\"4294967296\"/></sampler></sensor>\n</scene>\n",
+    );
+    assert_refused(&o, &["x.xml:3:", "sample_count", "4294967295"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn megabyte_values_give_short_error_lines() {
+    let dir = temp_dir("long-values");
+    let long = "n".repeat(1 << 20);
+    let digits = format!("1{}", "0".repeat(1 << 20));
+    for (text, needle) in [
+        (scene(None, None).replace("material = \"lamp\"", &format!("material = \"{long}\"")), "bytes]"),
+        (scene(None, None).replace("radius = 1\n", &format!("radius = {digits}\n")), "radius"),
+        (scene(Some(&format!("{long}.png")), None), "bytes]"),
+    ] {
+        // assert_refused also bounds the error line's length.
+        assert_refused(&render_file(&dir, "s.toml", &text), &["s.toml:", needle]);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn meshes_that_add_nothing_are_named_at_their_line() {
+    let dir = temp_dir("meshes");
+    let meshes = [
+        ("flat.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n", "triangles"),
+        ("huge.obj", "v 0 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n", "triangles"),
+        ("empty.obj", "v 0 0 0\nv 1 0 0\n", "no faces"),
+    ];
+    for (name, text, why) in meshes {
+        std::fs::write(dir.join(name), text).unwrap();
+        let scene =
+            format!("{}\n[[objects]]\ntype = \"mesh\"\nfile = \"{name}\"\nmaterial = \"skin\"\n", scene(None, None));
+        let line = scene.lines().position(|l| l.starts_with("file =")).unwrap() + 1;
+        assert_refused(&render_file(&dir, "s.toml", &scene), &[&format!("s.toml:{line}:"), name, why]);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn very_bright_finite_lights_render() {
+    let dir = temp_dir("bright");
+    let base = scene(None, None);
+    for text in [
+        base.replace("radiance = 2", "radiance = 1e38"),
+        format!("{base}\n[[lights]]\ntype = \"point\"\nposition = [0, 3, 0]\nintensity = 3e38\n"),
+        format!("{base}\n[[lights]]\ntype = \"constant\"\nradiance = 3e38\n"),
+    ] {
+        let o = render_file(&dir, "s.toml", &text);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
