@@ -257,3 +257,12 @@ fn very_bright_finite_lights_render() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_jpeg_environment_map_renders_as_the_docs_say() {
+    let dir = temp_dir("jpeg-envmap");
+    image::RgbImage::from_pixel(16, 8, image::Rgb([200, 180, 160])).save(dir.join("sky.jpg")).unwrap();
+    let o = render_file(&dir, "s.toml", &scene(None, Some("sky.jpg")));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let _ = std::fs::remove_dir_all(&dir);
+}

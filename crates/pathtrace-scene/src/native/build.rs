@@ -320,7 +320,8 @@ impl<L: Locate> Ctx<'_, L> {
     ) -> Result<EnvMap, SceneError> {
         let to_world = self.transform(steps, at)?;
         let dir = self.src.path().parent().unwrap_or(std::path::Path::new(""));
-        let image = crate::image_io::read_linear_image(&dir.join(file))
+        // Any image a texture may be: PNG and JPEG are sRGB-decoded to linear radiance.
+        let image = crate::image_io::read_texture(&dir.join(file), false)
             .map_err(|e| self.src.error_at(&at.field("filename"), format!("cannot load environment map: {e}")))?;
         EnvMap::new(image.width, image.height, image.pixels, scale, to_world).map_err(|e| self.src.error_at(at, e))
     }
