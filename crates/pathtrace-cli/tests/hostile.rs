@@ -266,3 +266,20 @@ fn a_jpeg_environment_map_renders_as_the_docs_say() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn physically_meaningless_optics_are_refused_at_their_material() {
+    let dir = temp_dir("optics");
+    let base = scene(None, None);
+    let line = base.lines().position(|l| l == "[materials.skin]").unwrap() + 1;
+    for (material, needle) in [
+        ("type = \"plastic\"\nalbedo = 0.5\nior = 1e6", "ior"),
+        ("type = \"plastic\"\nalbedo = 0.5\nior = 1e-30", "ior"),
+        ("type = \"rough_plastic\"\nalbedo = 0.5\nalpha = 3e38", "alpha"),
+        ("type = \"rough_dielectric\"\nior = 1e30", "ior"),
+    ] {
+        let text = base.replace("type = \"lambertian\"\nalbedo = 0.5", material);
+        assert_refused(&render_file(&dir, "s.toml", &text), &[&format!("s.toml:{line}:"), needle]);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -147,8 +147,10 @@ fn check_coating(albedo: Rgb, specular: Rgb, ior: f32) -> Result<(), String> {
     if !unit(albedo) || !unit(specular) {
         return Err("plastic `albedo` and `specular` must be in [0, 1]".into());
     }
-    if !(ior > 0.0 && ior.is_finite()) {
-        return Err(format!("plastic ior {ior} must be positive"));
+    if !pathtrace::scene::IOR_RANGE.contains(&ior) {
+        // The same check as the engine's validation, made before the coating's tables are built.
+        let range = &pathtrace::scene::IOR_RANGE;
+        return Err(format!("plastic ior {ior} must be from {} to {}", range.start(), range.end()));
     }
     Ok(())
 }
