@@ -178,6 +178,6 @@ fn byte_order_marks_and_every_line_ending_read_the_same_mesh() {
     ] {
         assert_eq!(one(&text), plain, "{text:?}");
     }
-    let located = error(&format!("\u{feff}v 0 0 0\r\rv 1 x 0\r")).to_string();
+    let located = error("\u{feff}v 0 0 0\r\rv 1 x 0\r").to_string();
     assert!(located.contains(":3:"), "{located}");
 }
