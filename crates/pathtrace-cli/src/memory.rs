@@ -14,7 +14,7 @@ pub fn check_render_fits(width: u32, height: u32) -> Result<(), CliError> {
     match physical_memory() {
         Some(total) if needed > total => Err(CliError::usage(format!(
             "a {width}x{height} render needs {:.1} GB of memory ({RENDER_BYTES_PER_PIXEL} bytes per pixel), more than \
-             this machine's {:.1} GB; choose a smaller --size",
+             the {:.1} GB this machine (or container) allows; choose a smaller --size",
             needed as f64 / 1e9,
             total as f64 / 1e9
         ))),
@@ -22,12 +22,15 @@ pub fn check_render_fits(width: u32, height: u32) -> Result<(), CliError> {
     }
 }
 
-/// The machine's physical memory in bytes, where the system tells it (Linux's `/proc/meminfo`).
+/// The memory this process may use in bytes, where the system tells it: Linux's physical memory
+/// (`/proc/meminfo`), or a container's smaller cgroup v2 limit (`memory.max`), which is where a
+/// farm job is killed.
 fn physical_memory() -> Option<u64> {
     let info = std::fs::read_to_string("/proc/meminfo").ok()?;
     let line = info.lines().find(|l| l.starts_with("MemTotal:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
+    let cgroup = std::fs::read_to_string("/sys/fs/cgroup/memory.max").ok().and_then(|s| s.trim().parse::<u64>().ok());
+    Some(cgroup.map_or(kib * 1024, |limit| limit.min(kib * 1024)))
 }
 
 #[cfg(test)]

@@ -173,7 +173,8 @@ fn compare_and_converge_refuse_non_finite_images_and_never_call_different_images
 /// Writes `text` as `name` in `dir` and renders it (8×8, 1 spp) under the memory limit.
 fn render_file(dir: &Path, name: &str, text: &str) -> std::process::Output {
     std::fs::write(dir.join(name), text).unwrap();
-    run_limited(dir, &["render", name, "-q", "--size", "8x8", "--spp", "1", "-o", "out.pfm"])
+    // Two threads: the address-space limit must not depend on the machine's core count.
+    run_limited(dir, &["render", name, "-q", "--size", "8x8", "--spp", "1", "--threads", "2", "-o", "out.pfm"])
 }
 
 #[test]
