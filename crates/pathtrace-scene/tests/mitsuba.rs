@@ -471,7 +471,10 @@ fn serialized_meshes_load_and_bad_ones_are_errors() {
     assert_eq!(f.objects[0].shape, ShapeDef::Mesh { file: "m.serialized".into(), part: Some(1), flip_v: false });
     let bad = xml.replace("value=\"1\"", "value=\"99\"").replace("</scene>", &format!("{LIGHT}</scene>"));
     let e = load_str(&bad, &tmp.join("s.xml"), &[]).unwrap_err().to_string();
-    assert!(e.contains("part 99 does not exist"), "{e}");
+    assert!(e.contains("part 99 does not exist") && !e.contains("s.xml:1:1:"), "{e}");
+    let huge = xml.replace("value=\"1\"", "value=\"4294967296\"");
+    let e = convert_str(&huge, &tmp.join("s.xml"), &[]).unwrap_err().to_string();
+    assert!(e.contains("shape_index") && e.contains("4294967295"), "{e}");
     let _ = std::fs::remove_dir_all(&tmp);
 }
 

@@ -727,9 +727,7 @@ impl<'a> Conv<'a, '_> {
                 let Some(file) = self.string(e, "filename")? else {
                     return Err(self.src.error(e.offset, "a serialized shape needs a `filename` string"));
                 };
-                let index = self.integer(e, "shape_index")?.unwrap_or(0);
-                let part = u32::try_from(index)
-                    .map_err(|_| self.src.error(e.offset, format!("shape_index {index} must be ≥ 0")))?;
+                let part = self.integer_in(e, "shape_index", 0..=i64::from(u32::MAX))?.unwrap_or(0) as u32;
                 ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: Some(part), flip_v: false }
             }
             "rectangle" => ShapeDef::Quad {
