@@ -56,6 +56,11 @@ fn spp_image(film: &Film, spp_max: u32) -> Image {
     Image { width: film.width(), height: film.height(), pixels }
 }
 
+/// Pixels that hold no sample (all of theirs were dropped, or none was taken): written black.
+fn pixels_without_samples(film: &Film) -> usize {
+    film.pixels().iter().filter(|p| p.count == 0).count()
+}
+
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let mut loaded = scene_arg::load_with(&a.scene, &a.defines)?;
     if let Some(mode) = a.quality.light_selection {
@@ -103,6 +108,16 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     write_image(&output, &image, &tone).map_err(|e| CliError::runtime(e.to_string()))?;
 
     let (spp_min, spp_max) = outcome.film.spp_range();
+    if !interrupted && outcome.progress.dropped_samples > 0 {
+        // Black is not an estimate of such a pixel: say so rather than let it pass as one.
+        let empty = pixels_without_samples(&outcome.film);
+        if empty > 0 {
+            eprintln!(
+                "warning: {empty} pixels had every sample dropped as NaN/Inf and are written black (a biased value); \
+                 look for extreme values in the scene"
+            );
+        }
+    }
     if let Some(path) = &a.adaptive.spp_image {
         write_image(path, &spp_image(&outcome.film, spp_max), &ToneMapSettings::default())
             .map_err(|e| CliError::runtime(e.to_string()))?;
@@ -148,4 +163,18 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
             .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
     }
     Ok(if interrupted { ExitCode::from(crate::interrupt::EXIT_INTERRUPTED) } else { ExitCode::SUCCESS })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pixels_whose_samples_were_all_dropped_are_counted() {
+        let mut film = Film::new(3, 1);
+        film.add_sample(0, 0, Rgb::splat(1.0));
+        film.add_sample(1, 0, Rgb::splat(f32::NAN));
+        assert_eq!(pixels_without_samples(&film), 2);
+        assert_eq!(film.dropped_samples, 1);
+    }
 }
