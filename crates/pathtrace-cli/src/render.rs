@@ -10,31 +10,27 @@ use pathtrace::film::{Film, Image, ToneMapSettings};
 use pathtrace::math::Rgb;
 use pathtrace::{AdaptiveSettings, RenderSession, RenderSettings};
 use pathtrace_scene::image_io::write_image;
-use pathtrace_scene::RenderDefaults;
+use pathtrace_scene::{RenderDefaults, RenderOverrides};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Duration;
 
 /// Render settings: each from the command line if given, else from the scene, else the
-/// engine's default.
+/// engine's default (the rule is the scene crate's, shared with the Python module).
 pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &RenderDefaults) -> RenderSettings {
-    let (width, height) = q.size.unwrap_or((d.width, d.height));
-    let mut s = RenderSettings {
-        width,
-        height,
-        spp: if time.is_some() { spp.unwrap_or(0) } else { spp.unwrap_or(d.spp) },
-        time_limit: time.map(Duration::from_secs_f64),
-        sampler: q.sampler.or(d.sampler).unwrap_or_default(),
-        filter: q.filter.clone().or_else(|| d.filter.clone()).unwrap_or_default(),
-        seed: q.seed.or(d.seed).unwrap_or(0),
-        threads: q.threads.unwrap_or(0),
+    d.settings(&RenderOverrides {
+        size: q.size,
+        spp,
+        time: time.map(Duration::from_secs_f64),
+        max_depth: q.max_depth,
+        strategy: q.strategy,
+        sampler: q.sampler,
+        filter: q.filter.clone(),
+        seed: q.seed,
+        threads: q.threads,
         kernel: q.kernel,
-        ..RenderSettings::default()
-    };
-    s.path.strategy = q.strategy.or(d.strategy).unwrap_or_default();
-    s.path.max_depth = q.max_depth.unwrap_or(d.max_depth);
-    s
+    })
 }
 
 /// Adaptive settings from `--adaptive`, `--target-error` and `--min-spp`; with a target error and
@@ -92,9 +88,13 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let session = RenderSession::start(Arc::new(loaded.scene), settings.clone())?;
     let pixels = settings.width as u64 * settings.height as u64;
     let bar = Bar::new(pixels, settings.spp, settings.time_limit, a.quiet);
-    while !session.is_finished() {
-        std::thread::sleep(Duration::from_millis(100));
+    loop {
+        // Wakes every 100 ms for the bar and Ctrl-C, and at once when the render ends.
+        let ended = session.wait_finished(Duration::from_millis(100));
         bar.update(&session.progress());
+        if ended {
+            break;
+        }
         if interrupt.triggered() {
             session.cancel();
         }

@@ -5,9 +5,14 @@
 pub mod builtin;
 pub mod elide;
 pub mod image_io;
+pub mod load;
 pub mod mesh;
 pub mod mitsuba;
 pub mod native;
+mod overrides;
+
+pub use load::load_file;
+pub use overrides::RenderOverrides;
 
 use pathtrace::integrator::Strategy;
 use pathtrace::sampling::SamplerKind;

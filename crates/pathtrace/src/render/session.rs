@@ -20,7 +20,7 @@ use crate::scene::Scene;
 use crate::wide::{Kernel, WideScene};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -92,6 +92,9 @@ struct Shared {
     error_estimate: AtomicU64,
     start: Instant,
     end: Mutex<Option<Instant>>,
+    /// Notified (with `end` set) when the render ends, so waiters wake at once rather than
+    /// polling.
+    ended: Condvar,
     spp_target: u32,
     target_error: Option<f64>,
 }
@@ -181,6 +184,7 @@ impl RenderSession {
             error_estimate: AtomicU64::new(f64::NAN.to_bits()),
             start: Instant::now(),
             end: Mutex::new(None),
+            ended: Condvar::new(),
             spp_target: settings.spp,
             target_error,
         });
@@ -189,10 +193,11 @@ impl RenderSession {
             .name("pathtrace-session".into())
             .spawn(move || {
                 pool.install(|| run_waves(&scene, &prep, &settings, &worker_shared));
-                if let Ok(mut end) = worker_shared.end.lock() {
-                    *end = Some(Instant::now());
-                }
+                let mut end = worker_shared.end.lock().unwrap_or_else(|e| e.into_inner());
+                *end = Some(Instant::now());
                 worker_shared.finished.store(true, Ordering::Release);
+                drop(end);
+                worker_shared.ended.notify_all();
             })
             .map_err(|e| RenderError::Threads(e.to_string()))?;
         Ok(Self { shared, handle: Some(handle) })
@@ -245,6 +250,19 @@ impl RenderSession {
         self.shared.finished.load(Ordering::Acquire)
     }
 
+    /// Blocks until the render ends or `timeout` passes; true if it has ended. Returns as soon
+    /// as the last tile is merged, so a front end can wake for progress every 100 ms yet
+    /// finish without waiting out its interval.
+    pub fn wait_finished(&self, timeout: Duration) -> bool {
+        self.end_signal().wait(timeout)
+    }
+
+    /// A handle that waits for this render's end without borrowing the session (for a front end
+    /// that keeps the session behind a lock it must not hold while waiting).
+    pub fn end_signal(&self) -> EndSignal {
+        EndSignal(Arc::clone(&self.shared))
+    }
+
     /// Waits for the render to end (finished, timed out or cancelled) and returns the film.
     pub fn wait(mut self) -> RenderOutcome {
         if let Some(h) = self.handle.take() {
@@ -264,6 +282,20 @@ impl Drop for RenderSession {
             self.cancel();
             let _ = h.join();
         }
+    }
+}
+
+/// Waits for the end of a [`RenderSession`]; see [`RenderSession::end_signal`].
+#[derive(Clone)]
+pub struct EndSignal(Arc<Shared>);
+
+impl EndSignal {
+    /// Blocks until the render ends or `timeout` passes; true if it has ended.
+    pub fn wait(&self, timeout: Duration) -> bool {
+        let end = self.0.end.lock().unwrap_or_else(|e| e.into_inner());
+        let (end, _) =
+            self.0.ended.wait_timeout_while(end, timeout, |end| end.is_none()).unwrap_or_else(|e| e.into_inner());
+        end.is_some()
     }
 }
 
