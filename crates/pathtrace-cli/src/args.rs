@@ -124,8 +124,8 @@ pub struct ConvergeArgs {
     /// Maximum path length in segments (-1 unlimited) [default: the scene's]
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_depth)]
     pub max_depth: Option<i32>,
-    /// Worker threads [default: one per core]
-    #[arg(long, value_name = "N")]
+    /// Worker threads, 1 to 1024; 0 or unset: one per logical core
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<usize>,
     /// Base random seed
     #[arg(long, default_value_t = 0)]
@@ -212,8 +212,8 @@ pub struct QualityArgs {
     /// Random seed: the same seed, scene and settings give the same image [default: the scene's, else 0]
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Worker threads [default: one per core]
-    #[arg(long, value_name = "N")]
+    /// Worker threads, 1 to 1024; 0 or unset: one per logical core
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<usize>,
 }
 
@@ -292,8 +292,8 @@ pub struct BenchArgs {
     /// Timed runs per scene; medians are reported [default: 3, 1 with --quick]
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub runs: Option<u32>,
-    /// Worker threads [default: one per core]
-    #[arg(long, value_name = "N")]
+    /// Worker threads, 1 to 1024; 0 or unset: one per logical core
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<usize>,
     /// Also run each scene on one thread and print all threads' samples/s over one thread's
     #[arg(long)]
@@ -362,8 +362,8 @@ pub struct BvhBenchArgs {
     /// Largest SAH leaf, in triangles
     #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
     pub max_leaf: u32,
-    /// Threads for the all-threads columns and the parallel build [default: one per core]
-    #[arg(long, value_name = "N")]
+    /// Threads for the all-threads columns and the parallel build, up to 1024 [default: one per core]
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<usize>,
     /// Time one-thread work (serial builds, 1-thread rays) by the thread's CPU time instead of
     /// the wall clock, so other processes on a shared machine do not count (Linux only)
@@ -393,6 +393,17 @@ fn parse_count(s: &str) -> Result<usize, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if (1.0..=1e7).contains(&v) && v.fract() == 0.0 => Ok(v as usize),
         _ => Err(format!("'{s}' is not a whole number from 1 to 1e7")),
+    }
+}
+
+/// The most worker threads a render may ask for: far beyond any machine's cores, yet few enough to
+/// start in milliseconds (100000 threads took ~50 s to spawn, then failed).
+pub const MAX_THREADS: usize = 1024;
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n <= MAX_THREADS => Ok(n),
+        _ => Err(format!("'{s}': threads must be a whole number from 0 (one per core) to {MAX_THREADS}")),
     }
 }
 
@@ -446,7 +457,7 @@ pub fn report_parse_error(e: clap::Error) -> ExitCode {
                 rendered.lines().map(str::trim).skip_while(|l| l.is_empty()).take_while(|l| !l.is_empty()).collect();
             let message =
                 if paragraph.is_empty() { "error: invalid arguments".to_string() } else { paragraph.join(" ") };
-            eprintln!("{message} (see 'pathtrace --help')");
+            eprintln!("{} (see 'pathtrace --help')", pathtrace_scene::elide::elide_long_runs(&message));
             ExitCode::from(crate::EXIT_USAGE)
         }
     }

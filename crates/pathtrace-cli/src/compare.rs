@@ -4,12 +4,12 @@ use crate::args::CompareArgs;
 use crate::CliError;
 use pathtrace::film::ToneMapSettings;
 use pathtrace::metrics::{compare, difference_image};
-use pathtrace_scene::image_io::{read_image, write_image, ImageFormat};
+use pathtrace_scene::image_io::{read_image, write_image};
 use std::process::ExitCode;
 
 pub fn run(a: CompareArgs) -> Result<ExitCode, CliError> {
     if let Some(diff) = &a.diff {
-        ImageFormat::from_path(diff).map_err(|e| CliError::usage(e.to_string()))?;
+        crate::destination::check_image_destination(diff, "--diff")?;
     }
     let image = read_image(&a.image).map_err(|e| CliError::usage(e.to_string()))?;
     let reference = read_image(&a.reference).map_err(|e| CliError::usage(e.to_string()))?;
@@ -29,7 +29,7 @@ pub fn run(a: CompareArgs) -> Result<ExitCode, CliError> {
         let json = serde_json::json!({
             "mse": m.mse, "rmse": m.rmse, "relative_mse": m.relative_mse,
             "psnr_8bit_db": finite_or_null(m.psnr_8bit), "psnr_linear_db": finite_or_null(m.psnr_linear),
-            "ssim": m.ssim, "changed_pixels": marked,
+            "ssim": m.ssim, "changed_pixels": marked, "identical": m.mse == 0.0,
         });
         println!("{}", serde_json::to_string_pretty(&json).map_err(|e| CliError::runtime(e.to_string()))?);
     } else {
@@ -52,11 +52,15 @@ pub fn run(a: CompareArgs) -> Result<ExitCode, CliError> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// A PSNR for people: infinite only for identical images (the metrics refuse NaN and infinite
+/// pixels), undefined (NaN) for linear PSNR against a black reference.
 fn db(v: f64) -> String {
     if v.is_finite() {
         format!("{v:.2}")
-    } else {
+    } else if v == f64::INFINITY {
         "∞ (identical)".into()
+    } else {
+        "undefined (the reference is black)".into()
     }
 }
 

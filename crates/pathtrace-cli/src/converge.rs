@@ -77,7 +77,7 @@ fn render(
     s.sampler = method.sampler;
     s.path.strategy = method.strategy;
     s.adaptive = method.adaptive.then(|| AdaptiveSettings { min_spp, ..Default::default() });
-    let out = pathtrace::render(Arc::clone(scene), s).map_err(|e| CliError::runtime(e.to_string()))?;
+    let out = pathtrace::render(Arc::clone(scene), s)?;
     Ok((out.film.image(), out.progress.elapsed.as_secs_f64()))
 }
 
@@ -92,6 +92,7 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
     let loaded = scene_arg::load(&a.scene)?;
     let d = loaded.defaults;
     let (width, height) = a.size.unwrap_or((d.width.min(256), d.height.min(256)));
+    crate::memory::check_render_fits(width, height)?;
     let mut base = RenderSettings { width, height, threads: a.threads.unwrap_or(0), ..RenderSettings::default() };
     base.path.max_depth = a.max_depth.unwrap_or(d.max_depth);
     let out_dir = a.out.clone().unwrap_or_else(|| PathBuf::from(format!("converge-{}", scene_arg::stem(&a.scene))));
@@ -100,7 +101,12 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
     let scene = Arc::new(loaded.scene);
 
     let reference = match &a.reference {
-        Some(path) => read_image(path).map_err(|e| CliError::usage(e.to_string()))?,
+        Some(path) => {
+            let image = read_image(path).map_err(|e| CliError::usage(e.to_string()))?;
+            pathtrace::metrics::check_finite(&image, "reference")
+                .map_err(|e| CliError::usage(format!("{}: {e}", path.display())))?;
+            image
+        }
         None => {
             eprintln!("rendering the reference: mis + sobol, {} spp at {width}×{height}…", a.reference_spp);
             let method = Method { strategy: Strategy::Mis, sampler: SamplerKind::Sobol, adaptive: false };

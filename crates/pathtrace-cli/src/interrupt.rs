@@ -1,10 +1,15 @@
-//! Ctrl-C handling: the first press asks the render to stop and keep what it has; a second
-//! press quits at once.
+//! Stop requests: Ctrl-C (SIGINT), and the SIGTERM and SIGHUP that Slurm, Kubernetes, systemd and
+//! `timeout` send (ctrlc's `termination` feature). The first asks the render to stop and keep what
+//! it has; a second quits at once.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-/// A flag set by Ctrl-C.
+/// The exit code of a render stopped by a signal: 128 + SIGINT's number, as shells report Ctrl-C.
+/// (ctrlc's handler does not say which signal came, so SIGTERM and SIGHUP exit with it too.)
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// A flag set by SIGINT, SIGTERM or SIGHUP.
 #[derive(Clone)]
 pub struct Interrupt(Arc<AtomicBool>);
 
@@ -16,7 +21,7 @@ impl Interrupt {
         let _ = ctrlc::set_handler(move || {
             if handler_flag.swap(true, Ordering::SeqCst) {
                 eprintln!("\ninterrupted twice: quitting without writing");
-                std::process::exit(130);
+                std::process::exit(EXIT_INTERRUPTED.into());
             }
         });
         Self(flag)

@@ -12,7 +12,9 @@ mod compare;
 mod converge;
 mod convert;
 mod cpu_clock;
+mod destination;
 mod interrupt;
+mod memory;
 mod plot;
 mod progress;
 mod render;
@@ -42,7 +44,7 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {}", e.message);
+            eprintln!("error: {}", pathtrace_scene::elide::elide_long_runs(&e.message));
             ExitCode::from(e.exit_code)
         }
     }
@@ -64,5 +66,19 @@ impl CliError {
     /// Something failed while running (writing the image, starting threads): exit code 1.
     pub fn runtime(message: impl Into<String>) -> Self {
         Self { message: message.into(), exit_code: 1 }
+    }
+}
+
+impl From<pathtrace::render::RenderError> for CliError {
+    /// A render the scene or machine cannot do (the wide kernel refusing the scene, a film too
+    /// large) is a bad request, exit 2; threads that fail to start are a runtime failure, exit 1.
+    fn from(e: pathtrace::render::RenderError) -> Self {
+        let bad_request = e.is_bad_request();
+        let message = e.to_string();
+        if bad_request {
+            Self::usage(message)
+        } else {
+            Self::runtime(message)
+        }
     }
 }

@@ -1,6 +1,7 @@
 //! `pathtrace render`.
 
 use crate::args::{AdaptiveArgs, QualityArgs, RenderArgs};
+use crate::destination::{check_destination, check_image_destination};
 use crate::interrupt::Interrupt;
 use crate::progress::{format_rate, Bar};
 use crate::stats_json::RenderStats;
@@ -8,45 +9,28 @@ use crate::{scene_arg, CliError};
 use pathtrace::film::{Film, Image, ToneMapSettings};
 use pathtrace::math::Rgb;
 use pathtrace::{AdaptiveSettings, RenderSession, RenderSettings};
-use pathtrace_scene::image_io::{write_image, ImageFormat};
-use pathtrace_scene::RenderDefaults;
-use std::path::{Path, PathBuf};
+use pathtrace_scene::image_io::write_image;
+use pathtrace_scene::{RenderDefaults, RenderOverrides};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Duration;
 
 /// Render settings: each from the command line if given, else from the scene, else the
-/// engine's default.
+/// engine's default (the rule is the scene crate's, shared with the Python module).
 pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &RenderDefaults) -> RenderSettings {
-    let (width, height) = q.size.unwrap_or((d.width, d.height));
-    let mut s = RenderSettings {
-        width,
-        height,
-        spp: if time.is_some() { spp.unwrap_or(0) } else { spp.unwrap_or(d.spp) },
-        time_limit: time.map(Duration::from_secs_f64),
-        sampler: q.sampler.or(d.sampler).unwrap_or_default(),
-        filter: q.filter.clone().or_else(|| d.filter.clone()).unwrap_or_default(),
-        seed: q.seed.or(d.seed).unwrap_or(0),
-        threads: q.threads.unwrap_or(0),
+    d.settings(&RenderOverrides {
+        size: q.size,
+        spp,
+        time: time.map(Duration::from_secs_f64),
+        max_depth: q.max_depth,
+        strategy: q.strategy,
+        sampler: q.sampler,
+        filter: q.filter.clone(),
+        seed: q.seed,
+        threads: q.threads,
         kernel: q.kernel,
-        ..RenderSettings::default()
-    };
-    s.path.strategy = q.strategy.or(d.strategy).unwrap_or_default();
-    s.path.max_depth = q.max_depth.unwrap_or(d.max_depth);
-    s
-}
-
-fn check_output(path: &Path) -> Result<(), CliError> {
-    ImageFormat::from_path(path).map_err(|e| CliError::usage(e.to_string()))?;
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    if !dir.is_dir() {
-        return Err(CliError::usage(format!(
-            "cannot write {}: folder {} does not exist",
-            path.display(),
-            dir.display()
-        )));
-    }
-    Ok(())
+    })
 }
 
 /// Adaptive settings from `--adaptive`, `--target-error` and `--min-spp`; with a target error and
@@ -68,6 +52,11 @@ fn spp_image(film: &Film, spp_max: u32) -> Image {
     Image { width: film.width(), height: film.height(), pixels }
 }
 
+/// Pixels that hold no sample (all of theirs were dropped, or none was taken): written black.
+fn pixels_without_samples(film: &Film) -> usize {
+    film.pixels().iter().filter(|p| p.count == 0).count()
+}
+
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let mut loaded = scene_arg::load_with(&a.scene, &a.defines)?;
     if let Some(mode) = a.quality.light_selection {
@@ -82,23 +71,30 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
             settings.path.strategy
         );
     }
+    crate::memory::check_render_fits(settings.width, settings.height)?;
     let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", scene_arg::stem(&a.scene))));
-    check_output(&output)?;
+    check_image_destination(&output, "-o")?;
     if let Some(path) = &a.adaptive.spp_image {
-        check_output(path)?;
+        check_image_destination(path, "--spp-image")?;
+    }
+    if let Some(path) = &a.stats_json {
+        check_destination(path, "--stats-json")?;
     }
     if !a.exposure.is_finite() {
         return Err(CliError::usage("--exposure must be a finite number of stops"));
     }
 
     let interrupt = Interrupt::install();
-    let session =
-        RenderSession::start(Arc::new(loaded.scene), settings.clone()).map_err(|e| CliError::runtime(e.to_string()))?;
+    let session = RenderSession::start(Arc::new(loaded.scene), settings.clone())?;
     let pixels = settings.width as u64 * settings.height as u64;
     let bar = Bar::new(pixels, settings.spp, settings.time_limit, a.quiet);
-    while !session.is_finished() {
-        std::thread::sleep(Duration::from_millis(100));
+    loop {
+        // Wakes every 100 ms for the bar and Ctrl-C, and at once when the render ends.
+        let ended = session.wait_finished(Duration::from_millis(100));
         bar.update(&session.progress());
+        if ended {
+            break;
+        }
         if interrupt.triggered() {
             session.cancel();
         }
@@ -112,6 +108,16 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     write_image(&output, &image, &tone).map_err(|e| CliError::runtime(e.to_string()))?;
 
     let (spp_min, spp_max) = outcome.film.spp_range();
+    if !interrupted && outcome.progress.dropped_samples > 0 {
+        // Black is not an estimate of such a pixel: say so rather than let it pass as one.
+        let empty = pixels_without_samples(&outcome.film);
+        if empty > 0 {
+            eprintln!(
+                "warning: {empty} pixels had every sample dropped as NaN/Inf and are written black (a biased value); \
+                 look for extreme values in the scene"
+            );
+        }
+    }
     if let Some(path) = &a.adaptive.spp_image {
         write_image(path, &spp_image(&outcome.film, spp_max), &ToneMapSettings::default())
             .map_err(|e| CliError::runtime(e.to_string()))?;
@@ -156,5 +162,19 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
         std::fs::write(path, json + "\n")
             .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
     }
-    Ok(if interrupted { ExitCode::from(130) } else { ExitCode::SUCCESS })
+    Ok(if interrupted { ExitCode::from(crate::interrupt::EXIT_INTERRUPTED) } else { ExitCode::SUCCESS })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pixels_whose_samples_were_all_dropped_are_counted() {
+        let mut film = Film::new(3, 1);
+        film.add_sample(0, 0, Rgb::splat(1.0));
+        film.add_sample(1, 0, Rgb::splat(f32::NAN));
+        assert_eq!(pixels_without_samples(&film), 2);
+        assert_eq!(film.dropped_samples, 1);
+    }
 }

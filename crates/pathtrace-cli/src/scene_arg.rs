@@ -2,6 +2,7 @@
 //! ending in .xml a Mitsuba 3 scene, anything else a built-in scene name.
 
 use crate::CliError;
+use pathtrace_scene::load::{self, is_xml};
 use pathtrace_scene::mitsuba;
 use pathtrace_scene::native::{self, Format};
 use pathtrace_scene::{builtin, LoadedScene};
@@ -9,18 +10,13 @@ use std::path::Path;
 
 /// True if the argument names a scene file rather than a built-in scene.
 fn is_file(arg: &str) -> bool {
-    Format::from_path(Path::new(arg)).is_some() || is_xml(Path::new(arg))
-}
-
-/// True for a `.xml` path (any case).
-pub fn is_xml(path: &Path) -> bool {
-    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+    load::is_scene_file(Path::new(arg))
 }
 
 /// Prints each import warning to stderr as `warning: ...`.
 pub fn print_warnings(warnings: &[String]) {
     for w in warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", pathtrace_scene::elide::elide_long_runs(w));
     }
 }
 
@@ -51,16 +47,9 @@ pub fn load(arg: &str) -> Result<LoadedScene, CliError> {
 
 /// [`load`] with Mitsuba parameter overrides (`-D NAME=VALUE`); import warnings go to stderr.
 pub fn load_with(arg: &str, defines: &[(String, String)]) -> Result<LoadedScene, CliError> {
-    if is_xml(Path::new(arg)) {
-        // Warnings first, so they are seen even when the scene then fails to build.
-        let file = read_model(Path::new(arg), defines)?;
-        return mitsuba::build_model(&file, Path::new(arg)).map_err(|e| CliError::usage(e.to_string()));
-    }
-    if !defines.is_empty() {
-        return Err(CliError::usage("-D/--define applies only to Mitsuba .xml scenes"));
-    }
-    if is_file(arg) {
-        return native::load_file(Path::new(arg)).map_err(|e| CliError::usage(e.to_string()));
+    if is_file(arg) || !defines.is_empty() {
+        let mut warn = |w: &str| print_warnings(&[w.to_string()]);
+        return load::load_file(Path::new(arg), &pairs(defines), &mut warn).map_err(|e| CliError::usage(e.to_string()));
     }
     match builtin::load(arg) {
         Some(Ok(loaded)) => Ok(loaded),

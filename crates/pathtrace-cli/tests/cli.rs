@@ -150,10 +150,11 @@ fn help_explains_the_commands() {
     }
 }
 
+/// SIGINT (Ctrl-C), and the SIGTERM and SIGHUP that farms (Slurm, Kubernetes, systemd, `timeout`)
+/// send: the render stops, writes what it has and says how many spp it holds.
 #[cfg(unix)]
-#[test]
-fn ctrl_c_writes_the_image_rendered_so_far() {
-    let dir = temp_dir("interrupt");
+fn a_signal_writes_the_image_rendered_so_far(signal: &str) {
+    let dir = temp_dir(&format!("interrupt-{signal}"));
     let out = dir.join("partial.exr");
     let stats = dir.join("stats.json");
     let mut child = pathtrace()
@@ -172,14 +173,14 @@ fn ctrl_c_writes_the_image_rendered_so_far() {
         .spawn()
         .unwrap();
     std::thread::sleep(Duration::from_millis(1500));
-    let status = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    let status = Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
     assert!(status.success());
     let start = Instant::now();
     let output = loop {
         if let Some(_status) = child.try_wait().unwrap() {
             break child.wait_with_output().unwrap();
         }
-        assert!(start.elapsed() < Duration::from_secs(30), "render did not stop after Ctrl-C");
+        assert!(start.elapsed() < Duration::from_secs(30), "render did not stop after SIG{signal}");
         std::thread::sleep(Duration::from_millis(50));
     };
     assert_eq!(output.status.code(), Some(130));
@@ -192,6 +193,24 @@ fn ctrl_c_writes_the_image_rendered_so_far() {
     let spp = json["spp"].as_u64().unwrap();
     assert!((1..100_000).contains(&spp), "{spp}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[cfg(unix)]
+#[test]
+fn ctrl_c_writes_the_image_rendered_so_far() {
+    a_signal_writes_the_image_rendered_so_far("INT");
+}
+
+#[cfg(unix)]
+#[test]
+fn sigterm_writes_the_image_rendered_so_far() {
+    a_signal_writes_the_image_rendered_so_far("TERM");
+}
+
+#[cfg(unix)]
+#[test]
+fn sighup_writes_the_image_rendered_so_far() {
+    a_signal_writes_the_image_rendered_so_far("HUP");
 }
 
 /// The bench suite's quick mode on the Cornell box: the JSON report's fields, the check against

@@ -7,24 +7,27 @@
 mod atomic;
 mod error;
 mod exr_codec;
+mod guarded_decode;
 mod hdr_codec;
 mod pfm_codec;
 mod png_codec;
 #[cfg(test)]
 mod scratch;
+mod size_guard;
+mod stale_temps;
 #[cfg(test)]
 mod tests;
 mod texture_codec;
 
 use std::fmt;
 use std::fs;
-use std::io::BufReader;
 use std::path::Path;
 
 use pathtrace::film::tonemap::ToneMapSettings;
 use pathtrace::film::Image;
 
 pub use error::ImageIoError;
+pub use size_guard::MAX_INPUT_PIXELS;
 
 /// An image file format, chosen by file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -134,9 +137,9 @@ pub fn read_image(path: &Path) -> Result<Image, ImageIoError> {
             pfm_codec::decode(&bytes).map_err(|reason| ImageIoError::InvalidPfm { path: path.to_path_buf(), reason })
         }
         ImageFormat::Png => {
-            let file = fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
-            png_codec::decode(BufReader::new(file))
-                .map_err(|source| ImageIoError::Png { path: path.to_path_buf(), source })
+            let png = |source| ImageIoError::Png { path: path.to_path_buf(), source };
+            let decoded = guarded_decode::decode_file(path, image::ImageFormat::Png, png)?;
+            texture_codec::to_linear(decoded, image::ImageFormat::Png, false).map_err(png)
         }
         ImageFormat::Exr => read_exr(path),
     }
@@ -149,9 +152,9 @@ pub fn read_linear_image(path: &Path) -> Result<Image, ImageIoError> {
     if ext != "hdr" && ext != "pic" {
         return read_image(path);
     }
-    let file = fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
-    hdr_codec::decode(BufReader::new(file))
-        .map_err(|reason| ImageIoError::InvalidHdr { path: path.to_path_buf(), reason })
+    let invalid = |reason| ImageIoError::InvalidHdr { path: path.to_path_buf(), reason };
+    let decoded = guarded_decode::decode_file(path, image::ImageFormat::Hdr, |e| invalid(e.to_string()))?;
+    hdr_codec::to_linear(decoded).map_err(invalid)
 }
 
 /// Reads a texture image as linear RGB: PNG and JPEG (`.jpg`, `.jpeg`) are sRGB-decoded unless
@@ -164,15 +167,18 @@ pub fn read_texture(path: &Path, raw: bool) -> Result<Image, ImageIoError> {
         "jpg" | "jpeg" => image::ImageFormat::Jpeg,
         _ => return read_linear_image(path),
     };
-    let file = fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
-    texture_codec::decode(BufReader::new(file), format, raw)
-        .map_err(|source| ImageIoError::Texture { path: path.to_path_buf(), source })
+    let texture = |source| ImageIoError::Texture { path: path.to_path_buf(), source };
+    let decoded = guarded_decode::decode_file(path, format, texture)?;
+    texture_codec::to_linear(decoded, format, raw).map_err(texture)
 }
 
 /// Reads an EXR file, explaining a missing-channel failure in our own words.
 fn read_exr(path: &Path) -> Result<Image, ImageIoError> {
     // Open it ourselves first, so "not found" and permissions read as IO errors.
     fs::File::open(path).map_err(|e| ImageIoError::io(path, "open", e))?;
+    if let Some((width, height)) = exr_codec::declared_rgb_size(path) {
+        size_guard::check_declared_size(path, width, height, size_guard::file_len(path)?)?;
+    }
     let (width, height, pixels) =
         exr_codec::decode(path).map_err(|source| match exr_codec::missing_rgb_channels(path) {
             Some(found) => ImageIoError::MissingChannels { path: path.to_path_buf(), found },

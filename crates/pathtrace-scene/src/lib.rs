@@ -3,10 +3,16 @@
 //! `SceneBuilder`; plus mesh files ([`mesh`]: OBJ, PLY) and image reading and writing.
 
 pub mod builtin;
+pub mod elide;
 pub mod image_io;
+pub mod load;
 pub mod mesh;
 pub mod mitsuba;
 pub mod native;
+mod overrides;
+
+pub use load::load_file;
+pub use overrides::RenderOverrides;
 
 use pathtrace::integrator::Strategy;
 use pathtrace::sampling::SamplerKind;

@@ -161,3 +161,65 @@ fn mutated_json_never_panics_and_errors_are_located() {
         assert!(ok > 10 && err > 1000, "ok {ok}, errors {err}: the mutator should produce both");
     }
 }
+
+/// Each number of the features scene replaced, one at a time, by a value at the edge of single
+/// precision. The scene must load or give a located error that names the real problem: never a
+/// whole-file 1:1 error, nor the symptoms of an overflow taken for something else ("no lights",
+/// "must be non-zero", "singular", "the same point").
+#[test]
+fn extreme_numbers_in_every_field_give_located_errors_that_name_the_problem() {
+    let numbers: Vec<(usize, usize)> = number_spans(FEATURES);
+    assert!(numbers.len() > 80, "only {} numbers found", numbers.len());
+    let mut outcomes = [0usize; 2];
+    for &(start, end) in &numbers {
+        for extreme in ["3e38", "-3e38", "1e30", "1e-30", "4294967296", "99999999999"] {
+            let text = format!("{}{extreme}{}", &FEATURES[..start], &FEATURES[end..]);
+            match load_str(&text, Format::Toml, "x.toml".as_ref()) {
+                Ok(_) => outcomes[0] += 1,
+                Err(e) => {
+                    outcomes[1] += 1;
+                    let at = format!("`{}` → {extreme}", &FEATURES[start..end]);
+                    assert!((e.line, e.column) != (1, 1), "{at}: unlocated: {e}");
+                    for symptom in ["no lights", "positive radiance", "non-zero", "singular", "same point"] {
+                        assert!(!e.message.contains(symptom), "{at}: overflow reported as {symptom:?}: {e}");
+                    }
+                }
+            }
+        }
+    }
+    assert!(outcomes[0] > 0 && outcomes[1] > 0, "{outcomes:?}");
+}
+
+/// Byte ranges of the numeric literals outside comments and strings.
+fn number_spans(text: &str) -> Vec<(usize, usize)> {
+    let mut spans = Vec::new();
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let code = line.split('#').next().unwrap_or("");
+        let bytes = code.as_bytes();
+        let mut i = 0;
+        let mut in_string = false;
+        while i < bytes.len() {
+            let c = bytes[i];
+            if c == b'"' {
+                in_string = !in_string;
+            }
+            let starts = !in_string
+                && (c.is_ascii_digit() || c == b'-')
+                && (i == 0 || !bytes[i - 1].is_ascii_alphanumeric() && bytes[i - 1] != b'_');
+            if starts {
+                let end = i + code[i..]
+                    .find(|ch: char| !(ch.is_ascii_alphanumeric() || "+-.".contains(ch)))
+                    .unwrap_or(code.len() - i);
+                if code[i..end].parse::<f64>().is_ok() {
+                    spans.push((offset + i, offset + end));
+                }
+                i = end;
+            } else {
+                i += 1;
+            }
+        }
+        offset += line.len();
+    }
+    spans
+}

@@ -4,7 +4,7 @@
 //! 2·tan(vfov/2)·focal high and aspect × that wide; image x runs along +u, image y along −v,
 //! starting at the upper-left pixel.
 
-use crate::math::{Ray, Vec2, Vec3};
+use crate::math::{normalize_robust, Ray, Vec2, Vec3};
 
 /// How the camera is placed (what scene files describe).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,6 +29,8 @@ impl Default for CameraDesc {
 pub enum CameraError {
     #[error("camera look_from and look_at are the same point")]
     ZeroViewDirection,
+    #[error("camera look_from and look_at are too far apart: their distance overflows single precision (3.4e38)")]
+    TooFarApart,
     #[error("camera up vector is zero or parallel to the viewing direction")]
     DegenerateUp,
     #[error("vertical field of view {0}° must be between 0 and 180 degrees")]
@@ -71,8 +73,12 @@ impl Camera {
         if desc.focal_length <= 0.0 {
             return Err(CameraError::FocalLength(desc.focal_length));
         }
-        let w = (desc.look_from - desc.look_at).try_normalize().ok_or(CameraError::ZeroViewDirection)?;
-        let u = desc.up.cross(w).try_normalize().ok_or(CameraError::DegenerateUp)?;
+        let offset = desc.look_from - desc.look_at;
+        if !offset.is_finite() {
+            return Err(CameraError::TooFarApart);
+        }
+        let w = normalize_robust(offset).ok_or(CameraError::ZeroViewDirection)?;
+        let u = normalize_robust(desc.up.cross(w)).ok_or(CameraError::DegenerateUp)?;
         let v = w.cross(u);
         let viewport_h = 2.0 * (desc.vfov_degrees.to_radians() / 2.0).tan() * desc.focal_length;
         let viewport_w = viewport_h * (width as f32 / height as f32);

@@ -68,7 +68,7 @@ pub struct Interaction<'a> {
 pub enum BuildError {
     #[error("material id {0} does not exist")]
     UnknownMaterial(u32),
-    #[error("degenerate {0}: zero area, zero radius or non-finite coordinates")]
+    #[error("degenerate {0}: zero area or radius, or coordinates or an area beyond single precision (3.4e38)")]
     Degenerate(&'static str),
     #[error("an infinite plane cannot be emissive (it has no finite area to sample)")]
     EmissivePlane,
@@ -599,6 +599,34 @@ fn shape_name(s: &Shape) -> &'static str {
 
 /// Checks a material's parameters (albedos in [0, 1], positive ior, …) as [`SceneBuilder::build`]
 /// does, so front ends can report a bad material where it is defined.
+/// Indices of refraction a material may have: every real material lies between 1 and about 4, and
+/// the relative index of an interface between their ratios; beyond these the coating formulas
+/// lose all precision (a plastic of ior 1e6 dropped 5.6% of its samples as NaN).
+pub const IOR_RANGE: std::ops::RangeInclusive<f32> = 0.01..=100.0;
+
+/// The largest microfacet roughness α: at α = 1 a surface is already as rough as the models
+/// describe; at 3e38 a rough plastic dropped 11% of its samples as NaN.
+pub const MAX_ALPHA: f32 = 100.0;
+
+fn ior_message(kind: &str, ior: f32) -> String {
+    format!(
+        "{kind} ior {ior} must be from {} to {} (real materials lie between 1 and 4)",
+        IOR_RANGE.start(),
+        IOR_RANGE.end()
+    )
+}
+
+fn too_rough(m: &crate::material::Microfacet) -> bool {
+    !(m.alpha_u <= MAX_ALPHA && m.alpha_v <= MAX_ALPHA)
+}
+
+fn alpha_message(kind: &str, m: &crate::material::Microfacet) -> String {
+    format!(
+        "{kind} roughness alpha {} must be from 0 to {MAX_ALPHA} (1 is already fully rough)",
+        m.alpha_u.max(m.alpha_v)
+    )
+}
+
 pub fn validate_material(m: &Material) -> Result<(), BuildError> {
     let colour_ok = |c: crate::math::Rgb| c.is_finite() && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0;
     let err = |s: String| Err(BuildError::Material(s));
@@ -619,9 +647,7 @@ pub fn validate_material(m: &Material) -> Result<(), BuildError> {
         Material::Glossy(g) if !(g.exponent >= 0.0 && g.exponent.is_finite()) => {
             err(format!("glossy exponent {} must be a non-negative number", g.exponent))
         }
-        Material::Dielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => {
-            err(format!("dielectric ior {} must be positive", d.ior))
-        }
+        Material::Dielectric(d) if !IOR_RANGE.contains(&d.ior) => err(ior_message("dielectric", d.ior)),
         Material::Dielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
             err(format!("dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
         }
@@ -637,21 +663,20 @@ pub fn validate_material(m: &Material) -> Result<(), BuildError> {
         Material::Conductor(c) if c.reflectance.max_component() > 1.0 => {
             err(format!("conductor reflectance {:?} must be in [0, 1]", c.reflectance.to_array()))
         }
-        Material::RoughDielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => {
-            err(format!("rough_dielectric ior {} must be positive", d.ior))
-        }
+        Material::RoughDielectric(d) if !IOR_RANGE.contains(&d.ior) => err(ior_message("rough_dielectric", d.ior)),
         Material::RoughDielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
             err(format!("rough_dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
         }
-        Material::Plastic(p) if !(p.ior > 0.0 && p.ior.is_finite()) => {
-            err(format!("plastic ior {} must be positive", p.ior))
+        Material::Plastic(p) if !IOR_RANGE.contains(&p.ior) => err(ior_message("plastic", p.ior)),
+        Material::RoughPlastic(p) if !IOR_RANGE.contains(&p.ior) => err(ior_message("rough_plastic", p.ior)),
+        Material::ThinDielectric(d) if !IOR_RANGE.contains(&d.ior) => err(ior_message("thindielectric", d.ior)),
+        Material::RoughConductor(c) if too_rough(&c.distribution) => {
+            err(alpha_message("rough_conductor", &c.distribution))
         }
-        Material::RoughPlastic(p) if !(p.ior > 0.0 && p.ior.is_finite()) => {
-            err(format!("rough_plastic ior {} must be positive", p.ior))
+        Material::RoughDielectric(d) if too_rough(&d.distribution) => {
+            err(alpha_message("rough_dielectric", &d.distribution))
         }
-        Material::ThinDielectric(d) if !(d.ior > 0.0 && d.ior.is_finite()) => {
-            err(format!("thindielectric ior {} must be positive", d.ior))
-        }
+        Material::RoughPlastic(p) if too_rough(&p.distribution) => err(alpha_message("rough_plastic", &p.distribution)),
         Material::ThinDielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
             err(format!("thindielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
         }

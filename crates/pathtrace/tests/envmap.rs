@@ -202,7 +202,7 @@ fn the_pdf_is_proportional_to_luminance() {
         let se = cv * est / (n as f64).sqrt();
         assert!((est - exact).abs() < 4.0 * se + 1e-3 * exact, "{name}: {est} vs {exact} (se {se})");
     }
-    assert!((map.luminance_integral() as f64 - exact).abs() < 0.02 * exact, "{} vs {exact}", map.luminance_integral());
+    assert!((map.luminance_integral() - exact).abs() < 0.02 * exact, "{} vs {exact}", map.luminance_integral());
     eprintln!("luminance/pdf coefficient of variation: importance {cv_importance:.3}, uniform {cv_uniform:.3}");
     // Proportional up to bilinear-vs-constant differences inside cells.
     assert!(cv_importance < 0.3, "luminance/pdf varies by {cv_importance} under importance sampling");

@@ -118,3 +118,19 @@ fn a_camera_override_renders_as_if_the_scene_had_that_camera() {
     assert_eq!(overridden, render(ball_scene(b), None));
     assert_ne!(overridden, render(ball_scene(a), None));
 }
+
+#[test]
+fn wait_finished_times_out_while_running_and_returns_once_ended() {
+    let s = RenderSettings { width: 64, height: 64, spp: 1_000_000, ..Default::default() };
+    let session = RenderSession::start(scene(), s).unwrap();
+    let end = session.end_signal();
+    assert!(!session.wait_finished(Duration::from_millis(20)), "a million spp takes longer");
+    assert!(!end.wait(Duration::ZERO) && !session.is_finished());
+    session.cancel();
+    // Wakes on the end (well before the generous timeout), with the session then finished.
+    let began = std::time::Instant::now();
+    assert!(end.wait(Duration::from_secs(60)));
+    assert!(began.elapsed() < Duration::from_secs(30));
+    assert!(session.is_finished() && session.wait_finished(Duration::ZERO));
+    assert!(session.wait().progress.cancelled);
+}

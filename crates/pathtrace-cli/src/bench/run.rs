@@ -24,7 +24,7 @@ pub struct Run {
 /// Renders once. With a reference, the image is snapshotted whenever a wave completes and its
 /// relative MSE recorded at the time the snapshot was taken (so the time is never early).
 pub fn render_run(scene: Arc<Scene>, settings: RenderSettings, reference: Option<&Image>) -> Result<Run, CliError> {
-    let session = RenderSession::start(scene, settings).map_err(|e| CliError::runtime(e.to_string()))?;
+    let session = RenderSession::start(scene, settings)?;
     let mut curve = Vec::new();
     let mut seen_spp = 0;
     while !session.is_finished() {

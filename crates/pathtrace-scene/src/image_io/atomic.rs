@@ -19,6 +19,7 @@ pub(crate) fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<File>) -> Result<(), ImageIoError>,
 ) -> Result<(), ImageIoError> {
+    super::stale_temps::remove_stale_temps(path);
     let (temp, file) = TempFile::create(path)?;
     let mut writer = BufWriter::new(file);
     write(&mut writer)?;

@@ -137,6 +137,19 @@ pub enum ImageIoError {
         /// The format name.
         format: &'static str,
     },
+
+    /// A header declares a size no file of this length could hold, or one beyond the input limit.
+    #[error("{}: refusing a {width}x{height} image: {reason}", .path.display())]
+    ImplausibleSize {
+        /// The file.
+        path: PathBuf,
+        /// The declared width.
+        width: u64,
+        /// The declared height.
+        height: u64,
+        /// Why it is refused.
+        reason: String,
+    },
 }
 
 impl ImageIoError {

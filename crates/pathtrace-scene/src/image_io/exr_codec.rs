@@ -47,15 +47,24 @@ pub(crate) fn decode(path: &Path) -> exr::error::Result<(usize, usize, Vec<Rgb>)
     Ok((pixels.width, pixels.height, pixels.data))
 }
 
+/// The size the first layer with R, G and B channels declares (its data window), read from the
+/// header alone so it can be checked before [`decode`] allocates; `None` if the file has no such
+/// layer or no readable header (then [`decode`] reports why).
+pub(crate) fn declared_rgb_size(path: &Path) -> Option<(u64, u64)> {
+    let meta = MetaData::read_from_file(path, false).ok()?;
+    let header = meta.headers.iter().find(|h| has_rgb(h))?;
+    Some((header.layer_size.width() as u64, header.layer_size.height() as u64))
+}
+
+fn has_rgb(header: &exr::meta::header::Header) -> bool {
+    ["R", "G", "B"].iter().all(|want| header.channels.list.iter().any(|c| c.name.to_string() == *want))
+}
+
 /// If no layer of the file at `path` has R, G and B channels, the channel names it
 /// does have (comma separated); `None` if it has such a layer or cannot be read.
 pub(crate) fn missing_rgb_channels(path: &Path) -> Option<String> {
     let meta = MetaData::read_from_file(path, false).ok()?;
-    let has_rgb = meta
-        .headers
-        .iter()
-        .any(|h| ["R", "G", "B"].iter().all(|want| h.channels.list.iter().any(|c| c.name.to_string() == *want)));
-    if has_rgb {
+    if meta.headers.iter().any(has_rgb) {
         return None;
     }
     let names: Vec<String> =

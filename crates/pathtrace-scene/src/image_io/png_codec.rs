@@ -1,6 +1,6 @@
 //! PNG: tone-mapped, sRGB-encoded 8-bit RGB out; 8/16-bit sRGB in, decoded to linear.
 
-use std::io::{BufRead, Seek, Write};
+use std::io::Write;
 
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder, ImageError};
@@ -12,10 +12,4 @@ use pathtrace::film::Image;
 pub(crate) fn encode(out: &mut impl Write, image: &Image, settings: &ToneMapSettings) -> Result<(), ImageError> {
     let bytes: Vec<u8> = image.pixels.iter().flat_map(|&p| to_srgb8(p, settings)).collect();
     PngEncoder::new(out).write_image(&bytes, image.width, image.height, ExtendedColorType::Rgb8)
-}
-
-/// Decodes a PNG, treating its values as sRGB-encoded and returning linear RGB.
-/// Grey is expanded to RGB; alpha is dropped. The same decoder as textures (not raw).
-pub(crate) fn decode(input: impl BufRead + Seek) -> Result<Image, ImageError> {
-    super::texture_codec::decode(input, image::ImageFormat::Png, false)
 }

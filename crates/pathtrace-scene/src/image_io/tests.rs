@@ -269,3 +269,38 @@ fn overwriting_replaces_the_file_and_leaves_no_temporaries() {
     assert_eq!(read_image(&path).unwrap(), second);
     assert_eq!(dir.entries(), ["img.pfm"]);
 }
+
+/// A small EXR whose header's data window is rewritten to claim `side` × `side` pixels.
+pub(crate) fn exr_with_lying_header(dir: &Path, side: i32) -> std::path::PathBuf {
+    let path = dir.join("liar.exr");
+    write_image(&path, &ldr_image(4, 4), &default_settings()).unwrap();
+    let mut bytes = fs::read(&path).unwrap();
+    let tag = b"dataWindow\0box2i\0";
+    let at = bytes.windows(tag.len()).position(|w| w == tag).expect("data window attribute") + tag.len() + 4;
+    // box2i: x_min, y_min, x_max, y_max (inclusive), little-endian i32.
+    bytes[at + 8..at + 12].copy_from_slice(&(side - 1).to_le_bytes());
+    bytes[at + 12..at + 16].copy_from_slice(&(side - 1).to_le_bytes());
+    fs::write(&path, bytes).unwrap();
+    path
+}
+
+#[test]
+fn lying_image_headers_are_refused_before_allocating() {
+    let dir = ScratchDir::new("io-liars");
+    for side in [20_000, 100_000] {
+        let exr = exr_with_lying_header(dir.path(), side);
+        for read in [read_image, super::read_linear_image, |p: &Path| super::read_texture(p, false)] {
+            let err = read(&exr).unwrap_err();
+            assert!(matches!(err, ImageIoError::ImplausibleSize { .. }), "{err}");
+            assert!(err.to_string().contains(&format!("{side}x{side}")), "{err}");
+        }
+    }
+    let hdr = dir.path().join("liar.hdr");
+    fs::write(&hdr, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n\x02\x02\x80\x00").unwrap();
+    let err = super::read_linear_image(&hdr).unwrap_err();
+    assert!(matches!(err, ImageIoError::ImplausibleSize { .. }), "{err}");
+    let empty = dir.path().join("empty.hdr");
+    fs::write(&empty, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n").unwrap();
+    let err = super::read_texture(&empty, false).map(|i| (i.width, i.height));
+    assert!(err.as_ref().is_err_and(|e| !e.to_string().contains("texel")), "{err:?}");
+}

@@ -1,17 +1,14 @@
 //! Texture images: PNG and JPEG through the `image` crate, sRGB-decoded unless the scene says the
 //! values are raw (Mitsuba's `raw` parameter); float formats are read as they are (linear).
 
-use std::io::{BufRead, Seek};
-
-use image::{DynamicImage, ImageError, ImageReader};
+use image::{DynamicImage, ImageError};
 use pathtrace::film::tonemap::srgb_decode;
 use pathtrace::film::Image;
 use pathtrace::math::Rgb;
 
-/// Decodes an 8- or 16-bit PNG or JPEG into RGB (grey expanded, alpha dropped): sRGB decoded
-/// (IEC 61966-2-1) to linear, or with `raw` only scaled to [0, 1].
-pub(crate) fn decode(input: impl BufRead + Seek, format: image::ImageFormat, raw: bool) -> Result<Image, ImageError> {
-    let decoded = ImageReader::with_format(input, format).decode()?;
+/// Converts a decoded 8- or 16-bit PNG or JPEG into RGB (grey expanded, alpha dropped): sRGB
+/// decoded (IEC 61966-2-1) to linear, or with `raw` only scaled to [0, 1].
+pub(crate) fn to_linear(decoded: DynamicImage, format: image::ImageFormat, raw: bool) -> Result<Image, ImageError> {
     let color = decoded.color();
     let eight_bit = color.bytes_per_pixel() == color.channel_count();
     let curve = |x: f32| if raw { x } else { srgb_decode(x) };

@@ -22,16 +22,37 @@ use pathtrace::math::{Vec2, Vec3};
 use pathtrace::shape::TriangleMesh;
 use std::collections::HashMap;
 
+/// The lines of `bytes`, ended by `\n`, `\r\n` or a lone `\r` (classic Mac OS exporters), so line
+/// numbers in errors count as an editor does.
+fn text_lines(bytes: &[u8]) -> impl Iterator<Item = &[u8]> {
+    let mut rest = Some(bytes);
+    std::iter::from_fn(move || {
+        let text = rest?;
+        match text.iter().position(|&b| b == b'\n' || b == b'\r') {
+            Some(end) => {
+                let skip = if text[end] == b'\r' && text.get(end + 1) == Some(&b'\n') { 2 } else { 1 };
+                rest = Some(&text[end + skip..]);
+                Some(&text[..end])
+            }
+            None => {
+                rest = None;
+                Some(text)
+            }
+        }
+    })
+}
+
 /// Parses OBJ text into named parts.
 pub(crate) fn parse(bytes: &[u8]) -> Result<Vec<(String, TriangleMesh)>, Failure> {
     let mut state = State::default();
     let mut pending: Vec<u8> = Vec::new();
     let mut pending_line = 0;
     let mut last_line = 0;
-    for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+    // A UTF-8 byte-order mark (some Windows exporters write one) is not part of the first line.
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    for (i, line) in text_lines(bytes).enumerate() {
         let line_no = i + 1;
         last_line = line_no;
-        let line = raw.strip_suffix(b"\r").unwrap_or(raw);
         if let Some(head) = line.strip_suffix(b"\\") {
             if pending.is_empty() {
                 pending_line = line_no;

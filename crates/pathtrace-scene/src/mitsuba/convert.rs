@@ -232,6 +232,18 @@ impl<'a> Conv<'a, '_> {
             .map_err(|_| self.src.error(p.offset_of("value"), format!("`{text}` is not an integer (in `{name}`)")))
     }
 
+    /// [`Self::integer`] within `range`; outside it, an error at the value naming the range (so a
+    /// 2^32 sample count is not reported as "must be at least 1" after wrapping).
+    fn integer_in(&self, e: &'a Element, name: &str, range: std::ops::RangeInclusive<i64>) -> R<Option<i64>> {
+        let Some(n) = self.integer(e, name)? else { return Ok(None) };
+        if range.contains(&n) {
+            return Ok(Some(n));
+        }
+        let at = self.prop(e, name).map_or(e.offset, |p| p.offset_of("value"));
+        let (lo, hi) = (range.start(), range.end());
+        Err(self.src.error(at, format!("`{name}` must be from {lo} to {hi}, got {n}")))
+    }
+
     fn string(&self, e: &'a Element, name: &str) -> R<Option<&'a str>> {
         match self.prop(e, name) {
             None => Ok(None),
@@ -350,7 +362,7 @@ impl<'a> Conv<'a, '_> {
                         None => 0.0,
                     };
                     let a = num(angle);
-                    let Some(n) = axis.try_normalize() else {
+                    let Some(n) = pathtrace::math::normalize_robust(axis) else {
                         return Err(self.src.error(s.offset, "<rotate> needs a non-zero axis"));
                     };
                     if n == Vec3::X {
@@ -410,13 +422,8 @@ impl<'a> Conv<'a, '_> {
 
     fn integrator(&mut self, e: &'a Element, render: &mut RenderSection) -> R<()> {
         let ty = self.req_attr(e, "type")?;
-        let depth = self.integer(e, "max_depth")?;
-        let depth = match depth {
-            Some(d) if d < -1 || d > i32::MAX as i64 => {
-                return Err(self.src.error(e.offset, "max_depth must be ≥ 0, or -1 for unlimited"));
-            }
-            d => d.map(|d| d as i32),
-        };
+        // -1 is unlimited.
+        let depth = self.integer_in(e, "max_depth", -1..=i64::from(i32::MAX))?.map(|d| d as i32);
         render.max_depth = Some(match ty {
             "path" => depth.unwrap_or(-1),
             "direct" => 2,
@@ -458,11 +465,8 @@ impl<'a> Conv<'a, '_> {
                 "stratified" => render.sampler = Some(SamplerName(SamplerKind::Stratified)),
                 other => self.warn(s, &format!("sampler `{other}` is not supported: using independent")),
             }
-            if let Some(n) = self.integer(s, "sample_count")? {
-                spp = u32::try_from(n)
-                    .ok()
-                    .filter(|n| *n >= 1)
-                    .ok_or_else(|| self.src.error(s.offset, "sample_count must be at least 1"))?;
+            if let Some(n) = self.integer_in(s, "sample_count", 1..=i64::from(u32::MAX))? {
+                spp = n as u32;
             }
         }
         render.spp = Some(spp);
@@ -509,7 +513,15 @@ impl<'a> Conv<'a, '_> {
         }
         // Mitsuba's camera looks along its local +z with +y up.
         let from = t.point(Vec3::ZERO);
-        let at = t.point(Vec3::Z);
+        let mut at = t.point(Vec3::Z);
+        if at == from || !at.is_finite() {
+            // One unit along +z vanishes next to a far origin (3e38 + 1 == 3e38) or a tiny
+            // scale: step instead a distance that f32 resolves at that origin.
+            let reach = from.abs().max_element() * f32::EPSILON * 16.0;
+            if let Some(forward) = pathtrace::math::normalize_robust(t.vector(Vec3::Z)) {
+                at = from + forward * reach.max(1.0);
+            }
+        }
         let up = t.vector(Vec3::Y);
         Ok(CameraSection {
             look_from: n3(from),
@@ -715,9 +727,7 @@ impl<'a> Conv<'a, '_> {
                 let Some(file) = self.string(e, "filename")? else {
                     return Err(self.src.error(e.offset, "a serialized shape needs a `filename` string"));
                 };
-                let index = self.integer(e, "shape_index")?.unwrap_or(0);
-                let part = u32::try_from(index)
-                    .map_err(|_| self.src.error(e.offset, format!("shape_index {index} must be ≥ 0")))?;
+                let part = self.integer_in(e, "shape_index", 0..=i64::from(u32::MAX))?.unwrap_or(0) as u32;
                 ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: Some(part), flip_v: false }
             }
             "rectangle" => ShapeDef::Quad {

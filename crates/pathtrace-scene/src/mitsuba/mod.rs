@@ -111,9 +111,23 @@ pub fn load_str(text: &str, path: &Path, defines: &[(&str, &str)]) -> Result<(Lo
     Ok((build_located(&file, &locator)?, warnings))
 }
 
+/// [`load_mitsuba`] handing each warning to `warn` before the build, so a scene whose build
+/// fails still shows what its import substituted.
+pub fn load_mitsuba_reporting(
+    path: &Path,
+    defines: &[(&str, &str)],
+    warn: &mut dyn FnMut(&str),
+) -> Result<LoadedScene, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|e| SceneError::whole_file(path, format!("cannot read: {e}")))?;
+    let (file, locator, warnings) = convert_located(&text, path, defines)?;
+    warnings.iter().for_each(|w| warn(w));
+    build_located(&file, &locator)
+}
+
 /// Loads and builds a Mitsuba XML scene file, with `defines` overriding its `<default>`
 /// parameters. Returns the scene and the warnings about substitutions.
 pub fn load_mitsuba(path: &Path, defines: &[(&str, &str)]) -> Result<(LoadedScene, Vec<String>), SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SceneError::whole_file(path, format!("cannot read: {e}")))?;
-    load_str(&text, path, defines)
+    let mut warnings = Vec::new();
+    let loaded = load_mitsuba_reporting(path, defines, &mut |w| warnings.push(w.to_string()))?;
+    Ok((loaded, warnings))
 }

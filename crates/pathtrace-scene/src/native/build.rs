@@ -147,8 +147,10 @@ fn check_coating(albedo: Rgb, specular: Rgb, ior: f32) -> Result<(), String> {
     if !unit(albedo) || !unit(specular) {
         return Err("plastic `albedo` and `specular` must be in [0, 1]".into());
     }
-    if !(ior > 0.0 && ior.is_finite()) {
-        return Err(format!("plastic ior {ior} must be positive"));
+    if !pathtrace::scene::IOR_RANGE.contains(&ior) {
+        // The same check as the engine's validation, made before the coating's tables are built.
+        let range = &pathtrace::scene::IOR_RANGE;
+        return Err(format!("plastic ior {ior} must be from {} to {}", range.start(), range.end()));
     }
     Ok(())
 }
@@ -320,7 +322,8 @@ impl<L: Locate> Ctx<'_, L> {
     ) -> Result<EnvMap, SceneError> {
         let to_world = self.transform(steps, at)?;
         let dir = self.src.path().parent().unwrap_or(std::path::Path::new(""));
-        let image = crate::image_io::read_linear_image(&dir.join(file))
+        // Any image a texture may be: PNG and JPEG are sRGB-decoded to linear radiance.
+        let image = crate::image_io::read_texture(&dir.join(file), false)
             .map_err(|e| self.src.error_at(&at.field("filename"), format!("cannot load environment map: {e}")))?;
         EnvMap::new(image.width, image.height, image.pixels, scale, to_world).map_err(|e| self.src.error_at(at, e))
     }
@@ -440,17 +443,26 @@ impl<L: Locate> Ctx<'_, L> {
                 }
                 Shape::Plane(Plane::new(vec3(point), vec3(normal)).ok_or_else(|| degenerate("plane: zero normal"))?)
             }
-            ShapeDef::Quad { q, u, v } => Shape::Quad(
-                Quad::new(vec3(q), vec3(u), vec3(v)).ok_or_else(|| degenerate("quad: u and v must span an area"))?,
-            ),
+            ShapeDef::Quad { q, u, v } => Shape::Quad(Quad::new(vec3(q), vec3(u), vec3(v)).ok_or_else(|| {
+                if vec3(u).cross(vec3(v)).is_finite() {
+                    degenerate("quad: u and v must span an area")
+                } else {
+                    degenerate("quad: its area |u × v| overflows single precision (3.4e38)")
+                }
+            })?),
             ShapeDef::Disk { center, normal, radius } => Shape::Disk(
                 Disk::round(vec3(center), vec3(normal), radius.f32())
                     .ok_or_else(|| degenerate("disk: the radius must be positive and the normal non-zero"))?,
             ),
-            ShapeDef::Triangle { a, b, c } => Shape::Triangle(
-                Triangle::new(vec3(a), vec3(b), vec3(c), Triangle::FLAT)
-                    .ok_or_else(|| degenerate("triangle: its corners are on one line"))?,
-            ),
+            ShapeDef::Triangle { a, b, c } => {
+                Shape::Triangle(Triangle::new(vec3(a), vec3(b), vec3(c), Triangle::FLAT).ok_or_else(|| {
+                    if (vec3(b) - vec3(a)).cross(vec3(c) - vec3(a)).is_finite() {
+                        degenerate("triangle: its corners are on one line")
+                    } else {
+                        degenerate("triangle: its area overflows single precision (3.4e38)")
+                    }
+                })?)
+            }
             ShapeDef::Box { min, max } => {
                 return self.put_box(vec3(min), vec3(max), id, &t).map_err(|_| {
                     degenerate("box: `max` must exceed `min` on every axis and the transform keep it solid")
@@ -483,7 +495,9 @@ impl<L: Locate> Ctx<'_, L> {
                 self.src.error_at(&object.field("part"), format!("part {i} does not exist: `{file}` has {n} part(s)"))
             })?,
         };
+        let (mut triangles, mut skipped) = (0, 0);
         for (_, mesh) in chosen {
+            triangles += mesh.indices.len();
             let flipped;
             let mesh = match (&mesh.uvs, flip_v) {
                 (Some(uvs), true) => {
@@ -494,7 +508,21 @@ impl<L: Locate> Ctx<'_, L> {
                 }
                 _ => mesh,
             };
-            self.put_mesh(mesh, id, t).map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
+            skipped += self
+                .put_mesh(mesh, id, t)
+                .map_err(|e| self.src.error_at(at, format!("mesh `{}`: {e}", path.display())))?;
+        }
+        // A mesh that adds nothing is a mistake to report here, not an object silently missing
+        // (or, when it was the only one, "the scene has no objects" at 1:1).
+        if skipped == triangles {
+            let why = if triangles == 0 {
+                "has no triangles".to_owned()
+            } else {
+                format!(
+                    "has no usable triangles: all {triangles} are degenerate (zero area, or beyond single precision)"
+                )
+            };
+            return Err(self.src.error_at(at, format!("mesh `{file}` {why}")));
         }
         Ok(())
     }

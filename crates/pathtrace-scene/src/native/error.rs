@@ -27,7 +27,7 @@ impl std::error::Error for SceneError {}
 impl SceneError {
     /// An error about the whole file (reading it, an empty scene): reported at 1:1.
     pub fn whole_file(path: &Path, message: impl Into<String>) -> Self {
-        Self { path: path.to_path_buf(), line: 1, column: 1, message: message.into() }
+        Self { path: path.to_path_buf(), line: 1, column: 1, message: crate::elide::elide_long_runs(&message.into()) }
     }
 
     /// An error at a byte offset of `text`, quoting the offending line.
@@ -43,6 +43,8 @@ impl SceneError {
         let mut message = message.into();
         // Keep the message on one line: parsers sometimes wrap theirs.
         message = message.split_whitespace().collect::<Vec<_>>().join(" ");
+        // A value echoed in the message may be megabytes long.
+        message = crate::elide::elide_long_runs(&message);
         if let Some(quote) = snippet(text, line) {
             message = format!("{message} — in `{quote}`");
         }

@@ -2,7 +2,7 @@
 //! order (the first step acts on the object first).
 
 use super::values::{vec3, Num, Num3, Triple};
-use pathtrace::math::{Transform, Vec3};
+use pathtrace::math::{normalize_robust, InvalidTransform, Transform, Vec3};
 use serde::{Deserialize, Serialize};
 
 /// Orientation given as a viewer: the local +z axis points from `from` towards `to`.
@@ -43,9 +43,10 @@ impl TransformStep {
     pub fn to_transform(&self) -> Result<Transform, String> {
         match self {
             TransformStep::Translate(t) => Ok(Transform::translate(vec3(t))),
-            TransformStep::Scale(s) => {
-                Transform::scale(s.vec3()).ok_or_else(|| "scale factors must be non-zero".to_string())
-            }
+            TransformStep::Scale(s) => Transform::try_scale(s.vec3()).map_err(|e| match e {
+                InvalidTransform::Singular => "scale factors must be non-zero".to_string(),
+                e => format!("invalid scale: {e}"),
+            }),
             TransformStep::RotateX(d) => Ok(Transform::rotate_x(d.f32())),
             TransformStep::RotateY(d) => Ok(Transform::rotate_y(d.f32())),
             TransformStep::RotateZ(d) => Ok(Transform::rotate_z(d.f32())),
@@ -62,7 +63,7 @@ fn matrix(m: &[Num; 16]) -> Result<Transform, String> {
     }
     // glam stores columns; the file lists rows, so read it as columns and transpose.
     let mat = pathtrace::math::Mat4::from_cols_array(&rows).transpose();
-    Transform::from_matrix(mat).ok_or_else(|| "the matrix is singular (it flattens space)".to_string())
+    Transform::try_from_matrix(mat).map_err(|e| format!("invalid matrix: {e}"))
 }
 
 /// The local frame placed at `from` with +z towards `to`, as Mitsuba 3's `Transform4f::look_at`
@@ -71,11 +72,14 @@ fn matrix(m: &[Num; 16]) -> Result<Transform, String> {
 fn look_at(l: &LookAtDef) -> Result<Transform, String> {
     let (from, to) = (vec3(&l.from), vec3(&l.to));
     let up = l.up.as_ref().map_or(Vec3::Y, vec3);
-    let dir = (to - from).try_normalize().ok_or("look_at `from` and `to` are the same point")?;
-    let left = up.cross(dir).try_normalize().ok_or("look_at `up` is zero or parallel to `to` − `from`")?;
+    if !(to - from).is_finite() {
+        return Err("look_at `from` and `to` are too far apart: their distance overflows single precision".into());
+    }
+    let dir = normalize_robust(to - from).ok_or("look_at `from` and `to` are the same point")?;
+    let left = normalize_robust(up.cross(dir)).ok_or("look_at `up` is zero or parallel to `to` − `from`")?;
     let new_up = dir.cross(left);
     let m = pathtrace::math::Mat4::from_cols(left.extend(0.0), new_up.extend(0.0), dir.extend(0.0), from.extend(1.0));
-    Transform::from_matrix(m).ok_or_else(|| "look_at gives a singular transform".to_string())
+    Transform::try_from_matrix(m).map_err(|e| format!("invalid look_at: {e}"))
 }
 
 /// Composes a list of steps in order; on failure, the index of the bad step and why.

@@ -163,3 +163,21 @@ fn errors_are_std_errors() {
     fn takes(_: &dyn std::error::Error) {}
     takes(&error("f 1 2 3\n"));
 }
+
+/// A byte-order mark used to swallow the first line (shifting every index after it), and classic
+/// Mac line endings made the file one line: every encoding of the lines reads the same mesh.
+#[test]
+fn byte_order_marks_and_every_line_ending_read_the_same_mesh() {
+    let plain = one(&format!("{QUAD}f 1 2 3 4\n"));
+    let lf = format!("{QUAD}f 1 2 3 4\n");
+    for text in [
+        format!("\u{feff}{lf}"),
+        lf.replace('\n', "\r\n"),
+        lf.replace('\n', "\r"),
+        format!("\u{feff}{}", lf.replace('\n', "\r")),
+    ] {
+        assert_eq!(one(&text), plain, "{text:?}");
+    }
+    let located = error("\u{feff}v 0 0 0\r\rv 1 x 0\r").to_string();
+    assert!(located.contains(":3:"), "{located}");
+}

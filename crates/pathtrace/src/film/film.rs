@@ -3,6 +3,7 @@
 //! output. Films of the same size merge by adding their samples.
 
 use super::accumulator::PixelStats;
+use super::allocation::{try_pixels, FilmTooLarge, FILM_BYTES_PER_PIXEL};
 use super::Image;
 use crate::math::Rgb;
 
@@ -57,6 +58,14 @@ impl Film {
             pixels: vec![PixelStats::default(); width as usize * height as usize],
             dropped_samples: 0,
         }
+    }
+
+    /// A film of `width` × `height` pixels, or an error naming the memory it needs when it cannot
+    /// be allocated (renders ask for this one; [`Film::new`] aborts like any allocation).
+    pub fn try_new(width: u32, height: u32) -> Result<Self, FilmTooLarge> {
+        let len = u64::from(width) * u64::from(height);
+        let pixels = try_pixels(len).ok_or(FilmTooLarge { width, height, bytes: len * FILM_BYTES_PER_PIXEL })?;
+        Ok(Self { width, height, pixels, dropped_samples: 0 })
     }
 
     pub fn width(&self) -> u32 {

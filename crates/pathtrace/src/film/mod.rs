@@ -1,6 +1,7 @@
 //! The film: accumulation buffer, variance, tone mapping, pixel reconstruction filters.
 
 mod accumulator;
+mod allocation;
 #[allow(clippy::module_inception)]
 mod film;
 pub mod filter;
@@ -9,6 +10,7 @@ mod noise;
 pub mod tonemap;
 
 pub use accumulator::PixelStats;
+pub use allocation::{FilmTooLarge, FILM_BYTES_PER_PIXEL};
 pub use film::{Film, RegionEstimate};
 pub use filter::{FilterSample, GaussianFilter, PixelFilter};
 pub use image::Image;

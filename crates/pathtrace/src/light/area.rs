@@ -8,7 +8,7 @@
 //!   pdf_ω = 1 / (2π (1 - cos θ_max)), cos θ_max = √(1 - r²/d²) (pbrt-v3 §14.2.3);
 //!   from inside: uniform by area.
 
-use crate::math::{Frame, Ray, Rgb, Vec2, Vec3, PI};
+use crate::math::{Frame, Ray, Rgb, Vec2, Vec3};
 use crate::sampling::warp;
 use crate::shape::{Disk, Quad, Sphere, Triangle};
 use crate::wide::simd::{F32s, Ms, Vec3s};
@@ -143,10 +143,11 @@ impl AreaLight {
         self.area
     }
 
-    /// Total emitted power in luminance units: L·A·π per emitting face.
-    pub fn power(&self) -> f32 {
+    /// Total emitted power in luminance units: L·A·π per emitting face (in f64: finite for any
+    /// finite radiance and area).
+    pub fn power(&self) -> f64 {
         let faces = if self.emission.two_sided { 2.0 } else { 1.0 };
-        self.emission.radiance.luminance() * self.area() * PI * faces
+        self.emission.radiance.luminance_f64() * f64::from(self.area()) * std::f64::consts::PI * faces
     }
 
     /// Radiance leaving a point with geometric normal `n` in direction `w`.

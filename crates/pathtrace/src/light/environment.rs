@@ -10,7 +10,7 @@
 use std::sync::Arc;
 
 use super::envmap::EnvMap;
-use crate::math::{Rgb, Vec2, Vec3, INV_4PI, PI};
+use crate::math::{Rgb, Vec2, Vec3, INV_4PI};
 use crate::sampling::warp;
 
 /// Light arriving from infinity.
@@ -71,11 +71,11 @@ impl EnvironmentLight {
     /// Power reaching a scene bounded by a sphere of radius `scene_radius`, in luminance
     /// units: π r² · ∫ L dω (pbrt-v4 `UniformInfiniteLight::Phi` and `ImageInfiniteLight::Phi`),
     /// used to pick it among lights.
-    pub fn power(&self, scene_radius: f32) -> f32 {
+    pub fn power(&self, scene_radius: f32) -> f64 {
         let integral = match &self.map {
-            None => 4.0 * PI * self.radiance.luminance(),
+            None => 4.0 * std::f64::consts::PI * self.radiance.luminance_f64(),
             Some(map) => map.luminance_integral(),
         };
-        PI * scene_radius * scene_radius * integral
+        std::f64::consts::PI * f64::from(scene_radius).powi(2) * integral
     }
 }

@@ -28,7 +28,7 @@ pub struct EnvMap {
     /// Distribution over `width × cell_rows` cells (in u shifted by half a texel).
     distribution: Distribution2D,
     /// ∫ luminance dω over the sphere (of the piecewise-constant approximation the sampler uses).
-    luminance_integral: f32,
+    luminance_integral: f64,
 }
 
 impl EnvMap {
@@ -52,6 +52,12 @@ impl EnvMap {
         // Negative radiance (ringing in some HDR files) has no meaning for a light.
         let pixels: Vec<Rgb> =
             pixels.into_iter().map(|p| Rgb::new(p.r.max(0.0), p.g.max(0.0), p.b.max(0.0)) * scale).collect();
+        if pixels.iter().any(|p| !p.is_finite()) {
+            return Err(format!(
+                "an environment map's radiance times its scale {scale} overflows single precision (3.4e38): \
+                 lower the scale or the map's values"
+            ));
+        }
         let rows = cell_rows(h);
         let mut weights = Vec::with_capacity(w * rows);
         for j in 0..rows {
@@ -60,15 +66,20 @@ impl EnvMap {
             for i in 0..w {
                 let i1 = (i + 1) % w;
                 let corners = [(i, j0), (i1, j0), (i, j1), (i1, j1)];
-                let mean = corners.iter().map(|&(x, y)| pixels[y * w + x].luminance().max(0.0)).sum::<f32>() / 4.0;
-                weights.push(mean * sin_theta);
+                let mean = corners.iter().map(|&(x, y)| pixels[y * w + x].luminance_f64().max(0.0)).sum::<f64>() / 4.0;
+                weights.push(mean * f64::from(sin_theta));
             }
         }
-        let total: f64 = weights.iter().map(|&x| x as f64).sum();
+        let total: f64 = weights.iter().sum();
+        // Normalised to the largest weight so that maps near the f32 limit keep a finite sum; a
+        // cell with any light keeps a nonzero weight, however dim beside the brightest.
+        let max = weights.iter().copied().fold(0.0, f64::max);
+        let weights: Vec<f32> =
+            weights.iter().map(|&x| if x > 0.0 { ((x / max) as f32).max(f32::MIN_POSITIVE) } else { 0.0 }).collect();
         let distribution = Distribution2D::new(&weights, w, rows)
             .ok_or_else(|| "an environment map must have some positive radiance".to_string())?;
         // Σ weight · (cell area in uv) · 2π² (the Jacobian above).
-        let luminance_integral = (total * 2.0 * (PI as f64).powi(2) / (w * rows) as f64) as f32;
+        let luminance_integral = total * 2.0 * (PI as f64).powi(2) / (w * rows) as f64;
         Ok(EnvMap { width: w, height: h, pixels, to_world, distribution, luminance_integral })
     }
 
@@ -109,7 +120,7 @@ impl EnvMap {
     }
 
     /// ∫ luminance dω over the whole sphere.
-    pub fn luminance_integral(&self) -> f32 {
+    pub fn luminance_integral(&self) -> f64 {
         self.luminance_integral
     }
 

@@ -2,7 +2,7 @@
 //! direction. Irradiance at distance r falls off as I·cos θ/r². A point has no area, so no ray
 //! can hit it: only next-event estimation (the `mis` strategy) sees point lights.
 
-use crate::math::{Rgb, Vec3, PI};
+use crate::math::{Rgb, Vec3};
 
 /// An isotropic point light.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -13,9 +13,9 @@ pub struct PointLight {
 }
 
 impl PointLight {
-    /// Total emitted power in luminance units: 4π·I.
-    pub fn power(&self) -> f32 {
-        4.0 * PI * self.intensity.luminance()
+    /// Total emitted power in luminance units: 4π·I (in f64: finite for any finite intensity).
+    pub fn power(&self) -> f64 {
+        4.0 * std::f64::consts::PI * self.intensity.luminance_f64()
     }
 
     /// The unit direction and distance from `ref_p` to the light, and the radiance-like term

@@ -85,7 +85,7 @@ pub struct LightSet {
     spots: Vec<SpotLight>,
     environment: Option<EnvironmentLight>,
     /// Every light's power, in index order (the environment's measured over the scene).
-    powers: Vec<f32>,
+    powers: Vec<f64>,
     mode: LightSelection,
     selection: Option<Distribution1D>,
     continuous: Option<Distribution1D>,
@@ -130,7 +130,7 @@ impl LightSet {
         let point = points.iter().map(PointLight::power);
         let spot = spots.iter().map(SpotLight::power);
         let env = environment.iter().map(|e| e.power(scene_radius.max(1e-3)));
-        let powers: Vec<f32> = area.chain(point).chain(spot).chain(env).collect();
+        let powers: Vec<f64> = area.chain(point).chain(spot).chain(env).collect();
         let mut set = Self { lights, points, spots, environment, powers, ..Default::default() };
         set.set_selection(LightSelection::Power);
         set
@@ -139,8 +139,12 @@ impl LightSet {
     /// Rebuilds the selection distributions for `mode`. Both modes give every light with power a
     /// nonzero probability, so both are unbiased; they differ only in noise.
     pub fn set_selection(&mut self, mode: LightSelection) {
-        let weight = |p: f32| match mode {
-            LightSelection::Power => p,
+        // Powers are f64 (bright lights overflow f32); the distribution takes them relative to the
+        // brightest, a light with any power keeping a nonzero chance.
+        let brightest = self.powers.iter().copied().filter(|p| p.is_finite()).fold(0.0, f64::max);
+        let weight = |p: f64| match mode {
+            LightSelection::Power if p > 0.0 && p.is_finite() => ((p / brightest) as f32).max(f32::MIN_POSITIVE),
+            LightSelection::Power => 0.0,
             LightSelection::Uniform => {
                 if p > 0.0 {
                     1.0

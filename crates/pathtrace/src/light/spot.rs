@@ -85,14 +85,14 @@ impl SpotLight {
 
     /// Total emitted power in luminance units: I · ∫ falloff dω = 2π I [1 − (sin θc − sin θb)/(θc − θb)]
     /// (integrating the linear ramp by parts; → 2π I (1 − cos θc) when θb = θc).
-    pub fn power(&self) -> f32 {
+    pub fn power(&self) -> f64 {
         let (c, b) = (self.cutoff as f64, self.beam as f64);
         let solid_angle = if c - b > 1e-6 {
             2.0 * std::f64::consts::PI * (1.0 - (c.sin() - b.sin()) / (c - b))
         } else {
             2.0 * std::f64::consts::PI * (1.0 - c.cos())
         };
-        self.intensity.luminance() * solid_angle as f32
+        self.intensity.luminance_f64() * solid_angle
     }
 
     /// The unit direction and distance from `ref_p` to the light, and I·falloff/r², the
@@ -122,8 +122,8 @@ mod tests {
             sum +=
                 spot.falloff(w) as f64 * 2.0 * std::f64::consts::PI * theta.sin() * (std::f64::consts::PI / n as f64);
         }
-        assert!((spot.power() as f64 - sum).abs() < 1e-3 * sum, "{} vs {sum}", spot.power());
-        assert!(spot.power() < 2.0 * std::f32::consts::PI * (1.0 - 40f32.to_radians().cos()));
+        assert!((spot.power() - sum).abs() < 1e-3 * sum, "{} vs {sum}", spot.power());
+        assert!(spot.power() < 2.0 * std::f64::consts::PI * (1.0 - 40f64.to_radians().cos()));
     }
 
     #[test]

@@ -27,6 +27,12 @@ impl Rgb {
         0.2126 * self.r + 0.7152 * self.g + 0.0722 * self.b
     }
 
+    /// [`Rgb::luminance`] in f64, which cannot overflow for any finite colour (light powers
+    /// multiply it by areas and solid angles, which overflow f32 for bright lights).
+    pub fn luminance_f64(self) -> f64 {
+        0.2126 * f64::from(self.r) + 0.7152 * f64::from(self.g) + 0.0722 * f64::from(self.b)
+    }
+
     pub fn max_component(self) -> f32 {
         self.r.max(self.g).max(self.b)
     }

@@ -9,6 +9,19 @@ pub struct Transform {
     pub inverse: Mat4,
 }
 
+/// Why a matrix cannot be a transform.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum InvalidTransform {
+    #[error("its entries must be finite numbers")]
+    NotFinite,
+    #[error("it is singular (it flattens space)")]
+    Singular,
+    #[error("its axes are almost parallel (it all but flattens space)")]
+    NearlyFlat,
+    #[error("it scales space by {0:.1e}, beyond single precision (coordinates overflow or vanish)")]
+    Overflow(f64),
+}
+
 impl Default for Transform {
     fn default() -> Self {
         Self::IDENTITY
@@ -18,14 +31,38 @@ impl Default for Transform {
 impl Transform {
     pub const IDENTITY: Transform = Transform { matrix: Mat4::IDENTITY, inverse: Mat4::IDENTITY };
 
-    /// Wraps a matrix; `None` when it is singular or not finite.
+    /// Wraps a matrix; `None` when it is singular or not finite ([`Transform::try_from_matrix`]
+    /// says which).
     pub fn from_matrix(matrix: Mat4) -> Option<Self> {
-        let det = matrix.determinant();
-        if !det.is_finite() || det.abs() < 1e-12 {
-            return None;
+        Self::try_from_matrix(matrix).ok()
+    }
+
+    /// Wraps a matrix, or says why it cannot be used: its entries are not finite, it is singular,
+    /// or it scales so much that its determinant or inverse overflows single precision (a scale of
+    /// 1e30 is not singular, and must not be reported as such).
+    pub fn try_from_matrix(matrix: Mat4) -> Result<Self, InvalidTransform> {
+        if !matrix.is_finite() {
+            return Err(InvalidTransform::NotFinite);
         }
+        // In f64 the determinant of any finite f32 matrix is finite, so overflow and a true
+        // zero can be told apart.
+        let exact = matrix.as_dmat4().determinant();
+        // Singular relative to the lengths of its axes (Hadamard's bound |det| ≤ Π |column|), so a
+        // scale of 1e-30 or 3e38 along one axis is not taken for a flattening.
+        let axes = matrix.as_dmat4();
+        let bound = axes.x_axis.truncate().length() * axes.y_axis.truncate().length() * axes.z_axis.truncate().length();
+        if exact == 0.0 {
+            return Err(InvalidTransform::Singular);
+        }
+        if exact.abs() < 1e-12 * bound {
+            return Err(InvalidTransform::NearlyFlat);
+        }
+        let det = matrix.determinant();
         let inverse = matrix.inverse();
-        inverse.is_finite().then_some(Self { matrix, inverse })
+        if !det.is_finite() || !inverse.is_finite() || det == 0.0 {
+            return Err(InvalidTransform::Overflow(exact));
+        }
+        Ok(Self { matrix, inverse })
     }
 
     pub fn translate(t: Vec3) -> Self {
@@ -35,6 +72,11 @@ impl Transform {
     /// Non-uniform scale; `None` if a factor is zero.
     pub fn scale(s: Vec3) -> Option<Self> {
         Self::from_matrix(Mat4::from_scale(s))
+    }
+
+    /// Non-uniform scale, or why it cannot be one ([`Transform::try_from_matrix`]).
+    pub fn try_scale(s: Vec3) -> Result<Self, InvalidTransform> {
+        Self::try_from_matrix(Mat4::from_scale(s))
     }
 
     /// Rotation about +x by `degrees` (right-handed: y → z).

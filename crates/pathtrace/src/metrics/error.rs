@@ -10,14 +10,28 @@ pub enum MetricError {
     SizeMismatch(u32, u32, u32, u32),
     #[error("images are empty")]
     Empty,
+    /// Errors against NaN or infinite values are NaN or infinite themselves: nothing to report.
+    #[error("the {which} image has {count} NaN or infinite pixels; its errors are undefined")]
+    NonFinite { which: &'static str, count: usize },
 }
 
-pub(super) fn check(a: &Image, b: &Image) -> Result<(), MetricError> {
-    if a.width != b.width || a.height != b.height {
-        return Err(MetricError::SizeMismatch(a.width, a.height, b.width, b.height));
+/// Checks that `test` and `reference` can be compared: same size, not empty, finite.
+pub(super) fn check(test: &Image, reference: &Image) -> Result<(), MetricError> {
+    if test.width != reference.width || test.height != reference.height {
+        return Err(MetricError::SizeMismatch(test.width, test.height, reference.width, reference.height));
     }
-    if a.pixels.is_empty() || a.pixels.len() != b.pixels.len() {
+    if test.pixels.is_empty() || test.pixels.len() != reference.pixels.len() {
         return Err(MetricError::Empty);
+    }
+    check_finite(reference, "reference")?;
+    check_finite(test, "test")
+}
+
+/// Refuses an image with NaN or infinite pixels (`which` names it in the error).
+pub fn check_finite(image: &Image, which: &'static str) -> Result<(), MetricError> {
+    let count = image.pixels.iter().filter(|p| !p.to_array().iter().all(|v| v.is_finite())).count();
+    if count > 0 {
+        return Err(MetricError::NonFinite { which, count });
     }
     Ok(())
 }
@@ -52,9 +66,13 @@ pub fn to_8bit(img: &Image) -> Vec<u8> {
     img.pixels.iter().flat_map(|&p| to_srgb8(p, &settings)).collect()
 }
 
+/// 10 log₁₀(MAX² / MSE): infinite for identical images, NaN (undefined) when MAX is 0 but the
+/// images differ, as against a black reference in linear PSNR.
 fn psnr(mse: f64, max: f64) -> f64 {
     if mse == 0.0 {
         f64::INFINITY
+    } else if max <= 0.0 {
+        f64::NAN
     } else {
         10.0 * (max * max / mse).log10()
     }
@@ -106,6 +124,19 @@ mod tests {
         let b = img(2, 1, &[0.0, 0.0]);
         assert!((psnr_8bit(&a, &b).unwrap() - 3.010_299_956).abs() < 1e-6);
         assert_eq!(psnr_8bit(&a, &a).unwrap(), f64::INFINITY);
+    }
+
+    #[test]
+    fn non_finite_pixels_are_counted_and_refused_and_black_references_have_no_linear_psnr() {
+        let nan = img(2, 1, &[f32::NAN, 1.0]);
+        let inf = img(2, 1, &[f32::INFINITY, f32::NEG_INFINITY]);
+        let fine = img(2, 1, &[0.5, 1.0]);
+        assert_eq!(mse(&nan, &fine), Err(MetricError::NonFinite { which: "test", count: 1 }));
+        assert_eq!(psnr_8bit(&fine, &inf), Err(MetricError::NonFinite { which: "reference", count: 2 }));
+        assert_eq!(psnr_linear(&nan, &nan), Err(MetricError::NonFinite { which: "reference", count: 1 }));
+        let black = img(2, 1, &[0.0, 0.0]);
+        assert!(psnr_linear(&fine, &black).unwrap().is_nan());
+        assert_eq!(psnr_linear(&black, &black).unwrap(), f64::INFINITY);
     }
 
     #[test]

@@ -6,7 +6,7 @@ mod error;
 mod ssim;
 
 pub use diff::difference_image;
-pub use error::{mse, psnr_8bit, psnr_linear, relative_mse, rmse, to_8bit, MetricError};
+pub use error::{check_finite, mse, psnr_8bit, psnr_linear, relative_mse, rmse, to_8bit, MetricError};
 pub use ssim::ssim;
 
 use crate::film::Image;
@@ -19,7 +19,8 @@ pub struct Comparison {
     pub relative_mse: f64,
     /// PSNR of the 8-bit sRGB images (MAX = 255), in dB; infinite for identical images.
     pub psnr_8bit: f64,
-    /// PSNR of the linear values with the reference's peak as MAX, in dB.
+    /// PSNR of the linear values with the reference's peak as MAX, in dB; infinite for identical
+    /// images, NaN (undefined) against a black reference.
     pub psnr_linear: f64,
     pub ssim: f64,
 }

@@ -6,5 +6,5 @@ mod settings;
 pub(crate) mod tile;
 
 pub use adaptive::{allocate, AdaptiveSettings};
-pub use session::{render, Progress, RenderError, RenderOutcome, RenderSession};
+pub use session::{render, EndSignal, Progress, RenderError, RenderOutcome, RenderSession};
 pub use settings::RenderSettings;

@@ -13,14 +13,14 @@ use super::adaptive::{allocate, AdaptiveSettings};
 use super::settings::RenderSettings;
 use super::tile::{render_tile, tiles, Tile, TileJob, TileResult, WaveSamples};
 use crate::camera::{Camera, CameraDesc, CameraError};
-use crate::film::{Film, Image};
+use crate::film::{Film, FilmTooLarge, Image};
 use crate::integrator::PathStats;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::wide::{Kernel, WideScene};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -33,6 +33,16 @@ pub enum RenderError {
     Threads(String),
     #[error("nothing to render: give a sample count, a time limit or a target error")]
     NoBudget,
+    #[error(transparent)]
+    Film(#[from] FilmTooLarge),
+}
+
+impl RenderError {
+    /// True when the request itself cannot be rendered (a bad setting for this scene or machine),
+    /// false when the system failed (threads could not start).
+    pub fn is_bad_request(&self) -> bool {
+        !matches!(self, RenderError::Threads(_))
+    }
 }
 
 /// A snapshot of how far a render is.
@@ -80,6 +90,9 @@ struct Shared {
     error_estimate: AtomicU64,
     start: Instant,
     end: Mutex<Option<Instant>>,
+    /// Notified (with `end` set) when the render ends, so waiters wake at once rather than
+    /// polling.
+    ended: Condvar,
     spp_target: u32,
     target_error: Option<f64>,
 }
@@ -145,13 +158,14 @@ impl RenderSession {
         }
         let camera = Camera::new(camera, settings.width, settings.height)?;
         let prep = Prepared { camera, lanes: WideScene::new(&scene, &settings.path) };
+        let film = Film::try_new(settings.width, settings.height)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(settings.threads)
             .thread_name(|i| format!("pathtrace-worker-{i}"))
             .build()
             .map_err(|e| RenderError::Threads(e.to_string()))?;
         let shared = Arc::new(Shared {
-            film: Mutex::new(Film::new(settings.width, settings.height)),
+            film: Mutex::new(film),
             cancel: AtomicBool::new(false),
             finished: AtomicBool::new(false),
             spp_done: AtomicU32::new(0),
@@ -163,6 +177,7 @@ impl RenderSession {
             error_estimate: AtomicU64::new(f64::NAN.to_bits()),
             start: Instant::now(),
             end: Mutex::new(None),
+            ended: Condvar::new(),
             spp_target: settings.spp,
             target_error,
         });
@@ -171,10 +186,11 @@ impl RenderSession {
             .name("pathtrace-session".into())
             .spawn(move || {
                 pool.install(|| run_waves(&scene, &prep, &settings, &worker_shared));
-                if let Ok(mut end) = worker_shared.end.lock() {
-                    *end = Some(Instant::now());
-                }
+                let mut end = worker_shared.end.lock().unwrap_or_else(|e| e.into_inner());
+                *end = Some(Instant::now());
                 worker_shared.finished.store(true, Ordering::Release);
+                drop(end);
+                worker_shared.ended.notify_all();
             })
             .map_err(|e| RenderError::Threads(e.to_string()))?;
         Ok(Self { shared, handle: Some(handle) })
@@ -227,6 +243,19 @@ impl RenderSession {
         self.shared.finished.load(Ordering::Acquire)
     }
 
+    /// Blocks until the render ends or `timeout` passes; true if it has ended. Returns as soon
+    /// as the last tile is merged, so a front end can wake for progress every 100 ms yet
+    /// finish without waiting out its interval.
+    pub fn wait_finished(&self, timeout: Duration) -> bool {
+        self.end_signal().wait(timeout)
+    }
+
+    /// A handle that waits for this render's end without borrowing the session (for a front end
+    /// that keeps the session behind a lock it must not hold while waiting).
+    pub fn end_signal(&self) -> EndSignal {
+        EndSignal(Arc::clone(&self.shared))
+    }
+
     /// Waits for the render to end (finished, timed out or cancelled) and returns the film.
     pub fn wait(mut self) -> RenderOutcome {
         if let Some(h) = self.handle.take() {
@@ -246,6 +275,20 @@ impl Drop for RenderSession {
             self.cancel();
             let _ = h.join();
         }
+    }
+}
+
+/// Waits for the end of a [`RenderSession`]; see [`RenderSession::end_signal`].
+#[derive(Clone)]
+pub struct EndSignal(Arc<Shared>);
+
+impl EndSignal {
+    /// Blocks until the render ends or `timeout` passes; true if it has ended.
+    pub fn wait(&self, timeout: Duration) -> bool {
+        let end = self.0.end.lock().unwrap_or_else(|e| e.into_inner());
+        let (end, _) =
+            self.0.ended.wait_timeout_while(end, timeout, |end| end.is_none()).unwrap_or_else(|e| e.into_inner());
+        end.is_some()
     }
 }
 

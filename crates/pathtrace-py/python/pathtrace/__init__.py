@@ -1,0 +1,117 @@
+"""pathtrace: a physically based Monte Carlo path tracer, as a Python module.
+
+Load a scene, render it, get numpy arrays back::
+
+    import pathtrace
+    scene = pathtrace.builtin("cornell-box")           # or load_file("scene.toml" / ".json" / ".xml")
+    film = pathtrace.render(scene, spp=64, seed=3)      # blocks, with the GIL released
+    image = film.image()                                # float32 (H, W, 3), linear RGB, row 0 on top
+    film.write("cornell.exr")
+
+The renderer is the same engine as the ``pathtrace`` command: ``render(scene, spp=16, seed=3)``
+gives, bit for bit, the image ``pathtrace render SCENE --spp 16 --seed 3 -o out.pfm`` writes.
+See docs/python.md in the repository.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import warnings
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Optional, Union
+
+from . import _core
+from ._core import Film, Progress, RenderJob, Scene, SceneError
+
+if TYPE_CHECKING:  # for type checkers only: the stubs' TypedDict of render options
+    from typing_extensions import Unpack
+
+    from ._core import RenderOptions
+
+__all__ = [
+    "Film",
+    "Progress",
+    "RenderJob",
+    "Scene",
+    "SceneError",
+    "builtin",
+    "builtin_names",
+    "load_dict",
+    "load_file",
+    "render",
+    "start",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def load_file(path: PathLike, defines: Optional[Mapping[str, Any]] = None) -> Scene:
+    """Loads a scene file: native ``.toml`` or ``.json`` (docs/scene-format.md) or a Mitsuba 3
+    ``.xml`` scene, whose ``<default>`` parameters ``defines`` overrides (as the CLI's
+    ``-D NAME=VALUE``; values are converted with ``str``).
+
+    Raises :class:`SceneError` (a ``ValueError``) with ``.path``, ``.line``, ``.column`` and
+    ``.message`` for a bad file. Mitsuba features the importer substitutes are reported with
+    ``warnings.warn``.
+    """
+    pairs = [(str(name), str(value)) for name, value in (defines or {}).items()]
+    scene, import_warnings = _core.load_file(os.fspath(path), pairs)
+    for message in import_warnings:
+        warnings.warn(message, stacklevel=2)
+    return scene
+
+
+def load_dict(d: Mapping[str, Any], name: str = "<dict>") -> Scene:
+    """Builds a scene from a dict in the native schema (the JSON scene format as Python
+    objects; docs/scene-format.md). Relative mesh paths resolve against the current directory.
+
+    The dict is written as indented JSON, so a :class:`SceneError`'s ``.line`` and ``.column``
+    point into ``json.dumps(d, indent=2)`` and ``.path`` is ``name``.
+    """
+    return _core.load_json(json.dumps(d, indent=2), name)
+
+
+def builtin(name: str = "cornell-box") -> Scene:
+    """A scene bundled with the renderer (see :func:`builtin_names`); ``ValueError`` for an
+    unknown name."""
+    return _core.builtin(name)
+
+
+def builtin_names() -> list[str]:
+    """The names :func:`builtin` accepts."""
+    return _core.builtin_names()
+
+
+def render(
+    scene: Scene,
+    *,
+    progress: Optional[Callable[[Progress], Any]] = None,
+    **options: Unpack[RenderOptions],
+) -> Film:
+    """Renders ``scene`` and returns its :class:`Film`. Blocks, with the GIL released, while
+    the engine's worker threads render, so other Python threads keep running.
+
+    Options (keyword only): ``spp=None``, ``seed=0``, ``width=None``, ``height=None``,
+    ``max_depth=None``, ``strategy=None``, ``sampler=None``, ``threads=0``. Each left at
+    ``None`` takes the scene file's ``[render]`` value, else the engine's default, exactly as
+    the CLI's options do (``seed=None`` takes the scene's seed; the default ``seed=0`` is the
+    CLI's default seed). ``strategy`` is ``"mis"``, ``"bsdf"``, ``"mixture"`` or ``"light"``;
+    ``sampler`` is ``"independent"``, ``"stratified"`` or ``"sobol"``; ``max_depth`` counts path
+    segments (-1: unlimited); ``threads=0`` uses one per core. A bad value is a ``ValueError``.
+
+    ``progress(p)`` is called on the calling thread about ten times a second and once at the
+    end with a :class:`Progress` (``spp_done``, ``spp_target``, ``samples_per_second``,
+    ``error_estimate``, …). An exception raised in it cancels the render and propagates;
+    Ctrl-C cancels the render and raises ``KeyboardInterrupt``.
+    """
+    return _core.render(scene, progress=progress, **options)
+
+
+def start(scene: Scene, **options: Unpack[RenderOptions]) -> RenderJob:
+    """Starts rendering ``scene`` in the background (options as :func:`render`) and returns a
+    :class:`RenderJob`: ``.progress()``, ``.snapshot()`` (the image so far, numpy),
+    ``.cancel()``, ``.done()`` and ``.wait(timeout=None)`` (the :class:`Film`, or ``None`` if the
+    timeout passes first). As a context manager, leaving the block cancels the render if it is
+    still running.
+    """
+    return _core.start(scene, **options)

@@ -1,0 +1,26 @@
+//! Allocating a film without aborting: a size the machine cannot hold is an error that says how
+//! much memory it needs, not a process abort with a backtrace.
+
+use super::accumulator::PixelStats;
+
+/// The bytes one film pixel takes (its count, mean and variance sums).
+pub const FILM_BYTES_PER_PIXEL: u64 = std::mem::size_of::<PixelStats>() as u64;
+
+/// A film too large to allocate.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("a {width}x{height} film needs {:.1} GB of memory ({FILM_BYTES_PER_PIXEL} bytes per pixel), which cannot be allocated", *.bytes as f64 / 1e9)]
+pub struct FilmTooLarge {
+    pub width: u32,
+    pub height: u32,
+    /// The bytes the film would need.
+    pub bytes: u64,
+}
+
+/// `len` default pixels, or `None` if the allocator refuses them.
+pub(super) fn try_pixels(len: u64) -> Option<Vec<PixelStats>> {
+    let len = usize::try_from(len).ok()?;
+    let mut pixels = Vec::new();
+    pixels.try_reserve_exact(len).ok()?;
+    pixels.resize(len, PixelStats::default());
+    Some(pixels)
+}
