@@ -112,12 +112,12 @@ fn fov_axis_becomes_a_vertical_fov() {
 #[test]
 fn unsupported_plugins_warn_and_fall_back() {
     let xml = scene(&format!(
-        r#"<emitter type="directional"/><shape type="cylinder"/>
+        r#"<emitter type="projector"/><shape type="cylinder"/>
         <emitter type="spot"><texture type="bitmap" name="texture"/></emitter>
         <shape type="sphere"><bsdf type="blendbsdf"/></shape>{LIGHT}"#
     ));
     let (f, w) = conv(&xml, &[]);
-    assert!(w.iter().any(|w| w.contains("directional")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("projector")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("spot light's projected `texture`")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("cylinder")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("blendbsdf") && w.starts_with("t.xml:")), "{w:?}");
@@ -468,7 +468,10 @@ fn serialized_meshes_load_and_bad_ones_are_errors() {
     std::fs::copy(&path, tmp.join("m.serialized")).unwrap();
     let (f, w) = convert_str(&xml, &tmp.join("s.xml"), &[]).unwrap();
     assert!(w.is_empty(), "{w:?}");
-    assert_eq!(f.objects[0].shape, ShapeDef::Mesh { file: "m.serialized".into(), part: Some(1), flip_v: false });
+    assert_eq!(
+        f.objects[0].shape,
+        ShapeDef::Mesh { file: "m.serialized".into(), part: Some(1), flip_v: false, normals: Default::default() }
+    );
     let bad = xml.replace("value=\"1\"", "value=\"99\"").replace("</scene>", &format!("{LIGHT}</scene>"));
     let e = load_str(&bad, &tmp.join("s.xml"), &[]).unwrap_err().to_string();
     assert!(e.contains("part 99 does not exist"), "{e}");
@@ -580,4 +583,46 @@ fn matpreview_scenes_load_their_environment_map() {
         eprintln!("{s}: envmap mean luminance {mean:.4}, {} warning(s)", w.len());
         assert!(mean.is_finite() && mean > 0.0, "{s}: {mean}");
     }
+}
+
+#[test]
+fn directional_emitters_and_face_normals_convert() {
+    use pathtrace_scene::native::model::{LightDef, MeshNormals, ShapeDef};
+    let xml = scene(&format!(
+        r#"<emitter type="directional"><vector name="direction" value="0, -2, 0"/><rgb name="irradiance" value="3"/></emitter>
+        <emitter type="directional"><transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>
+        <shape type="ply"><string name="filename" value="a.ply"/><boolean name="face_normals" value="true"/></shape>
+        <shape type="ply"><string name="filename" value="b.ply"/></shape>{LIGHT}"#
+    ));
+    let tmp = std::env::temp_dir().join(format!("pathtrace-xml-normals-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    for name in ["a.ply", "b.ply"] {
+        std::fs::write(tmp.join(name), "").unwrap();
+    }
+    let (f, w) = convert_str(&xml, &tmp.join("t.xml"), &[]).unwrap();
+    std::fs::remove_dir_all(&tmp).unwrap();
+    assert!(w.is_empty(), "{w:?}");
+    let directions: Vec<_> = f
+        .lights
+        .iter()
+        .filter_map(|l| match l {
+            LightDef::Directional { direction, transform, .. } => Some((direction.is_some(), transform.len())),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(directions, vec![(true, 0), (false, 1)]);
+    let normals: Vec<_> = f
+        .objects
+        .iter()
+        .filter_map(|o| match &o.shape {
+            ShapeDef::Mesh { normals, .. } => Some(*normals),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(normals, vec![MeshNormals::Face, MeshNormals::Smooth]);
+    let both = scene(&format!(
+        r#"<emitter type="directional"><vector name="direction" value="0, -1, 0"/><transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>{LIGHT}"#
+    ));
+    let e = err(&both);
+    assert!(e.contains("t.xml:") && e.contains("not both"), "{e}");
 }
