@@ -3,6 +3,7 @@
 //! `SceneBuilder`; plus mesh files ([`mesh`]: OBJ, PLY) and image reading and writing.
 
 pub mod builtin;
+pub mod gltf;
 pub mod image_io;
 pub mod mesh;
 pub mod mitsuba;

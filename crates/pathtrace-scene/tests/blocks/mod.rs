@@ -7,6 +7,7 @@
 use pathtrace::{render, RenderSettings};
 use pathtrace_scene::mitsuba::{build_model, convert_file};
 use pathtrace_scene::native::model::{MeshNormals, ShapeDef};
+use pathtrace_scene::LoadedScene;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -39,6 +40,13 @@ pub fn block_test(path: &Path, normals: MeshNormals, spp: u32, mean: &[[f64; 3]]
         }
     }
     let loaded = build_model(&file, path).unwrap_or_else(|e| panic!("{scene}: {e}"));
+    let o = render_blocks(&scene.to_string(), loaded, spp, mean, se);
+    eprintln!("  (normals {normals:?})");
+    o
+}
+
+/// Renders an already loaded scene (its film must be SIZE × SIZE) and compares its blocks.
+pub fn render_blocks(scene: &str, loaded: LoadedScene, spp: u32, mean: &[[f64; 3]], se: &[[f64; 3]]) -> Outcome {
     let d = loaded.defaults;
     let mut s = RenderSettings { width: SIZE, height: SIZE, spp, seed: 7, ..Default::default() };
     s.filter = d.filter.unwrap_or_default();
@@ -64,15 +72,24 @@ pub fn block_test(path: &Path, normals: MeshNormals, spp: u32, mean: &[[f64; 3]]
         }
     }
     let whole = out.film.region_estimate(0, 0, SIZE, SIZE).mean;
-    eprintln!(
-        "{scene} ({normals:?}): worst |z| {worst:.2}, {beyond} block-channels beyond {Z_LIMIT}, mean {whole:.5?}"
-    );
+    eprintln!("{scene}: worst |z| {worst:.2}, {beyond} block-channels beyond {Z_LIMIT}, mean {whole:.5?}");
     Outcome { worst, beyond, mean: whole }
 }
 
 pub fn assert_agrees(path: &Path, spp: u32, mean: &[[f64; 3]], se: &[[f64; 3]]) {
     let o = block_test(path, MeshNormals::Smooth, spp, mean, se);
-    let scene = path.display();
+    check(&path.display().to_string(), &o, mean);
+}
+
+/// [`render_blocks`] with the agreement asserted; returns the outcome.
+pub fn assert_scene_agrees(scene: &str, loaded: LoadedScene, spp: u32, mean: &[[f64; 3]], se: &[[f64; 3]]) -> Outcome {
+    let o = render_blocks(scene, loaded, spp, mean, se);
+    check(scene, &o, mean);
+    o
+}
+
+/// At most one block-channel beyond [`Z_LIMIT`], none beyond 4.5, and the image mean within 1%.
+fn check(scene: &str, o: &Outcome, mean: &[[f64; 3]]) {
     assert!(o.beyond <= 1 && o.worst < 4.5, "{scene}: worst |z| {:.2}, {} beyond {Z_LIMIT}", o.worst, o.beyond);
     let theirs: [f64; 3] = std::array::from_fn(|k| mean.iter().map(|b| b[k]).sum::<f64>() / mean.len() as f64);
     for k in 0..3 {
