@@ -9,14 +9,10 @@
 //! edge brightening), partial `metallic` the nearer of the two, transmission a `rough_dielectric`.
 //! A base colour texture stored as an image file becomes an image texture (see `texture.rs`).
 
-use crate::native::model::{Colour, EmissionDef, MaterialDef, MaterialKind, MetalDef, Num, RoughnessDef};
+use super::num;
+use crate::native::model::{Colour, EmissionDef, MaterialDef, MaterialKind, MetalDef, RoughnessDef};
 use crate::native::model::{MetalName, Triple};
 use pathtrace::material::MicrofacetKind;
-
-/// The f32 as the shortest decimal that reads back as it (so converted files stay readable).
-fn num(x: f32) -> Num {
-    Num::new(x.to_string().parse().unwrap_or(0.0)).unwrap_or(Num::from(0.0))
-}
 
 fn triple(c: [f32; 3]) -> Triple {
     if c[0] == c[1] && c[1] == c[2] {

@@ -17,10 +17,16 @@ mod material;
 mod scene;
 mod texture;
 
+use crate::native::model::Num;
 use crate::native::{build, ItemPath, Locate, SceneError, SceneFile};
 use crate::LoadedScene;
 use pathtrace::shape::TriangleMesh;
 use std::path::{Path, PathBuf};
+
+/// The f32 as the shortest decimal that reads back as it (so converted files stay readable).
+fn num(x: f32) -> Num {
+    Num::new(x.to_string().parse().unwrap_or(0.0)).unwrap_or(Num::from(0.0))
+}
 
 /// True for a `.gltf` or `.glb` path (any case).
 pub fn is_gltf(path: &Path) -> bool {

@@ -5,16 +5,12 @@
 use super::document::Opened;
 use super::geometry::first_parts;
 use super::material;
+use super::num;
 use crate::native::model::{
-    CameraSection, LightDef, MaterialDef, MeshNormals, Num, Num3, ObjectDef, SceneFile, ShapeDef, TransformStep, Triple,
+    CameraSection, LightDef, MaterialDef, MeshNormals, Num3, ObjectDef, SceneFile, ShapeDef, TransformStep, Triple,
 };
 use gltf::khr_lights_punctual::Kind;
 use pathtrace::math::{Mat4, Vec3};
-
-/// The f32 as the shortest decimal that reads back as it (so converted files stay readable).
-fn num(x: f32) -> Num {
-    Num::new(x.to_string().parse().unwrap_or(0.0)).unwrap_or(Num::from(0.0))
-}
 
 fn n3(v: Vec3) -> Num3 {
     [num(v.x), num(v.y), num(v.z)]

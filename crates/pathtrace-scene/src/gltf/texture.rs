@@ -3,11 +3,8 @@
 //! a buffer or a `data:` URI are not supported yet (the caller falls back to the factor).
 
 use super::document::percent_decode;
-use crate::native::model::{Num, TextureDef, UvRows};
-
-fn num(x: f32) -> Num {
-    Num::new(x.to_string().parse().unwrap_or(0.0)).unwrap_or(Num::from(0.0))
-}
+use super::num;
+use crate::native::model::{TextureDef, UvRows};
 
 /// The `KHR_texture_transform` matrix M = T·R·S (offset, rotation, scale; the extension's
 /// specification) as uv rows: glTF's uv convention (v down from the image's top row) is ours.
