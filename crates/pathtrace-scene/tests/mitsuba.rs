@@ -626,3 +626,42 @@ fn directional_emitters_and_face_normals_convert() {
     let e = err(&both);
     assert!(e.contains("t.xml:") && e.contains("not both"), "{e}");
 }
+
+/// A scene written for Mitsuba 0.6 (camelCase names, `diffuseReflectance`, `toWorld`, uoffset
+/// and uscale) converts to the same model as its Mitsuba 3 spelling, as Mitsuba 3.9.1 upgrades it.
+#[test]
+fn mitsuba_0_6_scenes_are_upgraded() {
+    let old = r#"<scene version="0.6.0">
+        <sensor type="perspective"><float name="fov" value="30"/>
+            <transform name="toWorld"><lookAt origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+        </sensor>
+        <bsdf type="dielectric" id="glass"><float name="intIOR" value="1.7"/><float name="extIOR" value="1.1"/></bsdf>
+        <bsdf type="diffuse" id="wall"><texture type="checkerboard" name="diffuseReflectance">
+            <float name="uoffset" value="0.25"/><float name="uscale" value="4"/><float name="vscale" value="2"/>
+        </texture></bsdf>
+        <shape type="sphere"><ref id="glass"/></shape>
+        <shape type="sphere"><point name="center" x="2" y="0" z="0"/><ref id="wall"/></shape>
+        <shape type="sphere" id="lamp"><emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>
+    </scene>"#;
+    let new = r#"<scene version="3.0.0">
+        <sensor type="perspective"><float name="fov" value="30"/>
+            <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+        </sensor>
+        <bsdf type="dielectric" id="glass"><float name="int_ior" value="1.7"/><float name="ext_ior" value="1.1"/></bsdf>
+        <bsdf type="diffuse" id="wall"><texture type="checkerboard" name="reflectance">
+            <transform name="to_uv"><translate x="0.25" y="0"/><scale x="4" y="2" z="1"/></transform>
+        </texture></bsdf>
+        <shape type="sphere"><ref id="glass"/></shape>
+        <shape type="sphere"><point name="center" x="2" y="0" z="0"/><ref id="wall"/></shape>
+        <shape type="sphere" id="lamp"><emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>
+    </scene>"#;
+    let (a, wa) = conv(old, &[]);
+    let (b, wb) = conv(new, &[]);
+    assert!(wa.is_empty() && wb.is_empty(), "{wa:?} {wb:?}");
+    assert_eq!(a, b);
+    // Mitsuba 3 files are not upgraded: `intIOR` there is not the interior index.
+    let (c, _) = conv(&new.replace("int_ior", "intIOR"), &[]);
+    assert_ne!(c, b);
+}
