@@ -1,11 +1,12 @@
 //! Turning the SCENE argument into a scene: a path ending in .toml or .json is a scene file, one
-//! ending in .xml a Mitsuba 3 scene, anything else a built-in scene name.
+//! ending in .xml a Mitsuba 3 scene, .gltf or .glb a glTF 2.0 scene, anything else a built-in
+//! scene name.
 
 use crate::CliError;
 use pathtrace_scene::load::{self, is_xml};
-use pathtrace_scene::mitsuba;
 use pathtrace_scene::native::{self, Format};
 use pathtrace_scene::{builtin, LoadedScene};
+use pathtrace_scene::{gltf, mitsuba};
 use std::path::Path;
 
 /// True if the argument names a scene file rather than a built-in scene.
@@ -33,8 +34,13 @@ pub fn read_model(path: &Path, defines: &[(String, String)]) -> Result<native::S
         print_warnings(&warnings);
         return Ok(file);
     }
+    if gltf::is_gltf(path) {
+        let (file, warnings) = gltf::convert_file(path, &pairs(defines)).map_err(|e| CliError::usage(e.to_string()))?;
+        print_warnings(&warnings);
+        return Ok(file);
+    }
     if !defines.is_empty() {
-        return Err(CliError::usage("-D/--define applies only to Mitsuba .xml scenes"));
+        return Err(CliError::usage("-D/--define applies only to Mitsuba .xml and glTF scenes"));
     }
     native::read_file(path).map(|(_, f)| f).map_err(|e| CliError::usage(e.to_string()))
 }
@@ -55,7 +61,7 @@ pub fn load_with(arg: &str, defines: &[(String, String)]) -> Result<LoadedScene,
         Some(Ok(loaded)) => Ok(loaded),
         Some(Err(e)) => Err(CliError::usage(format!("built-in scene '{arg}' failed to build: {e}"))),
         None => Err(CliError::usage(format!(
-            "unknown scene '{arg}': give a .toml, .json or .xml scene file, or a built-in scene ({})",
+            "unknown scene '{arg}': give a .toml, .json, .xml, .gltf or .glb scene file, or a built-in scene ({})",
             builtin::NAMES.join(", ")
         ))),
     }
@@ -74,6 +80,9 @@ pub fn model(arg: &str, defines: &[(String, String)]) -> Option<native::SceneFil
     if is_file(arg) {
         if is_xml(Path::new(arg)) {
             return mitsuba::convert_file(Path::new(arg), &pairs(defines)).ok().map(|(f, _)| f);
+        }
+        if gltf::is_gltf(Path::new(arg)) {
+            return gltf::convert_file(Path::new(arg), &pairs(defines)).ok().map(|(f, _)| f);
         }
         return native::read_file(Path::new(arg)).ok().map(|(_, f)| f);
     }

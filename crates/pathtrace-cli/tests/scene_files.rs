@@ -206,3 +206,24 @@ fn convert_keeps_texture_and_environment_paths_working_from_another_folder() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `pathtrace convert scene.gltf scene.toml` into another folder: the native file keeps reading
+/// its geometry from the glTF (path rebased) and renders; a glTF renders directly too.
+#[test]
+fn convert_and_render_gltf() {
+    let dir = temp_dir("gltf");
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../pathtrace-scene/tests/data/gltf");
+    std::fs::create_dir_all(dir.join("in")).unwrap();
+    for f in ["scene.gltf", "scene.bin", "scene.glb"] {
+        std::fs::copy(data.join(f), dir.join("in").join(f)).unwrap();
+    }
+    let o = run_in(&dir, &["convert", "in/scene.gltf", "out.toml"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
+    let toml = std::fs::read_to_string(dir.join("out.toml")).unwrap();
+    assert!(toml.contains("\"directional\"") && toml.contains("scene.gltf"), "{toml}");
+    for scene in ["out.toml", "in/scene.glb"] {
+        let o = run_in(&dir, &["render", scene, "--quiet", "--spp", "2", "--size", "16x16", "-o", "x.pfm"]);
+        assert!(o.status.success(), "{scene}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+}

@@ -4,6 +4,7 @@
 
 pub mod builtin;
 pub mod elide;
+pub mod gltf;
 pub mod image_io;
 pub mod load;
 pub mod mesh;

@@ -112,12 +112,12 @@ fn fov_axis_becomes_a_vertical_fov() {
 #[test]
 fn unsupported_plugins_warn_and_fall_back() {
     let xml = scene(&format!(
-        r#"<emitter type="directional"/><shape type="cylinder"/>
+        r#"<emitter type="projector"/><shape type="cylinder"/>
         <emitter type="spot"><texture type="bitmap" name="texture"/></emitter>
         <shape type="sphere"><bsdf type="blendbsdf"/></shape>{LIGHT}"#
     ));
     let (f, w) = conv(&xml, &[]);
-    assert!(w.iter().any(|w| w.contains("directional")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("projector")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("spot light's projected `texture`")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("cylinder")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("blendbsdf") && w.starts_with("t.xml:")), "{w:?}");
@@ -468,7 +468,10 @@ fn serialized_meshes_load_and_bad_ones_are_errors() {
     std::fs::copy(&path, tmp.join("m.serialized")).unwrap();
     let (f, w) = convert_str(&xml, &tmp.join("s.xml"), &[]).unwrap();
     assert!(w.is_empty(), "{w:?}");
-    assert_eq!(f.objects[0].shape, ShapeDef::Mesh { file: "m.serialized".into(), part: Some(1), flip_v: false });
+    assert_eq!(
+        f.objects[0].shape,
+        ShapeDef::Mesh { file: "m.serialized".into(), part: Some(1), flip_v: false, normals: Default::default() }
+    );
     let bad = xml.replace("value=\"1\"", "value=\"99\"").replace("</scene>", &format!("{LIGHT}</scene>"));
     let e = load_str(&bad, &tmp.join("s.xml"), &[]).unwrap_err().to_string();
     assert!(e.contains("part 99 does not exist") && !e.contains("s.xml:1:1:"), "{e}");
@@ -583,4 +586,85 @@ fn matpreview_scenes_load_their_environment_map() {
         eprintln!("{s}: envmap mean luminance {mean:.4}, {} warning(s)", w.len());
         assert!(mean.is_finite() && mean > 0.0, "{s}: {mean}");
     }
+}
+
+#[test]
+fn directional_emitters_and_face_normals_convert() {
+    use pathtrace_scene::native::model::{LightDef, MeshNormals, ShapeDef};
+    let xml = scene(&format!(
+        r#"<emitter type="directional"><vector name="direction" value="0, -2, 0"/><rgb name="irradiance" value="3"/></emitter>
+        <emitter type="directional"><transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>
+        <shape type="ply"><string name="filename" value="a.ply"/><boolean name="face_normals" value="true"/></shape>
+        <shape type="ply"><string name="filename" value="b.ply"/></shape>{LIGHT}"#
+    ));
+    let tmp = std::env::temp_dir().join(format!("pathtrace-xml-normals-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    for name in ["a.ply", "b.ply"] {
+        std::fs::write(tmp.join(name), "").unwrap();
+    }
+    let (f, w) = convert_str(&xml, &tmp.join("t.xml"), &[]).unwrap();
+    std::fs::remove_dir_all(&tmp).unwrap();
+    assert!(w.is_empty(), "{w:?}");
+    let directions: Vec<_> = f
+        .lights
+        .iter()
+        .filter_map(|l| match l {
+            LightDef::Directional { direction, transform, .. } => Some((direction.is_some(), transform.len())),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(directions, vec![(true, 0), (false, 1)]);
+    let normals: Vec<_> = f
+        .objects
+        .iter()
+        .filter_map(|o| match &o.shape {
+            ShapeDef::Mesh { normals, .. } => Some(*normals),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(normals, vec![MeshNormals::Face, MeshNormals::Smooth]);
+    let both = scene(&format!(
+        r#"<emitter type="directional"><vector name="direction" value="0, -1, 0"/><transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>{LIGHT}"#
+    ));
+    let e = err(&both);
+    assert!(e.contains("t.xml:") && e.contains("not both"), "{e}");
+}
+
+/// A scene written for Mitsuba 0.6 (camelCase names, `diffuseReflectance`, `toWorld`, uoffset
+/// and uscale) converts to the same model as its Mitsuba 3 spelling, as Mitsuba 3.9.1 upgrades it.
+#[test]
+fn mitsuba_0_6_scenes_are_upgraded() {
+    let old = r#"<scene version="0.6.0">
+        <sensor type="perspective"><float name="fov" value="30"/>
+            <transform name="toWorld"><lookAt origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+        </sensor>
+        <bsdf type="dielectric" id="glass"><float name="intIOR" value="1.7"/><float name="extIOR" value="1.1"/></bsdf>
+        <bsdf type="diffuse" id="wall"><texture type="checkerboard" name="diffuseReflectance">
+            <float name="uoffset" value="0.25"/><float name="uscale" value="4"/><float name="vscale" value="2"/>
+        </texture></bsdf>
+        <shape type="sphere"><ref id="glass"/></shape>
+        <shape type="sphere"><point name="center" x="2" y="0" z="0"/><ref id="wall"/></shape>
+        <shape type="sphere" id="lamp"><emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>
+    </scene>"#;
+    let new = r#"<scene version="3.0.0">
+        <sensor type="perspective"><float name="fov" value="30"/>
+            <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+        </sensor>
+        <bsdf type="dielectric" id="glass"><float name="int_ior" value="1.7"/><float name="ext_ior" value="1.1"/></bsdf>
+        <bsdf type="diffuse" id="wall"><texture type="checkerboard" name="reflectance">
+            <transform name="to_uv"><translate x="0.25" y="0"/><scale x="4" y="2" z="1"/></transform>
+        </texture></bsdf>
+        <shape type="sphere"><ref id="glass"/></shape>
+        <shape type="sphere"><point name="center" x="2" y="0" z="0"/><ref id="wall"/></shape>
+        <shape type="sphere" id="lamp"><emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>
+    </scene>"#;
+    let (a, wa) = conv(old, &[]);
+    let (b, wb) = conv(new, &[]);
+    assert!(wa.is_empty() && wb.is_empty(), "{wa:?} {wb:?}");
+    assert_eq!(a, b);
+    // Mitsuba 3 files are not upgraded: `intIOR` there is not the interior index.
+    let (c, _) = conv(&new.replace("int_ior", "intIOR"), &[]);
+    assert_ne!(c, b);
 }

@@ -4,7 +4,9 @@
 use crate::accel::{Bvh, Intersectable, PrimitiveSet};
 use crate::camera::CameraDesc;
 use crate::instance::{GroupId, Instance, Instances, ShapeGroup};
-use crate::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight, SpotLight};
+use crate::light::{
+    AreaLight, DirectionalLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight, SpotLight,
+};
 use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
@@ -283,6 +285,7 @@ pub struct SceneBuilder {
     allow_no_lights: bool,
     point_lights: Vec<PointLight>,
     spot_lights: Vec<SpotLight>,
+    directional_lights: Vec<DirectionalLight>,
     environment: Option<EnvironmentLight>,
     groups: Vec<ShapeGroup>,
     /// (group, transform, material override or [`Instance::OWN_MATERIALS`]).
@@ -359,6 +362,12 @@ impl SceneBuilder {
     /// Adds a spot light ([`SpotLight::new`] has checked its values).
     pub fn spot_light(&mut self, light: SpotLight) -> &mut Self {
         self.spot_lights.push(light);
+        self
+    }
+
+    /// Adds a directional light ([`DirectionalLight::new`] has checked its values).
+    pub fn directional_light(&mut self, light: DirectionalLight) -> &mut Self {
+        self.directional_lights.push(light);
         self
     }
 
@@ -566,7 +575,8 @@ impl SceneBuilder {
             scene_box = Some(scene_box.map_or(instances.bounds(), |a| a.union(instances.bounds())));
         }
         let scene_radius = scene_box.map_or(1.0, |b| 0.5 * b.extent().length());
-        let lights = LightSet::with_spots(lights, self.point_lights, self.spot_lights, self.environment, scene_radius);
+        let (points, spots, directionals) = (self.point_lights, self.spot_lights, self.directional_lights);
+        let lights = LightSet::with_directionals(lights, points, spots, directionals, self.environment, scene_radius);
         if lights.is_empty() && !self.allow_no_lights {
             return Err(BuildError::NoLights);
         }

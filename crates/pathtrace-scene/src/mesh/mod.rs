@@ -12,6 +12,7 @@ mod ply;
 mod serialized;
 
 pub use error::MeshLoadError;
+pub(crate) use normals::normalised as normalised_normals;
 
 use pathtrace::shape::TriangleMesh;
 use std::path::Path;
@@ -35,9 +36,11 @@ pub fn parse_mesh(bytes: &[u8], path: &Path) -> Result<Vec<(String, TriangleMesh
             Ok(vec![(name, mesh)])
         }
         Some("serialized") => serialized::parse(bytes).map_err(|f| f.into_error(path)),
+        Some("gltf" | "glb") => crate::gltf::mesh_parts(bytes, path)
+            .map_err(|message| MeshLoadError::File { file: path.to_path_buf(), message }),
         _ => Err(MeshLoadError::File {
             file: path.to_path_buf(),
-            message: "unsupported mesh format: expected a .obj, .ply or .serialized file".to_string(),
+            message: "unsupported mesh format: expected a .obj, .ply, .serialized, .gltf or .glb file".to_string(),
         }),
     }
 }

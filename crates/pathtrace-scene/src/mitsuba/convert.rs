@@ -5,7 +5,8 @@ use super::parse::{Element, XmlSource};
 use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
     CameraSection, Colour, EmissionDef, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, LookAtDef, MaterialDef,
-    MaterialKind, Num, Num3, ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep, Triple,
+    MaterialKind, MeshNormals, Num, Num3, ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep,
+    Triple,
 };
 use crate::native::{ItemPath, SceneError};
 use pathtrace::math::{Transform, Vec3};
@@ -258,6 +259,13 @@ impl<'a> Conv<'a, '_> {
             "false" => Ok(Some(false)),
             other => Err(self.src.error(p.offset_of("value"), format!("`{other}` is not true or false"))),
         }
+    }
+
+    /// A mesh's normals: Mitsuba 3 computes smooth ones for files without normals unless
+    /// `face_normals` is true, which also ignores the file's own.
+    fn mesh_normals(&self, e: &'a Element) -> R<MeshNormals> {
+        let face = self.boolean(e, "face_normals")?.unwrap_or(false);
+        Ok(if face { MeshNormals::Face } else { MeshNormals::Smooth })
     }
 
     /// A colour property: `<rgb>`, `<spectrum>` (approximated when given per wavelength),
@@ -721,14 +729,16 @@ impl<'a> Conv<'a, '_> {
                 }
                 // Mitsuba flips v of OBJ texture coordinates unless told not to (not PLY's).
                 let flip_v = ty == "obj" && self.boolean(e, "flip_tex_coords")?.unwrap_or(true);
-                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: None, flip_v }
+                let normals = self.mesh_normals(e)?;
+                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: None, flip_v, normals }
             }
             "serialized" => {
                 let Some(file) = self.string(e, "filename")? else {
                     return Err(self.src.error(e.offset, "a serialized shape needs a `filename` string"));
                 };
                 let part = self.integer_in(e, "shape_index", 0..=i64::from(u32::MAX))?.unwrap_or(0) as u32;
-                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: Some(part), flip_v: false }
+                let normals = self.mesh_normals(e)?;
+                ShapeDef::Mesh { file: self.find_file(e, file, "mesh")?, part: Some(part), flip_v: false, normals }
             }
             "rectangle" => ShapeDef::Quad {
                 q: n3(Vec3::new(-1.0, -1.0, 0.0)),
@@ -816,6 +826,21 @@ impl<'a> Conv<'a, '_> {
                 let transform = self.to_world(e)?;
                 self.origins.push((ItemPath::root().field("lights").index(self.lights.len()), e.offset));
                 self.lights.push(LightDef::Spot { intensity, cutoff_angle, beam_width, transform });
+            }
+            "directional" => {
+                let irradiance = self.color(e, "irradiance")?.unwrap_or(Triple::Splat(num(1.0)));
+                let direction = match self.prop(e, "direction") {
+                    Some(p) => Some(n3(self.vec3_of(p, "value", 0.0)?)),
+                    None => None,
+                };
+                let transform = self.to_world(e)?;
+                if direction.is_some() && !transform.is_empty() {
+                    return Err(self
+                        .src
+                        .error(e.offset, "a directional emitter takes `direction` or `to_world`, not both"));
+                }
+                self.origins.push((ItemPath::root().field("lights").index(self.lights.len()), e.offset));
+                self.lights.push(LightDef::Directional { irradiance, direction, transform });
             }
             "constant" => {
                 let radiance = self.color(e, "radiance")?.unwrap_or(Triple::Splat(num(1.0)));

@@ -25,6 +25,7 @@ pub mod parse;
 
 mod cie_tables;
 pub mod spectrum;
+mod upgrade;
 
 use crate::native::{build, ItemPath, Locate, SceneError, SceneFile};
 use crate::LoadedScene;

@@ -180,6 +180,9 @@ pub fn parse(src: &mut XmlSource, defines: &[(&str, &str)], warnings: &mut Vec<S
         ));
     }
     expand_includes(src, &mut root, 0)?;
+    if super::upgrade::is_v1(&root) {
+        super::upgrade::upgrade(&mut root);
+    }
     let mut params: BTreeMap<String, String> = BTreeMap::new();
     for d in root.children.iter().filter(|c| c.tag == "default") {
         let (Some(name), Some(value)) = (d.attr("name"), d.attr("value")) else {

@@ -5,14 +5,14 @@
 use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
 use super::model::{
-    CameraSection, Colour, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind, MetalDef,
-    Num, ObjectDef, RenderSection, RoughnessDef, SceneFile, ShapeDef, TextureDef, UvRows,
+    CameraSection, Colour, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind,
+    MeshNormals, MetalDef, Num, ObjectDef, RenderSection, RoughnessDef, SceneFile, ShapeDef, TextureDef, UvRows,
 };
 use super::transform::compose;
 use super::values::vec3;
 use crate::{LoadedScene, RenderDefaults};
 use pathtrace::film::{GaussianFilter, PixelFilter};
-use pathtrace::light::{Emission, EnvMap, EnvironmentLight, PointLight, SpotLight};
+use pathtrace::light::{DirectionalLight, Emission, EnvMap, EnvironmentLight, PointLight, SpotLight};
 use pathtrace::material::{
     metal, Conductor, Dielectric, Diffuse, Glossy, Lambertian, Material, Microfacet, Mirror, Plastic, RoughConductor,
     RoughDielectric, RoughPlastic, ThinDielectric,
@@ -303,6 +303,22 @@ impl<L: Locate> Ctx<'_, L> {
                 self.b.spot_light(spot);
                 Ok(())
             }
+            LightDef::Directional { irradiance, direction, transform } => {
+                if direction.is_some() && !transform.is_empty() {
+                    return Err(self
+                        .src
+                        .error_at(at, "a directional light takes `direction` or `transform`, not both"));
+                }
+                let light = match direction {
+                    Some(d) => DirectionalLight::new(vec3(d), irradiance.rgb()),
+                    None => DirectionalLight::from_transform(&self.transform(transform, at)?, irradiance.rgb()),
+                };
+                let light = light.ok_or_else(|| {
+                    self.src.error_at(at, "a directional light needs an irradiance ≥ 0 and a non-zero direction")
+                })?;
+                self.b.directional_light(light);
+                Ok(())
+            }
             LightDef::Constant { radiance } => self.b.environment(EnvironmentLight::constant(radiance.rgb())),
             LightDef::Envmap { filename, scale, transform } => {
                 let map = self.env_map(filename, scale.map_or(1.0, Num::f32), transform, at)?;
@@ -468,7 +484,9 @@ impl<L: Locate> Ctx<'_, L> {
                     degenerate("box: `max` must exceed `min` on every axis and the transform keep it solid")
                 });
             }
-            ShapeDef::Mesh { file, part, flip_v } => return self.add_mesh(file, *part, *flip_v, id, &t, at),
+            ShapeDef::Mesh { file, part, flip_v, normals } => {
+                return self.add_mesh(file, *part, (*flip_v, *normals), id, &t, at)
+            }
         };
         self.put_shape(shape, id, &t).map_err(|e| err(&e))
     }
@@ -477,7 +495,7 @@ impl<L: Locate> Ctx<'_, L> {
         &mut self,
         file: &str,
         part: Option<u32>,
-        flip_v: bool,
+        (flip_v, normals): (bool, MeshNormals),
         id: MaterialId,
         t: &Transform,
         object: &ItemPath,
@@ -498,15 +516,26 @@ impl<L: Locate> Ctx<'_, L> {
         let (mut triangles, mut skipped) = (0, 0);
         for (_, mesh) in chosen {
             triangles += mesh.indices.len();
-            let flipped;
-            let mesh = match (&mesh.uvs, flip_v) {
-                (Some(uvs), true) => {
-                    let mut m = mesh.clone();
-                    m.uvs = Some(uvs.iter().map(|uv| pathtrace::math::Vec2::new(uv.x, 1.0 - uv.y)).collect());
-                    flipped = m;
-                    &flipped
+            let changed;
+            let flip = flip_v && mesh.uvs.is_some();
+            let recompute = match normals {
+                MeshNormals::Smooth => mesh.normals.is_none(),
+                MeshNormals::Computed => true,
+                MeshNormals::Face => mesh.normals.is_some(),
+                MeshNormals::File => false,
+            };
+            let mesh = if flip || recompute {
+                let mut m = mesh.clone();
+                if let (Some(uvs), true) = (&mut m.uvs, flip) {
+                    uvs.iter_mut().for_each(|uv| uv.y = 1.0 - uv.y);
                 }
-                _ => mesh,
+                if recompute {
+                    m.normals = (normals != MeshNormals::Face).then(|| m.smooth_normals(t));
+                }
+                changed = m;
+                &changed
+            } else {
+                mesh
             };
             skipped += self
                 .put_mesh(mesh, id, t)

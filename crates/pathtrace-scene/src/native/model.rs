@@ -3,7 +3,7 @@
 //! The field-by-field reference with defaults is docs/scene-format.md.
 
 pub use super::material::{EmissionDef, MaterialDef, MaterialKind, MaterialType};
-pub use super::object::{GroupDef, ObjectDef, ShapeDef, ShapeType};
+pub use super::object::{GroupDef, MeshNormals, ObjectDef, ShapeDef, ShapeType};
 pub use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
 pub use super::texture::{identity_uv, Colour, TextureDef, UvRows};
 pub use super::transform::{LookAtDef, TransformStep};
@@ -120,6 +120,16 @@ pub enum LightDef {
         cutoff_angle: Option<Num>,
         #[serde(default, skip_serializing_if = "Option::is_none")]
         beam_width: Option<Num>,
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        transform: Vec<TransformStep>,
+    },
+    /// A directional light (Mitsuba 3's `directional`): parallel light of `irradiance` W/m²
+    /// travelling along `direction`, or without it along the local +z of `transform` (at most one
+    /// of the two). Seen only by the `mis` strategy's light sampling.
+    Directional {
+        irradiance: Triple,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        direction: Option<Num3>,
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformStep>,
     },

@@ -41,7 +41,24 @@ pub enum ShapeDef {
     /// file's folder. `part` picks one part by index (an OBJ material group, a serialized shape);
     /// without it, all parts are used. `flip_v` replaces each texture coordinate v by 1 − v
     /// (what Mitsuba does to OBJ files, its `flip_tex_coords`).
-    Mesh { file: String, part: Option<u32>, flip_v: bool },
+    /// `normals` chooses the shading normals (default [`MeshNormals::Smooth`], Mitsuba 3's rule).
+    Mesh { file: String, part: Option<u32>, flip_v: bool, normals: MeshNormals },
+}
+
+/// Where a mesh's shading normals come from (the mesh's `normals` field).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MeshNormals {
+    /// The file's normals where it has them, else smooth normals computed from the faces
+    /// (angle-weighted, after the transform): what Mitsuba 3 does unless `face_normals` is true.
+    #[default]
+    Smooth,
+    /// Flat shading: the faces' own normals (Mitsuba's `face_normals = true`).
+    Face,
+    /// The file's normals where it has them, else flat shading.
+    File,
+    /// Smooth normals computed from the faces, ignoring any in the file.
+    Computed,
 }
 
 /// One object: a shape, the name of its material, and its transform list.
@@ -110,6 +127,8 @@ pub struct RawObject {
     part: Option<u32>,
     #[serde(skip_serializing_if = "Option::is_none")]
     flip_v: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normals: Option<MeshNormals>,
 }
 
 /// The geometric fields each shape takes.
@@ -120,7 +139,7 @@ fn fields_of(t: ShapeType) -> &'static [&'static str] {
         ShapeType::Quad => &["q", "u", "v"],
         ShapeType::Box => &["min", "max"],
         ShapeType::Triangle => &["a", "b", "c"],
-        ShapeType::Mesh => &["file", "part", "flip_v"],
+        ShapeType::Mesh => &["file", "part", "flip_v", "normals"],
         ShapeType::Disk => &["center", "normal", "radius"],
     }
 }
@@ -156,6 +175,7 @@ impl RawObject {
             ("file", self.file.is_some()),
             ("part", self.part.is_some()),
             ("flip_v", self.flip_v.is_some()),
+            ("normals", self.normals.is_some()),
         ];
         fields.iter().filter(|f| f.1).map(|f| f.0).collect()
     }
@@ -192,6 +212,7 @@ impl TryFrom<RawObject> for ObjectDef {
                 file: r.file.ok_or_else(|| missing("file"))?,
                 part: r.part,
                 flip_v: r.flip_v.unwrap_or(false),
+                normals: r.normals.unwrap_or_default(),
             },
         };
         let material =
@@ -224,8 +245,9 @@ impl From<ObjectDef> for RawObject {
                 (r.a, r.b, r.c) = (Some(a), Some(b), Some(c));
                 ShapeType::Triangle
             }
-            ShapeDef::Mesh { file, part, flip_v } => {
+            ShapeDef::Mesh { file, part, flip_v, normals } => {
                 (r.file, r.part, r.flip_v) = (Some(file), part, flip_v.then_some(true));
+                r.normals = (normals != MeshNormals::default()).then_some(normals);
                 ShapeType::Mesh
             }
             ShapeDef::Disk { center, normal, radius } => {

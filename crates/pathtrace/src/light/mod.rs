@@ -1,7 +1,8 @@
-//! Lights: emissive surfaces (area lights), point and spot lights, the environment, and the light
+//! Lights: emissive surfaces (area lights), point, spot and directional lights, the environment, and the light
 //! set that picks one by power or uniformly.
 
 pub(crate) mod area;
+mod directional;
 mod environment;
 mod envmap;
 mod point;
@@ -9,6 +10,7 @@ mod set;
 mod spot;
 
 pub use area::{AreaLight, Emission, LightShape};
+pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;
 pub use envmap::EnvMap;
 pub use point::PointLight;

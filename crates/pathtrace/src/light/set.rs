@@ -2,13 +2,14 @@
 //! (the default) or uniformly ([`LightSelection`]).
 //!
 //! Lights are numbered area lights first (so a primitive's light id indexes them), then point
-//! lights, then spot lights, then the environment. Two selection distributions exist:
+//! lights, then spot lights, then directional lights, then the environment. Two selection distributions exist:
 //! `selection` over all lights, for next-event estimation, and `continuous` without the point
 //! and spot lights, for the `light` and `mixture` strategies, which continue the path along the
 //! sampled direction and so need a density in solid angle (a delta light has none). Without
 //! delta lights both are the same distribution.
 
 use super::area::AreaLight;
+use super::directional::DirectionalLight;
 use super::environment::EnvironmentLight;
 use super::point::PointLight;
 use super::spot::SpotLight;
@@ -83,6 +84,7 @@ pub struct LightSet {
     lights: Vec<AreaLight>,
     points: Vec<PointLight>,
     spots: Vec<SpotLight>,
+    directionals: Vec<DirectionalLight>,
     environment: Option<EnvironmentLight>,
     /// Every light's power, in index order (the environment's measured over the scene).
     powers: Vec<f64>,
@@ -96,6 +98,7 @@ enum Picked<'a> {
     Area(&'a AreaLight),
     Point(&'a PointLight),
     Spot(&'a SpotLight),
+    Directional(&'a DirectionalLight),
     Environment(&'a EnvironmentLight),
 }
 
@@ -126,12 +129,27 @@ impl LightSet {
         environment: Option<EnvironmentLight>,
         scene_radius: f32,
     ) -> Self {
+        Self::with_directionals(lights, points, spots, Vec::new(), environment, scene_radius)
+    }
+
+    /// Every kind of light, directional lights too: their power, like the environment's, is
+    /// what crosses a scene bounded by a sphere of radius `scene_radius`.
+    pub fn with_directionals(
+        lights: Vec<AreaLight>,
+        points: Vec<PointLight>,
+        spots: Vec<SpotLight>,
+        directionals: Vec<DirectionalLight>,
+        environment: Option<EnvironmentLight>,
+        scene_radius: f32,
+    ) -> Self {
+        let radius = scene_radius.max(1e-3);
         let area = lights.iter().map(AreaLight::power);
         let point = points.iter().map(PointLight::power);
         let spot = spots.iter().map(SpotLight::power);
-        let env = environment.iter().map(|e| e.power(scene_radius.max(1e-3)));
-        let powers: Vec<f64> = area.chain(point).chain(spot).chain(env).collect();
-        let mut set = Self { lights, points, spots, environment, powers, ..Default::default() };
+        let directional = directionals.iter().map(|d| d.power(radius));
+        let env = environment.iter().map(|e| e.power(radius));
+        let powers: Vec<f64> = area.chain(point).chain(spot).chain(directional).chain(env).collect();
+        let mut set = Self { lights, points, spots, directionals, environment, powers, ..Default::default() };
         set.set_selection(LightSelection::Power);
         set
     }
@@ -155,7 +173,7 @@ impl LightSet {
         };
         let all: Vec<f32> = self.powers.iter().map(|&p| weight(p)).collect();
         self.selection = Distribution1D::new(&all);
-        let delta = self.lights.len()..self.lights.len() + self.points.len() + self.spots.len();
+        let delta = self.lights.len()..self.env_index();
         self.continuous = if delta.is_empty() {
             self.selection.clone()
         } else {
@@ -220,9 +238,15 @@ impl LightSet {
         &self.spots
     }
 
-    /// True when the scene has point or spot lights, which only next-event estimation sees.
+    /// The directional lights.
+    pub fn directionals(&self) -> &[DirectionalLight] {
+        &self.directionals
+    }
+
+    /// True when the scene has point, spot or directional lights, which only next-event
+    /// estimation sees.
     pub fn has_delta(&self) -> bool {
-        !self.points.is_empty() || !self.spots.is_empty()
+        !self.points.is_empty() || !self.spots.is_empty() || !self.directionals.is_empty()
     }
 
     pub fn environment(&self) -> Option<&EnvironmentLight> {
@@ -230,7 +254,7 @@ impl LightSet {
     }
 
     fn env_index(&self) -> usize {
-        self.lights.len() + self.points.len() + self.spots.len()
+        self.lights.len() + self.points.len() + self.spots.len() + self.directionals.len()
     }
 
     fn picked(&self, i: usize) -> Option<Picked<'_>> {
@@ -242,8 +266,10 @@ impl LightSet {
             Some(Picked::Point(&self.points[i - n]))
         } else if i < np + self.spots.len() {
             Some(Picked::Spot(&self.spots[i - np]))
+        } else if i < self.env_index() {
+            Some(Picked::Directional(&self.directionals[i - np - self.spots.len()]))
         } else {
-            // Indices past the spots exist only with an environment.
+            // Indices past the directional lights exist only with an environment.
             self.environment.as_ref().map(Picked::Environment)
         }
     }
@@ -297,6 +323,12 @@ impl LightSet {
             Picked::Spot(light) => {
                 let (wi, dist, radiance) = light.sample(ref_p)?;
                 Some(LightSample { point: light.position(), normal: -wi, wi, dist, pdf: pmf, radiance, delta: true })
+            }
+            Picked::Directional(light) => {
+                // At infinity, like the environment: the shadow ray is unoccluded if it leaves.
+                let (wi, radiance) = light.sample();
+                let (point, dist) = (ref_p + wi, f32::INFINITY);
+                Some(LightSample { point, normal: -wi, wi, dist, pdf: pmf, radiance, delta: true })
             }
             Picked::Environment(env) => {
                 let (wi, pdf) = env.sample(u);

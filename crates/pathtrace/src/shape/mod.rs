@@ -8,6 +8,7 @@ mod plane;
 mod quad;
 mod sphere;
 mod triangle;
+mod vertex_normals;
 
 pub use disk::Disk;
 pub use mesh::{MeshError, TriangleMesh};
@@ -17,6 +18,7 @@ pub use quad::Quad;
 pub use sphere::{Ellipsoid, Sphere};
 pub use triangle::Triangle;
 pub(crate) use triangle::EDGE_SLACK;
+pub use vertex_normals::angle_weighted_normals;
 
 use crate::math::{Aabb, Ray, Transform, Vec2, Vec3};
 

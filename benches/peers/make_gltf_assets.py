@@ -1,0 +1,223 @@
+"""Writes the glTF test scene and its Mitsuba 3 twin, built from the same data, into
+crates/pathtrace-scene/tests/data/gltf/:
+
+- scene.gltf + scene.bin, and scene.glb (the same document with the buffer embedded): a floor
+  quad and a cube placed through a two-level node hierarchy (translation, then rotation + scale),
+  both with KHR_materials_specular specularFactor 0 (glTF's BRDF is then pure Lambertian), the
+  cube without NORMAL (flat normals, as glTF requires); a perspective camera and a
+  KHR_lights_punctual directional light, each placed by a node matrix.
+- scene.xml + floor.obj + cube.obj: the same triangles (world positions computed here from the
+  same node transforms), `diffuse` BSDFs of the same base colours, `face_normals`, the same
+  camera (fov on the y axis) and a `directional` emitter of the same irradiance and direction.
+
+    python3 benches/peers/make_gltf_assets.py
+"""
+import json
+import math
+import os
+import struct
+
+OUT = os.path.join(os.path.dirname(__file__), "../../crates/pathtrace-scene/tests/data/gltf")
+
+
+def sub(a, b):
+    return [a[i] - b[i] for i in range(3)]
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def norm(a):
+    n = math.sqrt(sum(x * x for x in a))
+    return [x / n for x in a]
+
+
+def matmul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
+
+
+def apply(m, p):
+    return [sum(m[i][k] * (p[k] if k < 3 else 1.0) for k in range(4)) for i in range(3)]
+
+
+def col_major(m):
+    return [m[r][c] for c in range(4) for r in range(4)]
+
+
+def look_at(eye, target, up):
+    """A node matrix (rows) whose −z looks from eye to target (glTF cameras and lights)."""
+    z = norm(sub(eye, target))
+    x = norm(cross(up, z))
+    y = cross(z, x)
+    return [[x[0], y[0], z[0], eye[0]], [x[1], y[1], z[1], eye[1]], [x[2], y[2], z[2], eye[2]], [0, 0, 0, 1]]
+
+
+# Geometry in mesh space.
+FLOOR_P = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
+FLOOR_I = [0, 2, 1, 0, 3, 2]  # faces +y
+CUBE_P, CUBE_I = [], []
+for axis in range(3):
+    for sign in (-1, 1):
+        n = [0, 0, 0]
+        n[axis] = sign
+        u = [0, 0, 0]
+        u[(axis + 1) % 3] = 1
+        v = cross(n, u)
+        base = len(CUBE_P)
+        for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            CUBE_P.append([0.5 * (n[k] + su * u[k] + sv * v[k]) for k in range(3)])
+        CUBE_I += [base, base + 1, base + 2, base, base + 2, base + 3]
+
+# The hierarchy: cube = parent (translation) × child (rotation about y by 30°, scale 1.2).
+PARENT = [[1, 0, 0, 0.4], [0, 1, 0, 0.6], [0, 0, 1, 0.3], [0, 0, 0, 1]]
+c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+CHILD = [[1.2 * c, 0, 1.2 * s, 0], [0, 1.2, 0, 0], [-1.2 * s, 0, 1.2 * c, 0], [0, 0, 0, 1]]
+CUBE_WORLD = matmul(PARENT, CHILD)
+CAMERA = look_at([0.5, 3.0, -5.0], [0.2, 0.4, 0.3], [0, 1, 0])
+LIGHT = look_at([2.0, 4.0, -1.0], [0, 0, 0], [0, 1, 0])
+YFOV = math.radians(38.0)
+FLOOR_COLOUR = [0.6, 0.55, 0.5]
+CUBE_COLOUR = [0.2, 0.4, 0.7]
+LIGHT_COLOUR, LIGHT_INTENSITY = [1.0, 0.9, 0.8], 3.0
+
+
+def buffer_and_accessors():
+    data = b""
+    views, accessors = [], []
+
+    def add(values, fmt, comp, kind, target, minmax=False):
+        nonlocal data
+        while len(data) % 4:
+            data += b"\0"
+        blob = b"".join(struct.pack("<" + fmt, *v) if isinstance(v, list) else struct.pack("<" + fmt, v) for v in values)
+        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(blob), "target": target})
+        acc = {"bufferView": len(views) - 1, "componentType": comp, "count": len(values), "type": kind}
+        if minmax:
+            acc["min"] = [min(v[k] for v in values) for k in range(3)]
+            acc["max"] = [max(v[k] for v in values) for k in range(3)]
+        accessors.append(acc)
+        data += blob
+        return len(accessors) - 1
+
+    floor_p = add(FLOOR_P, "3f", 5126, "VEC3", 34962, True)
+    floor_n = add([[0, 1, 0]] * 4, "3f", 5126, "VEC3", 34962)
+    floor_i = add(FLOOR_I, "H", 5123, "SCALAR", 34963)
+    cube_p = add(CUBE_P, "3f", 5126, "VEC3", 34962, True)
+    cube_i = add(CUBE_I, "I", 5125, "SCALAR", 34963)
+    return data, views, accessors, (floor_p, floor_n, floor_i, cube_p, cube_i)
+
+
+def document(data, views, accessors, ids, uri):
+    floor_p, floor_n, floor_i, cube_p, cube_i = ids
+
+    def lambert(name, colour):
+        return {"name": name, "pbrMetallicRoughness": {"baseColorFactor": colour + [1.0], "metallicFactor": 0.0,
+                                                        "roughnessFactor": 0.5},
+                "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}
+
+    buffer = {"byteLength": len(data)}
+    if uri:
+        buffer["uri"] = uri
+    return {
+        "asset": {"version": "2.0", "generator": "pathtrace benches/peers/make_gltf_assets.py"},
+        "extensionsUsed": ["KHR_materials_specular", "KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"type": "directional", "color": LIGHT_COLOUR, "intensity": LIGHT_INTENSITY}]}},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1, 3, 4]}],
+        "nodes": [
+            {"name": "floor", "mesh": 0},
+            {"name": "cube-parent", "translation": PARENT[0][3:4] + PARENT[1][3:4] + PARENT[2][3:4], "children": [2]},
+            {"name": "cube", "mesh": 1, "matrix": col_major(CHILD)},
+            {"name": "camera", "camera": 0, "matrix": col_major(CAMERA)},
+            {"name": "sun", "matrix": col_major(LIGHT), "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        ],
+        "cameras": [{"name": "main", "type": "perspective",
+                     "perspective": {"yfov": YFOV, "aspectRatio": 1.0, "znear": 0.01}}],
+        "meshes": [
+            {"name": "floor", "primitives": [{"attributes": {"POSITION": floor_p, "NORMAL": floor_n},
+                                              "indices": floor_i, "material": 0}]},
+            {"name": "cube", "primitives": [{"attributes": {"POSITION": cube_p}, "indices": cube_i, "material": 1}]},
+        ],
+        "materials": [lambert("floor", FLOOR_COLOUR), lambert("cube", CUBE_COLOUR)],
+        "buffers": [buffer],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+
+
+def write_obj(path, positions, indices):
+    with open(path, "w") as f:
+        for p in positions:
+            f.write("v %.9g %.9g %.9g\n" % tuple(p))
+        for i in range(0, len(indices), 3):
+            f.write("f %d %d %d\n" % (indices[i] + 1, indices[i + 1] + 1, indices[i + 2] + 1))
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+    data, views, accessors, ids = buffer_and_accessors()
+    with open(os.path.join(OUT, "scene.bin"), "wb") as f:
+        f.write(data)
+    with open(os.path.join(OUT, "scene.gltf"), "w") as f:
+        json.dump(document(data, views, accessors, ids, "scene.bin"), f, indent=1)
+    # GLB: header, JSON chunk (padded with spaces), BIN chunk (padded with zeros).
+    js = json.dumps(document(data, views, accessors, ids, None)).encode()
+    js += b" " * (-len(js) % 4)
+    bin_ = data + b"\0" * (-len(data) % 4)
+    glb = struct.pack("<III", 0x46546C67, 2, 12 + 8 + len(js) + 8 + len(bin_))
+    glb += struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(bin_), 0x004E4942) + bin_
+    with open(os.path.join(OUT, "scene.glb"), "wb") as f:
+        f.write(glb)
+    write_obj(os.path.join(OUT, "floor.obj"), FLOOR_P, FLOOR_I)
+    write_obj(os.path.join(OUT, "cube.obj"), [apply(CUBE_WORLD, p) for p in CUBE_P], CUBE_I)
+    eye = [CAMERA[i][3] for i in range(3)]
+    fwd = [-CAMERA[i][2] for i in range(3)]
+    up = [CAMERA[i][1] for i in range(3)]
+    direction = [-LIGHT[i][2] for i in range(3)]
+    rgb = lambda c: ", ".join("%.9g" % x for x in c)
+    xml = f"""<?xml version="1.0"?>
+<!-- The Mitsuba 3 twin of scene.gltf (same triangles, colours, camera and light), written by
+     benches/peers/make_gltf_assets.py. Used by crates/pathtrace-scene/tests/gltf.rs. -->
+<scene version="3.0.0">
+    <integrator type="path">
+        <integer name="max_depth" value="4"/>
+    </integrator>
+    <sensor type="perspective">
+        <string name="fov_axis" value="y"/>
+        <float name="fov" value="{math.degrees(YFOV):.9g}"/>
+        <transform name="to_world">
+            <lookat origin="{rgb(eye)}" target="{rgb([eye[k] + fwd[k] for k in range(3)])}" up="{rgb(up)}"/>
+        </transform>
+        <sampler type="independent">
+            <integer name="sample_count" value="64"/>
+        </sampler>
+        <film type="hdrfilm">
+            <integer name="width" value="64"/>
+            <integer name="height" value="64"/>
+            <rfilter type="box"/>
+        </film>
+    </sensor>
+    <shape type="obj">
+        <string name="filename" value="floor.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="{rgb(FLOOR_COLOUR)}"/></bsdf>
+    </shape>
+    <shape type="obj">
+        <string name="filename" value="cube.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="{rgb(CUBE_COLOUR)}"/></bsdf>
+    </shape>
+    <emitter type="directional">
+        <vector name="direction" value="{rgb(direction)}"/>
+        <rgb name="irradiance" value="{rgb([LIGHT_INTENSITY * c for c in LIGHT_COLOUR])}"/>
+    </emitter>
+</scene>
+"""
+    with open(os.path.join(OUT, "scene.xml"), "w") as f:
+        f.write(xml)
+
+
+if __name__ == "__main__":
+    main()

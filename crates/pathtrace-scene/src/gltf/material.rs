@@ -1,0 +1,101 @@
+//! glTF metallic-roughness materials as native materials.
+//!
+//! glTF's BRDF (glTF 2.0 specification, Appendix B) mixes a metal (Schlick Fresnel with F0 = the
+//! base colour, GGX with α = roughness²) and a dielectric (a GGX specular layer of index `ior`,
+//! 1.5 by default, with `KHR_materials_specular`'s factor, over a Lambertian base) by `metallic`.
+//! Exact here: a dielectric with `specularFactor` 0 is pure Lambertian with the base colour.
+//! Substituted, with a warning: other dielectrics become `rough_plastic` (GGX, same α and ior),
+//! metals a `rough_conductor` of a perfect mirror metal tinted by the base colour (no Schlick
+//! edge brightening), partial `metallic` the nearer of the two, transmission a `rough_dielectric`.
+//! A base colour texture stored as an image file becomes an image texture (see `texture.rs`).
+
+use super::num;
+use crate::native::model::{Colour, EmissionDef, MaterialDef, MaterialKind, MetalDef, RoughnessDef};
+use crate::native::model::{MetalName, Triple};
+use pathtrace::material::MicrofacetKind;
+
+fn triple(c: [f32; 3]) -> Triple {
+    if c[0] == c[1] && c[1] == c[2] {
+        Triple::Splat(num(c[0]))
+    } else {
+        Triple::Each(c.map(num))
+    }
+}
+
+/// Converts `m` (the glTF default material when `None`); unsupported parts are reported through
+/// `warn` with the material's location.
+pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> MaterialDef {
+    let at =
+        m.and_then(|m| m.index()).map_or_else(|| "the default material".to_string(), |i| format!("materials[{i}]"));
+    let mut w = |msg: &str| warn(format!("{at}: {msg}"));
+    let pbr = m.map(|m| m.pbr_metallic_roughness());
+    let base_factor = pbr.as_ref().map_or([1.0; 4], |p| p.base_color_factor());
+    let metallic = pbr.as_ref().map_or(1.0, |p| p.metallic_factor());
+    let roughness = pbr.as_ref().map_or(1.0, |p| p.roughness_factor());
+    if let Some(p) = &pbr {
+        if p.metallic_roughness_texture().is_some() {
+            w("the metallic-roughness texture is not supported yet: using the factors");
+        }
+    }
+    if let Some(m) = m {
+        if m.normal_texture().is_some() {
+            w("the normal texture is not supported yet: ignored");
+        }
+        if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
+            w("alphaMode MASK/BLEND (opacity) is not supported yet: rendered opaque");
+        }
+        if m.emissive_texture().is_some() {
+            w("the emissive texture is not supported yet: using emissiveFactor");
+        }
+    }
+    let factor = [base_factor[0], base_factor[1], base_factor[2]];
+    let base = match pbr.as_ref().and_then(|p| p.base_color_texture()) {
+        Some(info) => match super::texture::colour_texture(&info) {
+            Ok(t) => {
+                if factor != [1.0; 3] {
+                    w("baseColorFactor times a texture is not supported: using the texture alone");
+                }
+                Colour::Texture(t)
+            }
+            Err(e) => {
+                w(&format!("base colour texture: {e}: using baseColorFactor"));
+                Colour::Constant(triple(factor))
+            }
+        },
+        None => Colour::Constant(triple(factor)),
+    };
+    let ior = m.and_then(|m| m.ior()).unwrap_or(1.5);
+    let specular = m.and_then(|m| m.specular()).map_or(1.0, |s| s.specular_factor());
+    let transmission = m.and_then(|m| m.transmission()).map_or(0.0, |t| t.transmission_factor());
+    let alpha = num(roughness * roughness);
+    let ggx = RoughnessDef { distribution: MicrofacetKind::Ggx, alpha_u: alpha, alpha_v: alpha };
+    let kind = if transmission > 0.0 && metallic < 0.5 {
+        if transmission < 1.0 {
+            w("transmissionFactor below 1 is rendered fully transmissive");
+        }
+        w("KHR_materials_transmission is approximated by rough glass (`rough_dielectric`)");
+        MaterialKind::RoughDielectric { ior: num(ior), tint: base, roughness: ggx }
+    } else if metallic < 0.5 {
+        if metallic > 0.0 {
+            w("metallic between 0 and 1 is rendered as a dielectric");
+        }
+        if specular == 0.0 {
+            MaterialKind::Lambertian { albedo: base }
+        } else {
+            w("the dielectric BRDF is approximated by `rough_plastic` (GGX coating over the base colour)");
+            let spec = Colour::Constant(Triple::Splat(num(specular)));
+            MaterialKind::RoughPlastic { albedo: base, specular: spec, ior: num(ior), nonlinear: false, roughness: ggx }
+        }
+    } else {
+        if metallic < 1.0 {
+            w("metallic between 0 and 1 is rendered as a metal");
+        }
+        w("the metal BRDF is approximated by `rough_conductor` (a perfect mirror metal tinted by the base colour)");
+        MaterialKind::RoughConductor { metal: MetalDef::Named(MetalName("none")), reflectance: base, roughness: ggx }
+    };
+    let strength = m.and_then(|m| m.emissive_strength()).unwrap_or(1.0);
+    let e = m.map_or([0.0; 3], |m| m.emissive_factor()).map(|c| c * strength);
+    let emission = (e.iter().any(|&c| c > 0.0))
+        .then(|| EmissionDef { radiance: triple(e), two_sided: m.is_some_and(|m| m.double_sided()) });
+    MaterialDef { kind, emission }
+}
