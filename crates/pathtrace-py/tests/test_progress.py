@@ -101,9 +101,10 @@ def test_other_python_threads_run_while_rendering() -> None:
         before = ticks
         time.sleep(0.3)
         free_rate = (ticks - before) / 0.3
-        # One render thread, so the counter is not also starved of CPU by the render.
+        # One render thread, so the counter is not also starved of CPU by the render; 128 spp so
+        # that even a fast machine renders for about a second (32 spp took 0.21 s on an idle one).
         before, began = ticks, time.monotonic()
-        pathtrace.render(pathtrace.builtin(), spp=32, width=192, height=192, threads=1)
+        pathtrace.render(pathtrace.builtin(), spp=128, width=192, height=192, threads=1)
         took, during = time.monotonic() - began, ticks - before
     finally:
         stop.set()
