@@ -70,8 +70,8 @@ impl CliError {
 }
 
 impl From<pathtrace::render::RenderError> for CliError {
-    /// A render the scene or machine cannot do (the wide kernel refusing the scene, a film too
-    /// large) is a bad request, exit 2; threads that fail to start are a runtime failure, exit 1.
+    /// A render the scene or machine cannot do (a camera it cannot build, a film too large) is a
+    /// bad request, exit 2; threads that fail to start are a runtime failure, exit 1.
     fn from(e: pathtrace::render::RenderError) -> Self {
         let bad_request = e.is_bad_request();
         let message = e.to_string();

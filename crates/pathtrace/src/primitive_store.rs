@@ -131,8 +131,8 @@ impl PrimitiveStore {
     }
 
     /// Every primitive as a flat polygon (in index order), or `None` if some primitive is
-    /// another shape or a mesh triangle with interpolated normals: what the wide kernel's
-    /// brute-force intersector can hold.
+    /// another shape or a mesh triangle with interpolated normals: what the estimator's
+    /// brute-force lane intersector (`wide/geometry.rs`) can hold.
     pub fn flat_polygons(&self) -> Option<Vec<FlatPolygon>> {
         let mut out = Vec::with_capacity(self.len());
         for p in &self.shapes {

@@ -21,7 +21,8 @@ impl Pcg32 {
         rng
     }
 
-    /// The generator's `(state, increment)`, for the wide kernel's lane-parallel copy.
+    /// The generator's `(state, increment)`, for the lane samplers, which continue it in SIMD
+    /// lanes with [`advance`] and [`output`].
     pub(crate) fn parts(&self) -> (u64, u64) {
         (self.state, self.inc)
     }
