@@ -65,6 +65,19 @@ def crossing(curve, target):
     return None
 
 
+def timed_render(mi, dr, np, variant, scene, spp, seed):
+    """Mitsuba's render call, timed until the image exists (llvm variants evaluate lazily):
+    (seconds, linear RGB as float64, row 0 at the top)."""
+    mi.set_variant(variant)
+    t0 = time.perf_counter()
+    img = mi.render(scene, spp=spp, seed=seed)
+    if variant.startswith("llvm"):
+        dr.eval(img)
+        dr.sync_thread()
+    seconds = time.perf_counter() - t0
+    return seconds, np.array(img, dtype=np.float64)[:, :, :3]
+
+
 class Mitsuba:
     def __init__(self, mi, dr, variant, sampler, args):
         self.mi, self.dr, self.variant, self.sampler = mi, dr, variant, sampler
@@ -75,15 +88,7 @@ class Mitsuba:
         self.scene = mi.load_dict(d)
 
     def render(self, np, spp, seed, _tmp):
-        mi, dr = self.mi, self.dr
-        mi.set_variant(self.variant)
-        t0 = time.perf_counter()
-        img = mi.render(self.scene, spp=spp, seed=seed)
-        if self.variant.startswith("llvm"):
-            dr.eval(img)
-            dr.sync_thread()
-        seconds = time.perf_counter() - t0
-        return seconds, np.array(img, dtype=np.float64)[:, :, :3]
+        return timed_render(self.mi, self.dr, np, self.variant, self.scene, spp, seed)
 
 
 class Pathtrace:

@@ -41,7 +41,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cornell_mitsuba as cm  # noqa: E402  (find_libllvm)
-from equal_quality import load_pfm, rel_mse  # noqa: E402
+from equal_quality import load_pfm, rel_mse, timed_render  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 SHARED = os.path.abspath(os.path.join(REPO, "..", "shared", "scenes"))
@@ -124,15 +124,7 @@ class Mitsuba:
         self.size = tuple(int(v) for v in film.crop_size())
 
     def render(self, np, spp, seed):
-        mi, dr = self.mi, self.dr
-        mi.set_variant(self.variant)
-        t0 = time.perf_counter()
-        img = mi.render(self.scene, spp=spp, seed=seed)
-        if self.variant.startswith("llvm"):
-            dr.eval(img)
-            dr.sync_thread()
-        seconds = time.perf_counter() - t0
-        return seconds, np.array(img, dtype=np.float64)[:, :, :3]
+        return timed_render(self.mi, self.dr, np, self.variant, self.scene, spp, seed)
 
 
 def ours(np, binary, path, defines, spp, seed, threads, tmp):
