@@ -11,6 +11,7 @@
 mod blocks;
 mod common;
 
+use pathtrace::light::Light;
 use pathtrace_scene::gltf::{convert_file, load_gltf};
 use pathtrace_scene::native::{parse_str, to_string, Format};
 use std::path::{Path, PathBuf};
@@ -29,7 +30,7 @@ fn gltf_and_glb_load_cleanly_with_the_hierarchy_camera_and_light() {
         assert_eq!(file.objects.len(), 2, "{name}");
         assert_eq!(file.lights.len(), 1, "{name}");
         let (loaded, _) = load_gltf(&data(name), &[]).unwrap();
-        assert_eq!(loaded.scene.lights.directionals().len(), 1);
+        assert_eq!(loaded.scene.lights.lights().iter().filter(|l| matches!(l, Light::Directional(_))).count(), 1);
         assert_eq!(loaded.scene.primitive_count(), 14, "{name}: 2 floor + 12 cube triangles");
     }
     let e = convert_file(&data("scene.gltf"), &[("camera", "nope")]).unwrap_err().to_string();

@@ -3,6 +3,7 @@
 //! built into the engine's types, and rejected with a location when wrong.
 
 use pathtrace::film::PixelFilter;
+use pathtrace::light::Light;
 use pathtrace_scene::native::{load_str, parse_str, to_string, Format};
 use std::path::Path;
 
@@ -55,8 +56,8 @@ fn filters_lights_disks_and_thin_glass_build() {
     let Some(PixelFilter::Gaussian(g)) = &loaded.defaults.filter else { panic!("{:?}", loaded.defaults.filter) };
     assert_eq!(g.stddev(), 0.3);
     let lights = &loaded.scene.lights;
-    assert_eq!(lights.len(), 1, "the emissive disk is an area light");
-    assert_eq!(lights.points().len(), 1);
+    assert_eq!(lights.area_lights().count(), 1, "the emissive disk is an area light");
+    assert_eq!(lights.lights().iter().filter(|l| matches!(l, Light::Point(_))).count(), 1);
     assert_eq!(lights.environment().and_then(|e| e.constant_radiance()).map(|r| r.b), Some(0.3));
     for (text, expected) in [
         (r#"filter = { type = "box" }"#, PixelFilter::Pixel),

@@ -5,7 +5,7 @@ use crate::accel::{Bvh, Intersectable, PrimitiveSet};
 use crate::camera::CameraDesc;
 use crate::instance::{GroupId, Instance, Instances, ShapeGroup};
 use crate::light::{
-    AreaLight, DirectionalLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight, SpotLight,
+    AreaLight, DirectionalLight, Emission, EnvironmentLight, Light, LightSet, LightShape, PointLight, SpotLight,
 };
 use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
@@ -283,9 +283,8 @@ pub struct SceneBuilder {
     entries: Vec<Entry>,
     camera: CameraDesc,
     allow_no_lights: bool,
-    point_lights: Vec<PointLight>,
-    spot_lights: Vec<SpotLight>,
-    directional_lights: Vec<DirectionalLight>,
+    /// Lights that are not surfaces (point, spot, directional), in the order added.
+    lights_in_space: Vec<Light>,
     environment: Option<EnvironmentLight>,
     groups: Vec<ShapeGroup>,
     /// (group, transform, material override or [`Instance::OWN_MATERIALS`]).
@@ -355,19 +354,19 @@ impl SceneBuilder {
         if !light.position.is_finite() || !i.is_finite() || i.r < 0.0 || i.g < 0.0 || i.b < 0.0 {
             return Err(BuildError::Light("a point light needs a finite position and an intensity ≥ 0".into()));
         }
-        self.point_lights.push(light);
+        self.lights_in_space.push(Light::Point(light));
         Ok(())
     }
 
     /// Adds a spot light ([`SpotLight::new`] has checked its values).
     pub fn spot_light(&mut self, light: SpotLight) -> &mut Self {
-        self.spot_lights.push(light);
+        self.lights_in_space.push(Light::Spot(light));
         self
     }
 
     /// Adds a directional light ([`DirectionalLight::new`] has checked its values).
     pub fn directional_light(&mut self, light: DirectionalLight) -> &mut Self {
-        self.directional_lights.push(light);
+        self.lights_in_space.push(Light::Directional(light));
         self
     }
 
@@ -575,8 +574,14 @@ impl SceneBuilder {
             scene_box = Some(scene_box.map_or(instances.bounds(), |a| a.union(instances.bounds())));
         }
         let scene_radius = scene_box.map_or(1.0, |b| 0.5 * b.extent().length());
-        let (points, spots, directionals) = (self.point_lights, self.spot_lights, self.directional_lights);
-        let lights = LightSet::with_directionals(lights, points, spots, directionals, self.environment, scene_radius);
+        // Area lights first, so that a primitive's light id indexes the set.
+        let lights = lights
+            .into_iter()
+            .map(Light::Area)
+            .chain(self.lights_in_space)
+            .chain(self.environment.map(Light::Environment))
+            .collect();
+        let lights = LightSet::new(lights, scene_radius);
         if lights.is_empty() && !self.allow_no_lights {
             return Err(BuildError::NoLights);
         }
@@ -638,58 +643,87 @@ fn alpha_message(kind: &str, m: &crate::material::Microfacet) -> String {
 }
 
 pub fn validate_material(m: &Material) -> Result<(), BuildError> {
-    let colour_ok = |c: crate::math::Rgb| c.is_finite() && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0;
-    let err = |s: String| Err(BuildError::Material(s));
+    // One arm per model, no catch-all: a new model does not compile until it says what it checks.
     match m {
         Material::Black => Ok(()),
-        Material::Diffuse(d) if !colour_ok(d.albedo) || d.albedo.max_component() > 1.0 => {
-            err(format!("diffuse albedo {:?} must be in [0, 1]", d.albedo.to_array()))
+        Material::Diffuse(d) => check_unit_colour("diffuse albedo", d.albedo),
+        Material::Lambertian(d) => check_unit_colour("lambertian albedo", d.albedo),
+        Material::Mirror(d) => check_unit_colour("mirror reflectance", d.reflectance),
+        Material::Glossy(g) => {
+            check_unit_colour("glossy albedo", g.albedo)?;
+            if !(g.exponent >= 0.0 && g.exponent.is_finite()) {
+                return material_error(format!("glossy exponent {} must be a non-negative number", g.exponent));
+            }
+            Ok(())
         }
-        Material::Lambertian(d) if !colour_ok(d.albedo) || d.albedo.max_component() > 1.0 => {
-            err(format!("lambertian albedo {:?} must be in [0, 1]", d.albedo.to_array()))
+        Material::Dielectric(d) => {
+            check_ior("dielectric", d.ior)?;
+            check_unit_colour("dielectric tint", d.tint)
         }
-        Material::Mirror(d) if !colour_ok(d.reflectance) || d.reflectance.max_component() > 1.0 => {
-            err(format!("mirror reflectance {:?} must be in [0, 1]", d.reflectance.to_array()))
+        Material::ThinDielectric(d) => {
+            check_ior("thindielectric", d.ior)?;
+            check_unit_colour("thindielectric tint", d.tint)
         }
-        Material::Glossy(g) if !colour_ok(g.albedo) || g.albedo.max_component() > 1.0 => {
-            err(format!("glossy albedo {:?} must be in [0, 1]", g.albedo.to_array()))
+        Material::RoughDielectric(d) => {
+            check_ior("rough_dielectric", d.ior)?;
+            check_unit_colour("rough_dielectric tint", d.tint)?;
+            check_roughness("rough_dielectric", &d.distribution)
         }
-        Material::Glossy(g) if !(g.exponent >= 0.0 && g.exponent.is_finite()) => {
-            err(format!("glossy exponent {} must be a non-negative number", g.exponent))
+        Material::Conductor(c) => {
+            check_conductor_colours("conductor", c.eta, c.k, c.reflectance)?;
+            check_unit_colour("conductor reflectance", c.reflectance)
         }
-        Material::Dielectric(d) if !IOR_RANGE.contains(&d.ior) => err(ior_message("dielectric", d.ior)),
-        Material::Dielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
-            err(format!("dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
+        Material::RoughConductor(c) => {
+            check_conductor_colours("rough_conductor", c.eta, c.k, c.reflectance)?;
+            check_unit_colour("rough_conductor reflectance", c.reflectance)?;
+            check_roughness("rough_conductor", &c.distribution)
         }
-        Material::Conductor(c) if !colour_ok(c.eta) || !colour_ok(c.k) || !colour_ok(c.reflectance) => {
-            err("conductor eta, k and reflectance must be ≥ 0".into())
+        Material::Plastic(p) => check_ior("plastic", p.ior),
+        Material::RoughPlastic(p) => {
+            check_ior("rough_plastic", p.ior)?;
+            check_roughness("rough_plastic", &p.distribution)
         }
-        Material::RoughConductor(c) if !colour_ok(c.eta) || !colour_ok(c.k) || !colour_ok(c.reflectance) => {
-            err("rough_conductor eta, k and reflectance must be ≥ 0".into())
-        }
-        Material::RoughConductor(c) if c.reflectance.max_component() > 1.0 => {
-            err(format!("rough_conductor reflectance {:?} must be in [0, 1]", c.reflectance.to_array()))
-        }
-        Material::Conductor(c) if c.reflectance.max_component() > 1.0 => {
-            err(format!("conductor reflectance {:?} must be in [0, 1]", c.reflectance.to_array()))
-        }
-        Material::RoughDielectric(d) if !IOR_RANGE.contains(&d.ior) => err(ior_message("rough_dielectric", d.ior)),
-        Material::RoughDielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
-            err(format!("rough_dielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
-        }
-        Material::Plastic(p) if !IOR_RANGE.contains(&p.ior) => err(ior_message("plastic", p.ior)),
-        Material::RoughPlastic(p) if !IOR_RANGE.contains(&p.ior) => err(ior_message("rough_plastic", p.ior)),
-        Material::ThinDielectric(d) if !IOR_RANGE.contains(&d.ior) => err(ior_message("thindielectric", d.ior)),
-        Material::RoughConductor(c) if too_rough(&c.distribution) => {
-            err(alpha_message("rough_conductor", &c.distribution))
-        }
-        Material::RoughDielectric(d) if too_rough(&d.distribution) => {
-            err(alpha_message("rough_dielectric", &d.distribution))
-        }
-        Material::RoughPlastic(p) if too_rough(&p.distribution) => err(alpha_message("rough_plastic", &p.distribution)),
-        Material::ThinDielectric(d) if !colour_ok(d.tint) || d.tint.max_component() > 1.0 => {
-            err(format!("thindielectric tint {:?} must be in [0, 1]", d.tint.to_array()))
-        }
-        _ => Ok(()),
     }
+}
+
+fn material_error(message: String) -> Result<(), BuildError> {
+    Err(BuildError::Material(message))
+}
+
+fn colour_ok(c: crate::math::Rgb) -> bool {
+    c.is_finite() && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0
+}
+
+/// A reflectance-like colour: finite, each channel in [0, 1].
+fn check_unit_colour(what: &str, c: crate::math::Rgb) -> Result<(), BuildError> {
+    if !colour_ok(c) || c.max_component() > 1.0 {
+        return material_error(format!("{what} {:?} must be in [0, 1]", c.to_array()));
+    }
+    Ok(())
+}
+
+fn check_conductor_colours(
+    kind: &str,
+    eta: crate::math::Rgb,
+    k: crate::math::Rgb,
+    reflectance: crate::math::Rgb,
+) -> Result<(), BuildError> {
+    if !colour_ok(eta) || !colour_ok(k) || !colour_ok(reflectance) {
+        return material_error(format!("{kind} eta, k and reflectance must be ≥ 0"));
+    }
+    Ok(())
+}
+
+fn check_ior(kind: &str, ior: f32) -> Result<(), BuildError> {
+    if !IOR_RANGE.contains(&ior) {
+        return material_error(ior_message(kind, ior));
+    }
+    Ok(())
+}
+
+fn check_roughness(kind: &str, m: &crate::material::Microfacet) -> Result<(), BuildError> {
+    if too_rough(m) {
+        return material_error(alpha_message(kind, m));
+    }
+    Ok(())
 }

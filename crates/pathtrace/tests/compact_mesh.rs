@@ -29,8 +29,8 @@ fn each_triangle_of_an_emissive_mesh_is_its_own_light() {
     let placed = Transform::translate(Vec3::new(0.0, 0.0, 2.0));
     b.mesh(&square(), lamp, &placed).unwrap();
     let scene = b.build().unwrap();
-    assert_eq!(scene.lights.len(), 2);
-    let total_area: f32 = scene.lights.iter().map(|l| l.area()).sum();
+    assert_eq!(scene.lights.area_lights().count(), 2);
+    let total_area: f32 = scene.lights.area_lights().map(|l| l.area()).sum();
     assert!((total_area - 1.0).abs() < 1e-6, "{total_area}");
     // Points inside the first and the second triangle, seen from above.
     for (x, y) in [(0.8, 0.3), (0.3, 0.8)] {

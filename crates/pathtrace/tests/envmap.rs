@@ -10,7 +10,7 @@
 //! - MIS: a glossy sphere under the sun-and-sky map, relative MSE against a high-spp reference.
 
 use pathtrace::integrator::Strategy;
-use pathtrace::light::{EnvMap, EnvironmentLight, LightSet};
+use pathtrace::light::{EnvMap, EnvironmentLight, Light, LightSet};
 use pathtrace::material::{Glossy, Lambertian, Material};
 use pathtrace::math::{Rgb, Transform, Vec2, Vec3};
 use pathtrace::metrics::relative_mse;
@@ -157,7 +157,7 @@ fn samples_follow_the_pdf_and_the_pdf_integrates_to_one() {
 fn the_light_set_samples_the_map_with_its_own_density() {
     // One light: next-event estimation picks the map with probability 1 and its pdf.
     let env = EnvironmentLight::map(sky_map(Transform::rotate_z(20.0)));
-    let set = LightSet::with_all(Vec::new(), Vec::new(), Some(env), 1.0);
+    let set = LightSet::new(vec![Light::Environment(env)], 1.0);
     let p = Vec3::new(0.3, -0.2, 1.0);
     let mut rng = TestRng::new(8);
     for _ in 0..1000 {

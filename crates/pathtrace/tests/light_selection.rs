@@ -5,7 +5,7 @@
 //! area within a mesh) and sampled uniformly by area on the triangle.
 
 use pathtrace::light::{
-    AreaLight, Emission, EnvironmentLight, LightSelection, LightSet, LightShape, PointLight, SpotLight,
+    AreaLight, Emission, EnvironmentLight, Light, LightSelection, LightSet, LightShape, PointLight, SpotLight,
 };
 use pathtrace::material::{Lambertian, Material};
 use pathtrace::math::{Rgb, Transform, Vec2, Vec3};
@@ -31,7 +31,9 @@ fn mixed_set() -> LightSet {
     let point = PointLight { position: Vec3::new(0.0, 3.0, 0.0), intensity: Rgb::splat(5.0) };
     let spot = SpotLight::new(&Transform::translate(Vec3::Y), Rgb::splat(9.0), 30.0, 20.0).unwrap();
     let env = EnvironmentLight::constant(Rgb::new(0.1, 0.2, 0.3));
-    LightSet::with_spots(area, vec![point], vec![spot], Some(env), 2.0)
+    let lights =
+        area.into_iter().map(Light::Area).chain([Light::Point(point), Light::Spot(spot), Light::Environment(env)]);
+    LightSet::new(lights.collect(), 2.0)
 }
 
 #[test]
@@ -149,10 +151,10 @@ fn emissive_meshes_are_one_light_per_triangle_picked_by_area_and_sampled_by_area
     assert_eq!(b.mesh(&fan(), glow, &Transform::IDENTITY).unwrap(), 0);
     let scene = b.build().unwrap();
     let lights = &scene.lights;
-    assert_eq!(lights.len(), 4, "one area light per triangle");
+    assert_eq!(lights.area_lights().count(), 4, "one area light per triangle");
     // Power selection within one mesh is proportional to each triangle's area.
-    let total: f32 = lights.iter().map(AreaLight::area).sum();
-    for (i, l) in lights.iter().enumerate() {
+    let total: f32 = lights.area_lights().map(AreaLight::area).sum();
+    for (i, l) in lights.area_lights().enumerate() {
         let expected = l.area() / total;
         assert!((lights.selection_pmf(i as u32) - expected).abs() < 1e-6, "triangle {i}");
     }

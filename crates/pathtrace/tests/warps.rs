@@ -3,7 +3,7 @@
 //! sampling a quad, disk or sphere light (or the environment) from a point must follow
 //! `LightSet::pdf_direction`.
 
-use pathtrace::light::{AreaLight, Emission, EnvironmentLight, LightSet, LightShape, PointLight};
+use pathtrace::light::{AreaLight, Emission, EnvironmentLight, Light, LightSet, LightShape, PointLight};
 use pathtrace::math::{Rgb, Vec2, Vec3};
 use pathtrace::sampling::warp;
 use pathtrace::shape::{Disk, Quad, Sphere};
@@ -75,7 +75,7 @@ fn power_cosine_lobes() {
 }
 
 fn light_set(shape: LightShape) -> LightSet {
-    LightSet::new(vec![AreaLight::new(shape, Emission { radiance: Rgb::splat(1.0), two_sided: true })])
+    LightSet::from_area(vec![AreaLight::new(shape, Emission { radiance: Rgb::splat(1.0), two_sided: true })])
 }
 
 #[test]
@@ -128,7 +128,7 @@ fn disk_light_directions_follow_r2_over_cos_a() {
 #[test]
 fn environment_directions_are_uniform_and_mix_with_area_lights() {
     let env = EnvironmentLight::constant(Rgb::new(0.2, 0.5, 1.0));
-    let only = LightSet::with_all(Vec::new(), Vec::new(), Some(env.clone()), 1.0);
+    let only = LightSet::new(vec![Light::Environment(env.clone())], 1.0);
     let p = Vec3::new(0.3, 0.1, -2.0);
     check(
         "environment",
@@ -141,7 +141,7 @@ fn environment_directions_are_uniform_and_mix_with_area_lights() {
     let quad = Quad::new(Vec3::new(-0.5, 1.0, -0.8), Vec3::new(1.5, 0.2, 0.0), Vec3::new(0.0, 0.3, 1.2)).unwrap();
     let area = AreaLight::new(LightShape::Quad(quad), Emission { radiance: Rgb::splat(1.0), two_sided: true });
     let point = PointLight { position: Vec3::new(0.0, 3.0, 0.0), intensity: Rgb::splat(5.0) };
-    let mixed = LightSet::with_all(vec![area], vec![point], Some(env), 1.5);
+    let mixed = LightSet::new(vec![Light::Area(area), Light::Point(point), Light::Environment(env)], 1.5);
     let mut rng = TestRng::new(5);
     check(
         "quad + environment (point light skipped)",
@@ -158,7 +158,7 @@ fn selection_by_power_counts_every_kind_of_light() {
     let area = AreaLight::new(LightShape::Quad(quad), Emission { radiance: Rgb::WHITE, two_sided: false });
     let point = PointLight { position: Vec3::Y, intensity: Rgb::WHITE };
     let env = EnvironmentLight::constant(Rgb::WHITE);
-    let set = LightSet::with_all(vec![area], vec![point], Some(env), 1.0);
+    let set = LightSet::new(vec![Light::Area(area), Light::Point(point), Light::Environment(env)], 1.0);
     let pi = std::f32::consts::PI;
     let total = pi + 4.0 * pi + 4.0 * pi * pi;
     assert!((set.selection_pmf(0) - pi / total).abs() < 1e-6);

@@ -1,18 +1,16 @@
 //! The scene's lights, with a discrete distribution that picks one in proportion to its power
 //! (the default) or uniformly ([`LightSelection`]).
 //!
-//! Lights are numbered area lights first (so a primitive's light id indexes them), then point
-//! lights, then spot lights, then directional lights, then the environment. Two selection distributions exist:
-//! `selection` over all lights, for next-event estimation, and `continuous` without the point
-//! and spot lights, for the `light` and `mixture` strategies, which continue the path along the
-//! sampled direction and so need a density in solid angle (a delta light has none). Without
-//! delta lights both are the same distribution.
+//! Lights are numbered in the order the scene gives them (the scene builder puts area lights
+//! first, so a primitive's light id indexes them). Two selection distributions exist:
+//! `selection` over all lights, for next-event estimation, and `continuous` without the delta
+//! lights (point, spot, directional), for the `light` and `mixture` strategies, which continue
+//! the path along the sampled direction and so need a density in solid angle (a delta light has
+//! none). Without delta lights both are the same distribution.
 
 use super::area::AreaLight;
-use super::directional::DirectionalLight;
 use super::environment::EnvironmentLight;
-use super::point::PointLight;
-use super::spot::SpotLight;
+use super::kind::Light;
 use crate::math::{Rgb, Vec2, Vec3};
 use crate::sampling::Distribution1D;
 
@@ -81,75 +79,34 @@ impl std::fmt::Display for LightSelection {
 /// All lights, selectable by power or uniformly.
 #[derive(Clone, Debug, Default)]
 pub struct LightSet {
-    lights: Vec<AreaLight>,
-    points: Vec<PointLight>,
-    spots: Vec<SpotLight>,
-    directionals: Vec<DirectionalLight>,
-    environment: Option<EnvironmentLight>,
-    /// Every light's power, in index order (the environment's measured over the scene).
+    /// Every light, in selection order; a primitive's light id indexes it.
+    lights: Vec<Light>,
+    /// Where the environment is in `lights`, if the scene has one.
+    environment: Option<usize>,
+    /// Every light's power, in index order (lights at infinity measured over the scene).
     powers: Vec<f64>,
     mode: LightSelection,
     selection: Option<Distribution1D>,
     continuous: Option<Distribution1D>,
 }
 
-/// What a selection index refers to.
-enum Picked<'a> {
-    Area(&'a AreaLight),
-    Point(&'a PointLight),
-    Spot(&'a SpotLight),
-    Directional(&'a DirectionalLight),
-    Environment(&'a EnvironmentLight),
-}
-
 impl LightSet {
-    /// Area lights only. Lights of zero power are kept (so ids stay valid) but never picked.
-    pub fn new(lights: Vec<AreaLight>) -> Self {
-        Self::with_all(lights, Vec::new(), None, 0.0)
+    /// Area lights only, numbered in order. Lights of zero power are kept (so ids stay valid) but
+    /// never picked.
+    pub fn from_area(lights: Vec<AreaLight>) -> Self {
+        Self::new(lights.into_iter().map(Light::Area).collect(), 0.0)
     }
 
-    /// Area lights, point lights and an optional environment, whose power is measured over a
-    /// scene bounded by a sphere of radius `scene_radius`.
-    pub fn with_all(
-        lights: Vec<AreaLight>,
-        points: Vec<PointLight>,
-        environment: Option<EnvironmentLight>,
-        scene_radius: f32,
-    ) -> Self {
-        Self::with_spots(lights, points, Vec::new(), environment, scene_radius)
-    }
-
-    /// Every kind of light: area, point and spot lights and an optional environment, whose power
-    /// is measured over a scene bounded by a sphere of radius `scene_radius`. Selection is by
-    /// power until [`LightSet::set_selection`] says otherwise.
-    pub fn with_spots(
-        lights: Vec<AreaLight>,
-        points: Vec<PointLight>,
-        spots: Vec<SpotLight>,
-        environment: Option<EnvironmentLight>,
-        scene_radius: f32,
-    ) -> Self {
-        Self::with_directionals(lights, points, spots, Vec::new(), environment, scene_radius)
-    }
-
-    /// Every kind of light, directional lights too: their power, like the environment's, is
-    /// what crosses a scene bounded by a sphere of radius `scene_radius`.
-    pub fn with_directionals(
-        lights: Vec<AreaLight>,
-        points: Vec<PointLight>,
-        spots: Vec<SpotLight>,
-        directionals: Vec<DirectionalLight>,
-        environment: Option<EnvironmentLight>,
-        scene_radius: f32,
-    ) -> Self {
+    /// The scene's lights, numbered in the order given (primitives refer to area lights by
+    /// that number); lights at infinity are weighed by what crosses a scene bounded by a sphere
+    /// of radius `scene_radius`. A scene has at most one environment (the scene builder keeps
+    /// the last one set); were two given, the first would be the one seen by escaping paths.
+    /// Selection is by power until [`LightSet::set_selection`] says otherwise.
+    pub fn new(lights: Vec<Light>, scene_radius: f32) -> Self {
         let radius = scene_radius.max(1e-3);
-        let area = lights.iter().map(AreaLight::power);
-        let point = points.iter().map(PointLight::power);
-        let spot = spots.iter().map(SpotLight::power);
-        let directional = directionals.iter().map(|d| d.power(radius));
-        let env = environment.iter().map(|e| e.power(radius));
-        let powers: Vec<f64> = area.chain(point).chain(spot).chain(directional).chain(env).collect();
-        let mut set = Self { lights, points, spots, directionals, environment, powers, ..Default::default() };
+        let powers: Vec<f64> = lights.iter().map(|l| l.power(radius)).collect();
+        let environment = lights.iter().position(|l| matches!(l, Light::Environment(_)));
+        let mut set = Self { lights, environment, powers, ..Default::default() };
         set.set_selection(LightSelection::Power);
         set
     }
@@ -173,14 +130,13 @@ impl LightSet {
         };
         let all: Vec<f32> = self.powers.iter().map(|&p| weight(p)).collect();
         self.selection = Distribution1D::new(&all);
-        let delta = self.lights.len()..self.env_index();
-        self.continuous = if delta.is_empty() {
-            self.selection.clone()
-        } else {
+        self.continuous = if self.has_delta() {
             // Same indices, with the delta lights' weight zeroed.
             let no_delta: Vec<f32> =
-                all.iter().enumerate().map(|(i, &w)| if delta.contains(&i) { 0.0 } else { w }).collect();
+                all.iter().zip(&self.lights).map(|(&w, l)| if l.is_delta() { 0.0 } else { w }).collect();
             Distribution1D::new(&no_delta)
+        } else {
+            self.selection.clone()
         };
         self.mode = mode;
     }
@@ -190,20 +146,14 @@ impl LightSet {
         self.mode
     }
 
-    /// Probability that next-event estimation picks light `index` (numbered area lights, point
-    /// lights, spot lights, environment); these sum to 1 over `0..self.count()` when any light
-    /// has power.
+    /// Probability that next-event estimation picks light `index`; these sum to 1 over
+    /// `0..self.count()` when any light has power.
     pub fn index_pmf(&self, index: usize) -> f32 {
         self.selection.as_ref().map_or(0.0, |d| d.pmf(index))
     }
 
     /// Number of lights of every kind (the environment counts as one).
     pub fn count(&self) -> usize {
-        self.powers.len()
-    }
-
-    /// Number of area lights.
-    pub fn len(&self) -> usize {
         self.lights.len()
     }
 
@@ -212,65 +162,43 @@ impl LightSet {
         self.selection.is_none()
     }
 
-    /// True when some light other than a point or spot light has power (the `light` and `mixture`
+    /// True when some light other than a delta light has power (the `light` and `mixture`
     /// strategies can sample it).
     pub fn has_continuous(&self) -> bool {
         self.continuous.is_some()
     }
 
-    /// The area light with this id.
+    /// The area light with this id; `None` for other kinds.
     pub fn get(&self, id: u32) -> Option<&AreaLight> {
-        self.lights.get(id as usize)
+        match self.lights.get(id as usize)? {
+            Light::Area(l) => Some(l),
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => None,
+        }
     }
 
-    /// The area lights.
-    pub fn iter(&self) -> impl Iterator<Item = &AreaLight> {
-        self.lights.iter()
+    /// Every light, in selection order.
+    pub fn lights(&self) -> &[Light] {
+        &self.lights
     }
 
-    /// The point lights.
-    pub fn points(&self) -> &[PointLight] {
-        &self.points
+    /// The area lights, in id order.
+    pub fn area_lights(&self) -> impl Iterator<Item = &AreaLight> {
+        self.lights.iter().filter_map(|l| match l {
+            Light::Area(a) => Some(a),
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => None,
+        })
     }
 
-    /// The spot lights.
-    pub fn spots(&self) -> &[SpotLight] {
-        &self.spots
-    }
-
-    /// The directional lights.
-    pub fn directionals(&self) -> &[DirectionalLight] {
-        &self.directionals
-    }
-
-    /// True when the scene has point, spot or directional lights, which only next-event
+    /// True when the scene has delta lights (point, spot, directional), which only next-event
     /// estimation sees.
     pub fn has_delta(&self) -> bool {
-        !self.points.is_empty() || !self.spots.is_empty() || !self.directionals.is_empty()
+        self.lights.iter().any(Light::is_delta)
     }
 
     pub fn environment(&self) -> Option<&EnvironmentLight> {
-        self.environment.as_ref()
-    }
-
-    fn env_index(&self) -> usize {
-        self.lights.len() + self.points.len() + self.spots.len() + self.directionals.len()
-    }
-
-    fn picked(&self, i: usize) -> Option<Picked<'_>> {
-        let n = self.lights.len();
-        let np = n + self.points.len();
-        if i < n {
-            Some(Picked::Area(&self.lights[i]))
-        } else if i < np {
-            Some(Picked::Point(&self.points[i - n]))
-        } else if i < np + self.spots.len() {
-            Some(Picked::Spot(&self.spots[i - np]))
-        } else if i < self.env_index() {
-            Some(Picked::Directional(&self.directionals[i - np - self.spots.len()]))
-        } else {
-            // Indices past the directional lights exist only with an environment.
-            self.environment.as_ref().map(Picked::Environment)
+        match &self.lights[self.environment?] {
+            Light::Environment(env) => Some(env),
+            Light::Area(_) | Light::Point(_) | Light::Spot(_) | Light::Directional(_) => None,
         }
     }
 
@@ -293,8 +221,8 @@ impl LightSet {
         self.sample_picked(id, pmf, ref_p, u)
     }
 
-    /// Picks a light other than a point or spot light and a direction towards it: the `light`
-    /// and `mixture` strategies, whose density is [`LightSet::pdf_direction`].
+    /// Picks a light other than a delta light and a direction towards it: the `light` and
+    /// `mixture` strategies, whose density is [`LightSet::pdf_direction`].
     #[inline(always)]
     pub fn sample_continuous(&self, ref_p: Vec3, u_select: f32, u: Vec2) -> Option<LightSample> {
         let (id, pmf) = self.continuous.as_ref()?.sample(u_select);
@@ -303,49 +231,8 @@ impl LightSet {
 
     #[inline(always)]
     fn sample_picked(&self, id: usize, pmf: f32, ref_p: Vec3, u: Vec2) -> Option<LightSample> {
-        match self.picked(id)? {
-            Picked::Area(light) => {
-                let s = light.sample(ref_p, u)?;
-                Some(LightSample {
-                    point: s.point,
-                    normal: s.normal,
-                    wi: s.wi,
-                    dist: s.dist,
-                    pdf: s.pdf * pmf,
-                    radiance: light.emitted(s.normal, -s.wi),
-                    delta: false,
-                })
-            }
-            Picked::Point(light) => {
-                let (wi, dist, radiance) = light.sample(ref_p)?;
-                Some(LightSample { point: light.position, normal: -wi, wi, dist, pdf: pmf, radiance, delta: true })
-            }
-            Picked::Spot(light) => {
-                let (wi, dist, radiance) = light.sample(ref_p)?;
-                Some(LightSample { point: light.position(), normal: -wi, wi, dist, pdf: pmf, radiance, delta: true })
-            }
-            Picked::Directional(light) => {
-                // At infinity, like the environment: the shadow ray is unoccluded if it leaves.
-                let (wi, radiance) = light.sample();
-                let (point, dist) = (ref_p + wi, f32::INFINITY);
-                Some(LightSample { point, normal: -wi, wi, dist, pdf: pmf, radiance, delta: true })
-            }
-            Picked::Environment(env) => {
-                let (wi, pdf) = env.sample(u);
-                if pdf <= 0.0 {
-                    return None;
-                }
-                Some(LightSample {
-                    point: ref_p + wi,
-                    normal: -wi,
-                    wi,
-                    dist: f32::INFINITY,
-                    pdf: pdf * pmf,
-                    radiance: env.radiance(wi),
-                    delta: false,
-                })
-            }
-        }
+        let s = self.lights.get(id)?.sample(ref_p, u)?;
+        Some(LightSample { pdf: s.pdf * pmf, ..s })
     }
 
     /// Density of sampling hit point `p` on light `id` from `ref_p` (selection included).
@@ -355,15 +242,15 @@ impl LightSet {
         if pmf <= 0.0 {
             return 0.0;
         }
-        pmf * self.lights[id as usize].pdf_hit(ref_p, p, n)
+        self.get(id).map_or(0.0, |light| pmf * light.pdf_hit(ref_p, p, n))
     }
 
     /// Density with which next-event estimation picks the environment along `dir` (selection
     /// included), for weighting a path that escaped along `dir`.
     #[inline(always)]
     pub fn pdf_environment(&self, dir: Vec3) -> f32 {
-        match (&self.environment, &self.selection) {
-            (Some(env), Some(sel)) => sel.pmf(self.env_index()) * env.pdf(dir),
+        match (self.environment, self.environment(), &self.selection) {
+            (Some(index), Some(env), Some(sel)) => sel.pmf(index) * env.pdf(dir),
             _ => 0.0,
         }
     }
@@ -375,14 +262,11 @@ impl LightSet {
         let Some(sel) = &self.continuous else {
             return 0.0;
         };
-        let area: f32 = self
-            .lights
+        self.lights
             .iter()
             .enumerate()
             .filter(|(i, _)| sel.pmf(*i) > 0.0)
             .map(|(i, l)| sel.pmf(i) * l.pdf_direction(ref_p, dir))
-            .sum();
-        let env = self.environment.as_ref().map_or(0.0, |e| sel.pmf(self.env_index()) * e.pdf(dir));
-        area + env
+            .sum()
     }
 }

@@ -144,21 +144,37 @@ impl Material {
     #[inline]
     pub fn with_colour(&self, slot: ColourSlot, c: Rgb) -> Material {
         let mut m = *self;
-        match (&mut m, slot) {
-            (Material::Diffuse(d), ColourSlot::Base) => d.albedo = c,
-            (Material::Lambertian(d), ColourSlot::Base) => d.albedo = c,
-            (Material::Glossy(g), ColourSlot::Base) => g.albedo = c,
-            (Material::Mirror(r), ColourSlot::Base) => r.reflectance = c,
-            (Material::Dielectric(d), ColourSlot::Base) => d.tint = c,
-            (Material::ThinDielectric(d), ColourSlot::Base) => d.tint = c,
-            (Material::RoughDielectric(d), ColourSlot::Base) => d.tint = c,
-            (Material::Conductor(k), ColourSlot::Base) => k.reflectance = c,
-            (Material::RoughConductor(k), ColourSlot::Base) => k.reflectance = c,
-            (Material::Plastic(p), ColourSlot::Base) => *p = p.with_albedo(c),
-            (Material::RoughPlastic(p), ColourSlot::Base) => *p = p.with_albedo(c),
-            (Material::Plastic(p), ColourSlot::Specular) => p.specular = c,
-            (Material::RoughPlastic(p), ColourSlot::Specular) => p.specular = c,
-            _ => {}
+        let base = slot == ColourSlot::Base;
+        // One arm per model, no catch-all: a new model does not compile until it says which of
+        // its colours a texture replaces.
+        match &mut m {
+            Material::Black => {}
+            Material::Diffuse(d) if base => d.albedo = c,
+            Material::Lambertian(d) if base => d.albedo = c,
+            Material::Glossy(g) if base => g.albedo = c,
+            Material::Mirror(r) if base => r.reflectance = c,
+            Material::Dielectric(d) if base => d.tint = c,
+            Material::ThinDielectric(d) if base => d.tint = c,
+            Material::RoughDielectric(d) if base => d.tint = c,
+            Material::Conductor(k) if base => k.reflectance = c,
+            Material::RoughConductor(k) if base => k.reflectance = c,
+            Material::Diffuse(_)
+            | Material::Lambertian(_)
+            | Material::Glossy(_)
+            | Material::Mirror(_)
+            | Material::Dielectric(_)
+            | Material::ThinDielectric(_)
+            | Material::RoughDielectric(_)
+            | Material::Conductor(_)
+            | Material::RoughConductor(_) => {}
+            Material::Plastic(p) => match slot {
+                ColourSlot::Base => *p = p.with_albedo(c),
+                ColourSlot::Specular => p.specular = c,
+            },
+            Material::RoughPlastic(p) => match slot {
+                ColourSlot::Base => *p = p.with_albedo(c),
+                ColourSlot::Specular => p.specular = c,
+            },
         }
         m
     }
@@ -193,7 +209,15 @@ impl Material {
             Material::RoughConductor(m) => aniso(&m.distribution),
             Material::RoughDielectric(m) => aniso(&m.distribution),
             Material::RoughPlastic(m) => aniso(&m.distribution),
-            _ => false,
+            Material::Black
+            | Material::Diffuse(_)
+            | Material::Lambertian(_)
+            | Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::Plastic(_)
+            | Material::ThinDielectric(_) => false,
         }
     }
 

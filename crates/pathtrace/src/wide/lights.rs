@@ -7,7 +7,7 @@
 
 use super::simd::{F32s, Ms, Vec3s};
 use crate::light::area::{sample_flat_lanes, FlatLights, FlatSamples};
-use crate::light::{LightSet, LightShape};
+use crate::light::{Light, LightSet, LightShape};
 use crate::math::{Rgb, Vec2, Vec3};
 
 /// One flat light: `origin + s·e1 + t·e2`.
@@ -91,12 +91,14 @@ impl WideLights {
     /// `None` unless every light is a quad or triangle area light (no point, spot, sphere, disk
     /// or environment light).
     pub fn new(set: &LightSet) -> Option<Self> {
-        if set.has_delta() || set.environment().is_some() {
-            return None;
-        }
         let lights = set
+            .lights()
             .iter()
-            .map(|l| {
+            .map(|light| {
+                let l = match light {
+                    Light::Area(l) => l,
+                    Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => return None,
+                };
                 let (origin, e1, e2, triangle) = match l.shape {
                     LightShape::Quad(q) => (q.q, q.u, q.v, false),
                     LightShape::Triangle(t) => (t.p0, t.e1, t.e2, true),
