@@ -27,7 +27,7 @@ pub enum Command {
     /// Ctrl-C stops early and still writes what was rendered so far.
     Render(RenderArgs),
     /// Run the benchmark suite: samples/s, rays/s, path length, peak memory and time to a target
-    /// error on six scenes, each checked against its stored reference; `bench bvh` measures the
+    /// error on thirteen scenes (ten need ../shared/scenes), each checked against its stored reference; `bench bvh` measures the
     /// BVH alone (build time, memory, rays/s) on meshes of 10² to 10⁷ triangles.
     Bench(BenchArgs),
     /// Compare an image with a reference: MSE, RMSE, relative MSE, PSNR (8-bit and linear), SSIM.

@@ -99,7 +99,7 @@ pub fn print_table(r: &SuiteReport) {
         r.date_utc
     );
     println!(
-        "{:<12} {:>5} {:>9} {:>8} {:>24} {:>6} {:>8} {:>10} {:>8} {:>7}",
+        "{:<20} {:>5} {:>9} {:>8} {:>24} {:>6} {:>8} {:>10} {:>8} {:>7}",
         "scene",
         "spp",
         "Msmp/s",
@@ -113,7 +113,7 @@ pub fn print_table(r: &SuiteReport) {
     );
     for s in &r.scenes {
         let Some(m) = &s.result else {
-            println!("{:<12} {}", s.name, s.skipped.as_deref().unwrap_or("skipped"));
+            println!("{:<20} {}", s.name, s.skipped.as_deref().unwrap_or("skipped"));
             continue;
         };
         let rays = format!(
@@ -124,7 +124,7 @@ pub fn print_table(r: &SuiteReport) {
         );
         let scaling = m.scaling.as_ref().map(|x| format!("{:.2}×", x.ratio));
         println!(
-            "{:<12} {:>5} {:>9} {:>8} {:>24} {:>6.2} {:>8} {:>10} {:>8} {:>7}",
+            "{:<20} {:>5} {:>9} {:>8} {:>24} {:>6.2} {:>8} {:>10} {:>8} {:>7}",
             s.name,
             m.spp,
             mega(m.samples_per_second),
@@ -190,13 +190,13 @@ pub fn compare(old_path: &Path, new_path: &Path) -> Result<(), CliError> {
     println!("old: {} {} ({})", old_path.display(), short(&old.commit), old.date_utc);
     println!("new: {} {} ({})", new_path.display(), short(&new.commit), new.date_utc);
     println!(
-        "{:<12} {:>18} {:>10} {:>10} {:>22} {:>10} {:>10}",
+        "{:<20} {:>18} {:>10} {:>10} {:>22} {:>10} {:>10}",
         "scene", "Msmp/s old → new", "samples/s", "rays/s", "t(relMSE) old → new", "speedup", "memory"
     );
     for n in &new.scenes {
         let Some(nm) = &n.result else { continue };
         let Some(om) = old.scenes.iter().find(|o| o.name == n.name).and_then(|o| o.result.as_ref()) else {
-            println!("{:<12} only in the new report", n.name);
+            println!("{:<20} only in the new report", n.name);
             continue;
         };
         let times = format!("{} → {}", opt(om.time_to_target_seconds, 3), opt(nm.time_to_target_seconds, 3));
@@ -209,7 +209,7 @@ pub fn compare(old_path: &Path, new_path: &Path) -> Result<(), CliError> {
             _ => "–".into(),
         };
         println!(
-            "{:<12} {:>18} {:>10} {:>10} {:>22} {:>10} {:>10}",
+            "{:<20} {:>18} {:>10} {:>10} {:>22} {:>10} {:>10}",
             n.name,
             format!("{} → {}", mega(om.samples_per_second), mega(nm.samples_per_second)),
             ratio(nm.samples_per_second, om.samples_per_second),
