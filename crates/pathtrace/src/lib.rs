@@ -15,7 +15,7 @@ pub mod scene;
 pub mod shape;
 pub mod texture;
 
-pub use camera::{Camera, CameraDesc};
+pub use camera::{Camera, CameraDesc, Lens};
 pub use instance::{GroupId, ShapeGroup};
 pub use scene::{MaterialId, Scene, SceneBuilder};
 pub mod integrator;
