@@ -9,6 +9,7 @@ pub mod instance;
 pub mod light;
 pub mod material;
 pub mod math;
+pub mod medium;
 mod primitive_store;
 pub mod sampling;
 pub mod scene;
