@@ -40,6 +40,7 @@ fn reference() -> Scene {
         up: Vec3::Y,
         vfov_degrees: 40.0,
         focal_length: 1.0,
+        ..Default::default()
     });
     b.build().unwrap()
 }

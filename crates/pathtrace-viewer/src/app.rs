@@ -6,6 +6,7 @@ use crate::accumulation::{Accumulation, RenderKey};
 use crate::config::ViewerConfig;
 use crate::controls::{Action, ViewState};
 use crate::gl_picture::{read_rgb8, GlPicture};
+use crate::lens_control;
 use crate::overlay::{progress_line, SHORTCUTS};
 use crate::view_mode::{view_image, ViewMode, ViewSources};
 use crate::ViewerError;
@@ -16,7 +17,7 @@ use pathtrace::integrator::{first_hit_aovs, FirstHitAovs};
 use pathtrace::metrics;
 use pathtrace::CameraDesc;
 use pathtrace_scene::image_io::write_image;
-use pathtrace_scene::native::model::Num;
+use pathtrace_scene::native::model::{Num, ProjectionName};
 use pathtrace_scene::native::{self, Format};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -33,6 +34,8 @@ const ORBIT_PER_POINT: f32 = 0.005;
 const ORBIT_KEY_STEP: f32 = 0.05;
 /// Fly step: a fraction of the look-at distance per key press.
 const FLY_STEP: f32 = 0.05;
+/// Focus-distance factor per key press (K nearer, L farther).
+const FOCUS_STEP: f32 = 1.1;
 /// Scroll points per field-of-view zoom step.
 const SCROLL_PER_STEP: f32 = 50.0;
 
@@ -143,6 +146,10 @@ impl ViewerApp {
                 (Key::Q, Action::Fly(0.0, -FLY_STEP, 0.0)),
                 (Key::E, Action::Fly(0.0, FLY_STEP, 0.0)),
                 (Key::R, Action::ResetCamera(self.home_camera)),
+                (Key::O, Action::Aperture(std::f32::consts::SQRT_2)),
+                (Key::I, Action::Aperture(std::f32::consts::FRAC_1_SQRT_2)),
+                (Key::K, Action::Focus(1.0 / FOCUS_STEP)),
+                (Key::L, Action::Focus(FOCUS_STEP)),
                 (Key::M, Action::NextStrategy),
                 (Key::N, Action::NextSampler),
                 (Key::OpenBracket, Action::Depth(-1)),
@@ -180,6 +187,20 @@ impl ViewerApp {
                 actions.push(Action::Pan(d.x * k, d.y * k));
             } else if picture.dragged_by(PointerButton::Middle) {
                 actions.push(Action::PicturePan(d.x * ppp, d.y * ppp));
+            }
+        }
+        // Double-click: focus on the surface under the cursor.
+        if picture.double_clicked() {
+            if let Some(pos) = picture.interact_pointer_pos() {
+                let rect = self.picture_rect(picture.rect, ppp);
+                let s = &self.config.settings;
+                let x = (pos.x - rect.min.x) / rect.width() * s.width as f32;
+                let y = (pos.y - rect.min.y) / rect.height() * s.height as f32;
+                let camera = &self.state.key.camera;
+                match lens_control::depth_under(&self.config.scene, camera, s.width, s.height, x, y) {
+                    Some(d) => actions.push(Action::FocusAt(d)),
+                    None => self.say("nothing under the cursor to focus on".to_string()),
+                }
             }
         }
         for a in actions {
@@ -258,6 +279,16 @@ impl ViewerApp {
         model.camera.look_at = num3(c.look_at);
         model.camera.up = Some(num3(c.up));
         model.camera.vfov = Some(num(c.vfov_degrees));
+        // The lens, as the viewer's aperture and focus controls left it.
+        let (projection, aperture, focus, height) = match c.lens {
+            pathtrace::Lens::Pinhole => (ProjectionName::Perspective, None, None, None),
+            pathtrace::Lens::ThinLens { aperture_radius, focus_distance } => {
+                (ProjectionName::Thinlens, Some(num(aperture_radius)), Some(num(focus_distance)), None)
+            }
+            pathtrace::Lens::Orthographic { height } => (ProjectionName::Orthographic, None, None, Some(num(height))),
+        };
+        model.camera.projection = (projection != ProjectionName::Perspective).then_some(projection);
+        (model.camera.aperture_radius, model.camera.focus_distance, model.camera.height) = (aperture, focus, height);
         model.render.max_depth = Some(self.state.key.max_depth);
         let result = native::to_string(&model, Format::Toml)
             .map_err(|e| e.to_string())

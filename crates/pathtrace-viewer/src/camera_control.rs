@@ -87,6 +87,7 @@ mod tests {
             up: Vec3::Y,
             vfov_degrees: 40.0,
             focal_length: 1.0,
+            lens: pathtrace::Lens::Pinhole,
         }
     }
 

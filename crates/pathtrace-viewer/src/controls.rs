@@ -3,6 +3,7 @@
 
 use crate::accumulation::RenderKey;
 use crate::camera_control;
+use crate::lens_control;
 use crate::view_mode::ViewMode;
 use pathtrace::film::{ToneMap, ToneMapSettings};
 use pathtrace::integrator::Strategy;
@@ -34,6 +35,12 @@ pub enum Action {
     Fly(f32, f32, f32),
     /// Back to the scene's camera.
     ResetCamera(CameraDesc),
+    /// Scale the aperture radius (> 1 opens; a pinhole opens to a thin lens).
+    Aperture(f32),
+    /// Scale the focus distance (thin lens).
+    Focus(f32),
+    /// Focus at this distance along the view direction (the depth under the cursor).
+    FocusAt(f32),
     NextStrategy,
     NextSampler,
     /// Change the maximum depth by ±1 (−1 = unlimited sits below 1).
@@ -84,6 +91,9 @@ impl ViewState {
             Action::Fov(steps) => s.key.camera = camera_control::zoom(cam, steps),
             Action::Fly(r, u, f) => s.key.camera = camera_control::fly(cam, r, u, f, 1.0),
             Action::ResetCamera(c) => s.key.camera = c,
+            Action::Aperture(f) => s.key.camera = lens_control::aperture(cam, f),
+            Action::Focus(f) => s.key.camera = lens_control::focus(cam, f),
+            Action::FocusAt(d) => s.key.camera = lens_control::focus_at(cam, d),
             Action::NextStrategy => s.key.strategy = next_in(&STRATEGIES, self.key.strategy),
             Action::NextSampler => s.key.sampler = next_in(&SAMPLERS, self.key.sampler),
             Action::Depth(d) => s.key.max_depth = step_depth(self.key.max_depth, d),

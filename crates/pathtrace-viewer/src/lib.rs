@@ -11,6 +11,7 @@ pub mod camera_control;
 mod config;
 pub mod controls;
 mod gl_picture;
+pub mod lens_control;
 pub mod overlay;
 pub mod view_mode;
 

@@ -3,12 +3,15 @@
 use pathtrace::Progress;
 
 /// Keyboard and mouse shortcuts: (keys, what they do). Listed by F1 / ? and in docs/viewer.md.
-pub const SHORTCUTS: [(&str, &str); 22] = [
+pub const SHORTCUTS: [(&str, &str); 25] = [
     ("left drag / arrows", "orbit the camera around its look-at point"),
     ("right drag", "pan the camera (eye and look-at move together)"),
     ("scroll", "zoom: change the field of view"),
     ("W A S D / Q E", "fly forward, left, back, right / down, up"),
     ("R", "reset the camera to the scene's"),
+    ("O I", "open / close the aperture (depth of field; closed fully: a pinhole)"),
+    ("K L", "move the plane of focus nearer / farther"),
+    ("double-click", "focus on the surface under the cursor"),
     ("M", "next strategy (mis, mis-balance, bsdf, mixture, light)"),
     ("N", "next sampler (independent, stratified, sobol)"),
     ("[ ]", "maximum depth down / up (below 1: unlimited)"),

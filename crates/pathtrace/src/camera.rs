@@ -1,10 +1,36 @@
-//! The pinhole camera: a look-from / look-at / up basis, a vertical field of view, and a grid of
-//! pixel rays ("Ray Tracing in One Weekend" §11):
-//! w = (from − at)/‖from − at‖, u = (up × w)/‖up × w‖, v = w × u; the viewport is
-//! 2·tan(vfov/2)·focal high and aspect × that wide; image x runs along +u, image y along −v,
-//! starting at the upper-left pixel.
+//! The cameras: a look-from / look-at / up basis and a grid of pixel rays ("Ray Tracing in One
+//! Weekend" §11): w = (from − at)/‖from − at‖, u = (up × w)/‖up × w‖, v = w × u; image x runs
+//! along +u, image y along −v, starting at the upper-left pixel.
+//!
+//! - Pinhole: the viewport is 2·tan(vfov/2)·focal high and aspect × that wide, at `focal` along −w.
+//! - Thin lens (Mitsuba 3's `thinlens`, pbrt-v4 §5.2.3): the pinhole ray through the pixel picks
+//!   the point it meets on the plane of focus, `focus_distance` along −w; the ray then starts at a
+//!   point of the lens disk of radius `aperture_radius` (concentric map, as Mitsuba) and aims at
+//!   that point, so everything on the plane of focus is sharp and the rest is blurred.
+//! - Orthographic (Mitsuba 3's `orthographic`): parallel rays along −w from a `height` × aspect
+//!   rectangle centred on look-from.
 
 use crate::math::{normalize_robust, Ray, Vec2, Vec3};
+use crate::sampling::warp::square_to_uniform_disk;
+
+/// The projection of a camera.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Lens {
+    /// Every ray starts at look-from (infinite depth of field).
+    #[default]
+    Pinhole,
+    /// A lens disk of `aperture_radius` focused on the plane `focus_distance` in front of it.
+    ThinLens { aperture_radius: f32, focus_distance: f32 },
+    /// Parallel rays from a viewport `height` high (scene units), as wide as the image's aspect.
+    Orthographic { height: f32 },
+}
+
+impl Lens {
+    /// Whether the rays need a 2D lens sample (the thin lens's aperture point).
+    pub fn needs_aperture_sample(&self) -> bool {
+        matches!(self, Lens::ThinLens { .. })
+    }
+}
 
 /// How the camera is placed (what scene files describe).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -16,11 +42,20 @@ pub struct CameraDesc {
     pub vfov_degrees: f32,
     /// Distance to the viewport plane; it scales the viewport but not the image (pinhole).
     pub focal_length: f32,
+    /// Pinhole, thin lens or orthographic.
+    pub lens: Lens,
 }
 
 impl Default for CameraDesc {
     fn default() -> Self {
-        Self { look_from: Vec3::ZERO, look_at: -Vec3::Z, up: Vec3::Y, vfov_degrees: 40.0, focal_length: 1.0 }
+        Self {
+            look_from: Vec3::ZERO,
+            look_at: -Vec3::Z,
+            up: Vec3::Y,
+            vfov_degrees: 40.0,
+            focal_length: 1.0,
+            lens: Lens::Pinhole,
+        }
     }
 }
 
@@ -41,6 +76,29 @@ pub enum CameraError {
     ImageSize(u32, u32),
     #[error("camera parameters must be finite numbers")]
     NotFinite,
+    #[error("thin-lens aperture radius {0} must be zero or positive")]
+    Aperture(f32),
+    #[error("thin-lens focus distance {0} must be positive")]
+    FocusDistance(f32),
+    #[error("orthographic view height {0} must be positive")]
+    ViewHeight(f32),
+}
+
+/// What the camera does with a pixel's viewport point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Projection {
+    Pinhole,
+    /// `lens_u`, `lens_v`: the lens disk's axes scaled by the aperture radius; `focus_scale`:
+    /// focus distance / focal length (how far past the viewport the plane of focus lies).
+    ThinLens {
+        lens_u: Vec3,
+        lens_v: Vec3,
+        focus_scale: f32,
+    },
+    /// Rays along `dir` from the viewport point itself.
+    Orthographic {
+        dir: Vec3,
+    },
 }
 
 /// A camera set up for one image resolution.
@@ -50,6 +108,7 @@ pub struct Camera {
     pixel00: Vec3,
     du: Vec3,
     dv: Vec3,
+    projection: Projection,
     pub width: u32,
     pub height: u32,
 }
@@ -63,7 +122,14 @@ impl Camera {
             && desc.look_at.is_finite()
             && desc.up.is_finite()
             && desc.vfov_degrees.is_finite()
-            && desc.focal_length.is_finite();
+            && desc.focal_length.is_finite()
+            && match desc.lens {
+                Lens::Pinhole => true,
+                Lens::ThinLens { aperture_radius, focus_distance } => {
+                    aperture_radius.is_finite() && focus_distance.is_finite()
+                }
+                Lens::Orthographic { height } => height.is_finite(),
+            };
         if !finite {
             return Err(CameraError::NotFinite);
         }
@@ -80,22 +146,64 @@ impl Camera {
         let w = normalize_robust(offset).ok_or(CameraError::ZeroViewDirection)?;
         let u = normalize_robust(desc.up.cross(w)).ok_or(CameraError::DegenerateUp)?;
         let v = w.cross(u);
-        let viewport_h = 2.0 * (desc.vfov_degrees.to_radians() / 2.0).tan() * desc.focal_length;
+        let (viewport_h, centre, projection) = match desc.lens {
+            Lens::Pinhole => (Self::pinhole_height(desc), desc.look_from - desc.focal_length * w, Projection::Pinhole),
+            Lens::ThinLens { aperture_radius, focus_distance } => {
+                if aperture_radius < 0.0 {
+                    return Err(CameraError::Aperture(aperture_radius));
+                }
+                if focus_distance <= 0.0 {
+                    return Err(CameraError::FocusDistance(focus_distance));
+                }
+                let projection = Projection::ThinLens {
+                    lens_u: u * aperture_radius,
+                    lens_v: v * aperture_radius,
+                    focus_scale: focus_distance / desc.focal_length,
+                };
+                (Self::pinhole_height(desc), desc.look_from - desc.focal_length * w, projection)
+            }
+            Lens::Orthographic { height } => {
+                if height <= 0.0 {
+                    return Err(CameraError::ViewHeight(height));
+                }
+                (height, desc.look_from, Projection::Orthographic { dir: -w })
+            }
+        };
         let viewport_w = viewport_h * (width as f32 / height as f32);
         let viewport_u = viewport_w * u;
         let viewport_v = -viewport_h * v;
         let du = viewport_u / width as f32;
         let dv = viewport_v / height as f32;
-        let upper_left = desc.look_from - desc.focal_length * w - viewport_u / 2.0 - viewport_v / 2.0;
-        Ok(Self { origin: desc.look_from, pixel00: upper_left + 0.5 * (du + dv), du, dv, width, height })
+        let upper_left = centre - viewport_u / 2.0 - viewport_v / 2.0;
+        Ok(Self { origin: desc.look_from, pixel00: upper_left + 0.5 * (du + dv), du, dv, projection, width, height })
+    }
+
+    fn pinhole_height(desc: &CameraDesc) -> f32 {
+        2.0 * (desc.vfov_degrees.to_radians() / 2.0).tan() * desc.focal_length
+    }
+
+    /// Whether [`Camera::generate_ray`] uses its `aperture` sample.
+    #[inline(always)]
+    pub fn needs_aperture_sample(&self) -> bool {
+        matches!(self.projection, Projection::ThinLens { .. })
     }
 
     /// The ray through pixel `(x, y)` offset by `jitter ∈ [0,1)²` within the pixel
-    /// (`(0.5, 0.5)` is the pixel centre). The direction is unit length.
+    /// (`(0.5, 0.5)` is the pixel centre); `aperture ∈ [0,1)²` picks the point on a thin lens
+    /// (other cameras ignore it). The direction is unit length.
     #[inline(always)]
-    pub fn generate_ray(&self, x: u32, y: u32, jitter: Vec2) -> Ray {
+    pub fn generate_ray(&self, x: u32, y: u32, jitter: Vec2, aperture: Vec2) -> Ray {
         let target = self.pixel00 + (x as f32 + jitter.x - 0.5) * self.du + (y as f32 + jitter.y - 0.5) * self.dv;
-        Ray::new(self.origin, (target - self.origin).normalize())
+        match self.projection {
+            Projection::Pinhole => Ray::new(self.origin, (target - self.origin).normalize()),
+            Projection::ThinLens { lens_u, lens_v, focus_scale } => {
+                let focus = self.origin + (target - self.origin) * focus_scale;
+                let disk = square_to_uniform_disk(aperture);
+                let origin = self.origin + disk.x * lens_u + disk.y * lens_v;
+                Ray::new(origin, (focus - origin).normalize())
+            }
+            Projection::Orthographic { dir } => Ray::new(target, dir),
+        }
     }
 }
 
@@ -110,19 +218,20 @@ mod tests {
             up: Vec3::Y,
             vfov_degrees: 40.0,
             focal_length: 1.0,
+            lens: Lens::Pinhole,
         }
     }
 
     #[test]
     fn centre_ray_looks_at_the_target_and_corners_span_the_fov() {
         let cam = Camera::new(&cornell(), 100, 100).unwrap();
-        let centre = cam.generate_ray(50, 50, Vec2::ZERO);
+        let centre = cam.generate_ray(50, 50, Vec2::ZERO, Vec2::ZERO);
         assert!((centre.dir - Vec3::Z).length() < 1e-4, "{:?}", centre.dir);
         // Top edge centre: elevation is vfov/2 = 20°.
-        let top = cam.generate_ray(50, 0, Vec2::new(0.0, 0.0));
+        let top = cam.generate_ray(50, 0, Vec2::new(0.0, 0.0), Vec2::ZERO);
         assert!((top.dir.y.asin().to_degrees() - 20.0).abs() < 0.01, "{:?}", top.dir);
         // The camera's u axis is up × w = -x here, so the left of the image is +x.
-        let left = cam.generate_ray(0, 50, Vec2::new(0.0, 0.0));
+        let left = cam.generate_ray(0, 50, Vec2::new(0.0, 0.0), Vec2::ZERO);
         assert!(left.dir.x > 0.0);
     }
 

@@ -9,13 +9,14 @@ pub mod instance;
 pub mod light;
 pub mod material;
 pub mod math;
+pub mod medium;
 mod primitive_store;
 pub mod sampling;
 pub mod scene;
 pub mod shape;
 pub mod texture;
 
-pub use camera::{Camera, CameraDesc};
+pub use camera::{Camera, CameraDesc, Lens};
 pub use instance::{GroupId, ShapeGroup};
 pub use scene::{MaterialId, Scene, SceneBuilder};
 pub mod integrator;

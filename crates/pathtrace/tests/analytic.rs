@@ -29,6 +29,7 @@ fn render_direct(strategy: Strategy) -> pathtrace::film::RegionEstimate {
         up: Vec3::Y,
         vfov_degrees: 30.0,
         focal_length: 1.0,
+        ..Default::default()
     });
     let mut s = RenderSettings { width: 32, height: 32, spp: 256, seed: 3, ..Default::default() };
     s.path.strategy = strategy;

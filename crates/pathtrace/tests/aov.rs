@@ -28,6 +28,7 @@ fn camera() -> CameraDesc {
         up: Vec3::Y,
         vfov_degrees: 30.0,
         focal_length: 1.0,
+        ..Default::default()
     }
 }
 
@@ -61,7 +62,7 @@ fn missed_pixels_are_black_and_depth_follows_the_ray_sphere_distance() {
     let mut hits = 0;
     for y in 0..SIZE {
         for x in 0..SIZE {
-            let ray = cam.generate_ray(x, y, pathtrace::math::Vec2::splat(0.5));
+            let ray = cam.generate_ray(x, y, pathtrace::math::Vec2::splat(0.5), pathtrace::math::Vec2::splat(0.5));
             let b = ray.origin.dot(ray.dir);
             let disc = b * b - (ray.origin.length_squared() - 1.0);
             let depth = aovs.depth.get(x, y).r;

@@ -22,6 +22,7 @@ fn furnace(material: Material, emission: f32, strategy: Strategy, spp: u32) -> p
         up: Vec3::Y,
         vfov_degrees: 90.0,
         focal_length: 1.0,
+        ..Default::default()
     });
     let scene = Arc::new(b.build().unwrap());
     let mut s = RenderSettings { width: 24, height: 24, spp, seed: 7, ..Default::default() };

@@ -32,6 +32,7 @@ fn camera() -> CameraDesc {
         up: Vec3::Z,
         vfov_degrees: 84.0,
         focal_length: 1.0,
+        ..Default::default()
     }
 }
 
@@ -57,7 +58,7 @@ fn expected(cam: &Camera, x: u32, y: u32) -> ([f64; 3], usize) {
     for j in 0..n {
         for i in 0..n {
             let jitter = Vec2::new((i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32);
-            let d = cam.generate_ray(x, y, jitter).dir;
+            let d = cam.generate_ray(x, y, jitter, pathtrace::math::Vec2::splat(0.5)).dir;
             let cos = (-d.y as f64).clamp(-1.0, 1.0);
             let theta = cos.acos();
             lo = lo.min(theta);

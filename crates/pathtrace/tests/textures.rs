@@ -35,6 +35,7 @@ fn square_scene(material: Material, texture: Option<(ColourSlot, Texture)>) -> p
         up: Vec3::Y,
         vfov_degrees: 90.0,
         focal_length: 1.0,
+        ..Default::default()
     });
     b.build().unwrap()
 }

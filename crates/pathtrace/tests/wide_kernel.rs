@@ -85,6 +85,7 @@ fn cornell(meshes: bool) -> Scene {
         up: Vec3::Y,
         vfov_degrees: 40.0,
         focal_length: 1.0,
+        ..Default::default()
     });
     b.build().unwrap()
 }
@@ -182,6 +183,7 @@ fn furnace_box(n: u32, albedo: f32, emission: f32) -> Scene {
         up: Vec3::Y,
         vfov_degrees: 90.0,
         focal_length: 1.0,
+        ..Default::default()
     });
     b.build().unwrap()
 }

@@ -262,6 +262,7 @@ fn mesh_scene(triangles: usize) -> Result<LoadedScene, CliError> {
         up: Vec3::Y,
         vfov_degrees: 40.0,
         focal_length: 1.0,
+        ..Default::default()
     });
     let scene = b.build().map_err(build)?;
     let defaults = pathtrace_scene::RenderDefaults {

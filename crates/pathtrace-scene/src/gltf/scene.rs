@@ -24,14 +24,8 @@ fn matrix_step(m: &Mat4) -> TransformStep {
 /// Converts the document's default scene (or its first, or every root node when it has none).
 pub fn convert(o: &Opened, file_name: &str, camera_name: Option<&str>) -> Result<(SceneFile, Vec<String>), String> {
     // Replaced by the scene's camera when it has one: the glTF default view, from +z.
-    let camera = CameraSection {
-        look_from: n3(Vec3::new(0.0, 0.0, 3.0)),
-        look_at: n3(Vec3::ZERO),
-        up: Some(n3(Vec3::Y)),
-        vfov: None,
-        focal_length: None,
-        aspect: None,
-    };
+    let camera =
+        CameraSection { up: Some(n3(Vec3::Y)), ..CameraSection::pinhole(n3(Vec3::new(0.0, 0.0, 3.0)), n3(Vec3::ZERO)) };
     let file = SceneFile {
         render: Default::default(),
         camera,
@@ -149,12 +143,10 @@ impl Converter<'_> {
             }
         };
         self.file.camera = CameraSection {
-            look_from: n3(eye),
-            look_at: n3(eye + forward),
             up: Some(n3(up)),
             vfov: Some(num(vfov)),
-            focal_length: None,
             aspect: aspect.map(num),
+            ..CameraSection::pinhole(n3(eye), n3(eye + forward))
         };
     }
 

@@ -5,8 +5,8 @@ use super::parse::{Element, XmlSource};
 use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
     CameraSection, Colour, EmissionDef, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, LookAtDef, MaterialDef,
-    MaterialKind, MeshNormals, Num, Num3, ObjectDef, RenderSection, SamplerName, SceneFile, ShapeDef, TransformStep,
-    Triple,
+    MaterialKind, MeshNormals, Num, Num3, ObjectDef, ProjectionName, RenderSection, SamplerName, SceneFile, ShapeDef,
+    TransformStep, Triple,
 };
 use crate::native::{ItemPath, SceneError};
 use pathtrace::math::{Transform, Vec3};
@@ -445,9 +445,15 @@ impl<'a> Conv<'a, '_> {
 
     fn sensor(&mut self, e: &'a Element, render: &mut RenderSection) -> R<CameraSection> {
         let ty = self.req_attr(e, "type")?;
-        if ty != "perspective" {
-            self.warn(e, &format!("sensor `{ty}` is not supported: using a pinhole perspective camera"));
-        }
+        let projection = match ty {
+            "perspective" => ProjectionName::Perspective,
+            "thinlens" => ProjectionName::Thinlens,
+            "orthographic" => ProjectionName::Orthographic,
+            other => {
+                self.warn(e, &format!("sensor `{other}` is not supported: using a pinhole perspective camera"));
+                ProjectionName::Perspective
+            }
+        };
         let (mut width, mut height) = (768u32, 576u32);
         if let Some(film) = e.children.iter().find(|c| c.tag == "film") {
             let film = self.deref(film)?;
@@ -531,14 +537,37 @@ impl<'a> Conv<'a, '_> {
             }
         }
         let up = t.vector(Vec3::Y);
-        Ok(CameraSection {
-            look_from: n3(from),
-            look_at: n3(at),
-            up: Some(n3(up)),
-            vfov: Some(num(vfov)),
-            focal_length: None,
-            aspect: None,
-        })
+        let mut camera =
+            CameraSection { up: Some(n3(up)), vfov: Some(num(vfov)), ..CameraSection::pinhole(n3(from), n3(at)) };
+        match projection {
+            ProjectionName::Perspective => {}
+            ProjectionName::Thinlens => {
+                // Mitsuba requires `aperture_radius`; `focus_distance` defaults to its far clip.
+                let Some(radius) = self.float(e, "aperture_radius")? else {
+                    return Err(self.src.error(e.offset, "a thinlens sensor needs `aperture_radius`"));
+                };
+                let focus = self.float(e, "focus_distance")?.unwrap_or(1e4);
+                if radius < 0.0 || focus <= 0.0 {
+                    return Err(self
+                        .src
+                        .error(e.offset, "thinlens `aperture_radius` must be ≥ 0 and `focus_distance` positive"));
+                }
+                camera.projection = Some(projection);
+                camera.aperture_radius = Some(num(radius));
+                camera.focus_distance = Some(num(focus));
+            }
+            ProjectionName::Orthographic => {
+                // Mitsuba's orthographic view spans camera-space x ∈ [−1, 1] and
+                // y ∈ [−1/aspect, 1/aspect], scaled by `to_world`.
+                let height = 2.0 * t.vector(Vec3::Y).length() as f64 * h / w;
+                if !(height > 0.0 && height.is_finite()) {
+                    return Err(self.src.error(e.offset, "orthographic sensor: `to_world` collapses the view"));
+                }
+                camera.projection = Some(projection);
+                camera.height = Some(num(height));
+            }
+        }
+        Ok(camera)
     }
 
     /// The film's `<rfilter>`; without one, Mitsuba's default: a gaussian of stddev 0.5.

@@ -6,7 +6,8 @@ use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
 use super::model::{
     CameraSection, Colour, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind,
-    MeshNormals, MetalDef, Num, ObjectDef, RenderSection, RoughnessDef, SceneFile, ShapeDef, TextureDef, UvRows,
+    MeshNormals, MetalDef, Num, ObjectDef, ProjectionName, RenderSection, RoughnessDef, SceneFile, ShapeDef,
+    TextureDef, UvRows,
 };
 use super::transform::compose;
 use super::values::vec3;
@@ -22,7 +23,7 @@ use pathtrace::scene::{validate_material, BuildError};
 use pathtrace::shape::TriangleMesh;
 use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
 use pathtrace::texture::{Bitmap, Checkerboard, ColourSlot, FilterType, Texture, UvTransform, WrapMode};
-use pathtrace::{Camera, CameraDesc, GroupId, MaterialId, SceneBuilder, ShapeGroup};
+use pathtrace::{Camera, CameraDesc, GroupId, Lens, MaterialId, SceneBuilder, ShapeGroup};
 use std::collections::BTreeMap;
 
 /// Builds the scene a file describes; `src` locates errors and resolves relative mesh paths.
@@ -50,7 +51,7 @@ pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneEr
     for (i, l) in file.lights.iter().enumerate() {
         ctx.add_light(l, &root.field("lights").index(i))?;
     }
-    let camera = camera_desc(&file.camera);
+    let camera = camera_desc(&file.camera, src)?;
     Camera::new(&camera, defaults.width, defaults.height)
         .map_err(|e| src.error_at(&root.field("camera"), format!("invalid camera: {e}")))?;
     ctx.b.camera(camera);
@@ -68,14 +69,49 @@ pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneEr
     Ok(LoadedScene { scene, defaults })
 }
 
-fn camera_desc(c: &CameraSection) -> CameraDesc {
-    CameraDesc {
-        look_from: vec3(&c.look_from),
-        look_at: vec3(&c.look_at),
+fn camera_desc(c: &CameraSection, src: &impl Locate) -> Result<CameraDesc, SceneError> {
+    let at = |field: &str| ItemPath::root().field("camera").field(field);
+    let projection = c.projection.unwrap_or_default();
+    // Each projection's own fields, refused on the others so a typo'd `type` is not silent.
+    let own: &[&str] = match projection {
+        ProjectionName::Perspective => &[],
+        ProjectionName::Thinlens => &["aperture_radius", "focus_distance"],
+        ProjectionName::Orthographic => &["height"],
+    };
+    for (name, v) in
+        [("aperture_radius", c.aperture_radius), ("focus_distance", c.focus_distance), ("height", c.height)]
+    {
+        if v.is_some() && !own.contains(&name) {
+            let kind = if name == "height" { "orthographic" } else { "thinlens" };
+            return Err(src.error_at(&at(name), format!("`{name}` belongs to a `type = \"{kind}\"` camera")));
+        }
+    }
+    let look_from = vec3(&c.look_from);
+    let look_at = vec3(&c.look_at);
+    let lens = match projection {
+        ProjectionName::Perspective => Lens::Pinhole,
+        ProjectionName::Thinlens => {
+            let Some(aperture_radius) = c.aperture_radius else {
+                return Err(src.error_at(&at("type"), "a thinlens camera needs `aperture_radius` (scene units)"));
+            };
+            let focus_distance = c.focus_distance.map_or((look_at - look_from).length(), |v| v.f32());
+            Lens::ThinLens { aperture_radius: aperture_radius.f32(), focus_distance }
+        }
+        ProjectionName::Orthographic => {
+            let Some(height) = c.height else {
+                return Err(src.error_at(&at("type"), "an orthographic camera needs `height` (scene units)"));
+            };
+            Lens::Orthographic { height: height.f32() }
+        }
+    };
+    Ok(CameraDesc {
+        look_from,
+        look_at,
         up: c.up.as_ref().map_or(Vec3::Y, vec3),
         vfov_degrees: c.vfov.map_or(CameraSection::DEFAULT_VFOV, |v| v.f32()),
         focal_length: c.focal_length.map_or(CameraSection::DEFAULT_FOCAL_LENGTH, |v| v.f32()),
-    }
+        lens,
+    })
 }
 
 /// Render settings with defaults filled in. With `camera.aspect` (= width / height) and not both

@@ -160,10 +160,26 @@ impl RenderSection {
     pub const MAX_SIZE: u32 = 32768;
 }
 
-/// `[camera]`: a pinhole camera.
+/// `[camera] type`: how the camera projects the scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProjectionName {
+    /// A pinhole (everything sharp); Mitsuba's `perspective`.
+    #[default]
+    Perspective,
+    /// A thin lens with `aperture_radius` and `focus_distance` (depth of field); Mitsuba's `thinlens`.
+    Thinlens,
+    /// Parallel rays from a `height`-high view; Mitsuba's `orthographic`.
+    Orthographic,
+}
+
+/// `[camera]`: a pinhole, thin-lens or orthographic camera.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSection {
+    /// `perspective` (default), `thinlens` or `orthographic`.
+    #[serde(default, rename = "type", skip_serializing_if = "Option::is_none")]
+    pub projection: Option<ProjectionName>,
     /// Eye position.
     pub look_from: Num3,
     /// Point looked at (centre of the image).
@@ -180,9 +196,36 @@ pub struct CameraSection {
     /// Width / height; used only when `render.width` and `render.height` are not both given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub aspect: Option<Num>,
+    /// `thinlens`: radius of the lens disk in scene units (required; 0 is a pinhole).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aperture_radius: Option<Num>,
+    /// `thinlens`: distance from the lens to the plane in focus, along the view direction
+    /// (default: the distance from `look_from` to `look_at`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub focus_distance: Option<Num>,
+    /// `orthographic`: height of the view in scene units (required); its width follows the
+    /// image's aspect.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<Num>,
 }
 
 impl CameraSection {
+    /// A pinhole camera at `look_from` looking at `look_at`, every other field at its default.
+    pub fn pinhole(look_from: Num3, look_at: Num3) -> Self {
+        Self {
+            projection: None,
+            look_from,
+            look_at,
+            up: None,
+            vfov: None,
+            focal_length: None,
+            aspect: None,
+            aperture_radius: None,
+            focus_distance: None,
+            height: None,
+        }
+    }
+
     /// Default vertical field of view in degrees.
     pub const DEFAULT_VFOV: f32 = 40.0;
     /// Default focal length.

@@ -56,7 +56,7 @@ pub fn first_hit_aovs(
 }
 
 fn first_hit(scene: &Scene, cam: &Camera, x: u32, y: u32) -> Option<HitSample> {
-    let ray = cam.generate_ray(x, y, Vec2::splat(0.5));
+    let ray = cam.generate_ray(x, y, Vec2::splat(0.5), Vec2::splat(0.5));
     let hit = scene.intersect(&ray, f32::INFINITY)?;
     let it = scene.interaction(&ray, &hit);
     let wo_world = -ray.dir;

@@ -102,8 +102,10 @@ pub(crate) fn render_tile_lanes<const N: usize>(
             let Some(next) = queue.pop() else { break };
             // The filter picks where in (or around) the pixel the ray goes and weights the
             // sample by f/pdf (exactly 1 for box and tent): see film/filter.rs.
-            let fs = job.filter.sample(samplers.start(i, next.x, next.y, next.sample));
-            let ray = job.camera.generate_ray(next.x, next.y, fs.jitter);
+            let (u_filter, u_aperture) =
+                samplers.start_camera(i, next.x, next.y, next.sample, job.camera.needs_aperture_sample());
+            let fs = job.filter.sample(u_filter);
+            let ray = job.camera.generate_ray(next.x, next.y, fs.jitter, u_aperture);
             out.stats.camera_rays += 1;
             paths.start(i, next.pixel, ray, fs.weight);
             if max_depth == 0 {

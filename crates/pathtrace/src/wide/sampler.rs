@@ -61,16 +61,25 @@ impl<const N: usize> LaneSamplers<N> {
 
     /// Starts sample `index` of pixel `(x, y)` in lane `i` and returns its first 2D point (the
     /// pixel filter's).
+    #[cfg(test)]
     pub fn start(&mut self, i: usize, x: u32, y: u32, index: u32) -> Vec2 {
+        self.start_camera(i, x, y, index, false).0
+    }
+
+    /// [`LaneSamplers::start`], also drawing the camera's aperture point (the sample's second 2D
+    /// point) when `aperture` is set; without it the aperture point is the lens centre and no
+    /// number is drawn, so pinhole renders keep their sequences.
+    pub fn start_camera(&mut self, i: usize, x: u32, y: u32, index: u32, aperture: bool) -> (Vec2, Vec2) {
         let s = &mut self.starter;
         s.start(x, y, index);
         let u = s.next_2d();
+        let lens = if aperture { s.next_2d() } else { Vec2::splat(0.5) };
         if self.mode == Mode::PerLane {
             self.scalar[i].clone_from(s);
         } else {
             (self.round_hash[i], self.index[i], self.dimension[i], self.state[i], self.inc[i]) = s.lane_state();
         }
-        u
+        (u, lens)
     }
 
     /// The next number of every lane in `mask` (other lanes' values are meaningless and their
