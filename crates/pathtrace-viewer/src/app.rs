@@ -12,9 +12,8 @@ use crate::ViewerError;
 use eframe::egui::{self, Key, PointerButton};
 use eframe::{egui_glow, glow};
 use pathtrace::film::{Film, Image};
-use pathtrace::integrator::{first_hit_aovs, FirstHitAovs};
 use pathtrace::metrics;
-use pathtrace::CameraDesc;
+use pathtrace::{CameraDesc, RenderSettings};
 use pathtrace_scene::image_io::write_image;
 use pathtrace_scene::native::model::Num;
 use pathtrace_scene::native::{self, Format};
@@ -75,7 +74,6 @@ pub struct ViewerApp {
     picture: Arc<Mutex<GlPicture>>,
     uploaded: Option<Stamp>,
     uploaded_at: Option<Instant>,
-    aovs: Option<(CameraDesc, FirstHitAovs)>,
     stats: Stats,
     capture: Arc<Mutex<Capture>>,
     screenshot_done: bool,
@@ -89,7 +87,9 @@ impl ViewerApp {
         let gl = cc.gl.as_ref().ok_or_else(|| ViewerError::NoDisplay("no OpenGL context".into()))?;
         let picture = GlPicture::new(gl).map_err(ViewerError::NoDisplay)?;
         let key = RenderKey::new(config.camera, &config.settings);
-        let acc = Accumulation::start(Arc::clone(&config.scene), config.settings.clone(), key)
+        // Feature buffers ride along with the render, for the feature views (and denoising).
+        let settings = RenderSettings { features: true, ..config.settings.clone() };
+        let acc = Accumulation::start(Arc::clone(&config.scene), settings, key)
             .map_err(|e| ViewerError::Render(e.to_string()))?;
         let state = ViewState { key, tone: config.tone, view: ViewMode::Render, zoom: 1.0, offset: (0.0, 0.0) };
         Ok(Self {
@@ -100,7 +100,6 @@ impl ViewerApp {
             picture: Arc::new(Mutex::new(picture)),
             uploaded: None,
             uploaded_at: None,
-            aovs: None,
             stats: Stats::default(),
             capture: Arc::new(Mutex::new(Capture::default())),
             screenshot_done: false,
@@ -295,17 +294,11 @@ impl ViewerApp {
         let image = self.acc.image();
         let needs_film = self.state.view == ViewMode::StdError;
         let film: Option<Film> = needs_film.then(|| self.acc.film());
-        if self.state.view.needs_aovs() && self.aovs.as_ref().is_none_or(|(c, _)| *c != self.state.key.camera) {
-            let s = &self.config.settings;
-            match first_hit_aovs(&self.config.scene, &self.state.key.camera, s.width, s.height) {
-                Ok(a) => self.aovs = Some((self.state.key.camera, a)),
-                Err(e) => self.say(format!("no first-hit view: {e}")),
-            }
-        }
+        let features = self.state.view.needs_aovs().then(|| self.acc.features()).flatten();
         let src = ViewSources {
             image: &image,
             film: film.as_ref(),
-            aovs: self.aovs.as_ref().map(|(_, a)| a),
+            features: features.as_ref(),
             reference: self.config.reference.as_ref(),
         };
         let shown = view_image(self.state.view, &src).unwrap_or_else(|| image.clone());
