@@ -75,6 +75,11 @@ pub struct ViewerApp {
     uploaded: Option<Stamp>,
     uploaded_at: Option<Instant>,
     stats: Stats,
+    /// The denoised snapshot shown instead of the live render (`O` toggles), and whether it is
+    /// on the GPU yet.
+    denoised: Option<(Image, bool)>,
+    /// Loaded on first use: Open Image Denoise is optional.
+    denoiser: Option<pathtrace_denoise::Denoiser>,
     capture: Arc<Mutex<Capture>>,
     screenshot_done: bool,
     help: bool,
@@ -101,6 +106,8 @@ impl ViewerApp {
             uploaded: None,
             uploaded_at: None,
             stats: Stats::default(),
+            denoised: None,
+            denoiser: None,
             capture: Arc::new(Mutex::new(Capture::default())),
             screenshot_done: false,
             help: false,
@@ -184,7 +191,7 @@ impl ViewerApp {
         for a in actions {
             self.act(a);
         }
-        let (save_image, save_camera, pause, help, quit, bar, diff) = ctx.input(|i| {
+        let (save_image, save_camera, pause, help, quit, bar, diff, denoise) = ctx.input(|i| {
             (
                 i.modifiers.command && i.key_pressed(Key::S),
                 !i.modifiers.command && i.key_pressed(Key::C),
@@ -193,8 +200,12 @@ impl ViewerApp {
                 i.key_pressed(Key::Escape),
                 i.key_pressed(Key::H),
                 i.key_pressed(Key::G),
+                i.key_pressed(Key::O),
             )
         });
+        if denoise {
+            self.toggle_denoised();
+        }
         if diff && has_reference {
             self.state.view =
                 if self.state.view == ViewMode::Difference { ViewMode::Render } else { ViewMode::Difference };
@@ -222,6 +233,35 @@ impl ViewerApp {
             } else {
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
+        }
+    }
+
+    /// Shows the current snapshot denoised (Open Image Denoise with the albedo and normal
+    /// buffers), or goes back to the live render.
+    fn toggle_denoised(&mut self) {
+        if self.denoised.take().is_some() {
+            self.uploaded = None;
+            return;
+        }
+        let Some(features) = self.acc.features() else { return };
+        if self.denoiser.is_none() {
+            match pathtrace_denoise::Denoiser::new() {
+                Ok(d) => self.denoiser = Some(d),
+                Err(e) => return self.say(format!("cannot denoise: {e}")),
+            }
+        }
+        let Some(denoiser) = &self.denoiser else { return };
+        let start = Instant::now();
+        match denoiser.denoise(&self.acc.image(), &features.albedo(), &features.normal()) {
+            Ok(image) => {
+                let spp = self.acc.progress().spp_done;
+                self.denoised = Some((image, false));
+                self.say(format!(
+                    "denoised the {spp}-spp snapshot in {:.2} s (O: back to the live render)",
+                    start.elapsed().as_secs_f64()
+                ));
+            }
+            Err(e) => self.say(format!("cannot denoise: {e}")),
         }
     }
 
@@ -280,6 +320,16 @@ impl ViewerApp {
         };
         let final_image = self.acc.is_done();
         let Some(gl) = gl else { return false };
+        if let Some((image, uploaded)) = &mut self.denoised {
+            if !*uploaded {
+                let rgb: Vec<f32> = image.pixels.iter().flat_map(|p| [p.r, p.g, p.b]).collect();
+                if let Ok(mut pic) = self.picture.lock() {
+                    pic.upload(gl, image.width, image.height, &rgb);
+                }
+                *uploaded = true;
+            }
+            return final_image;
+        }
         if self.uploaded == Some(stamp) {
             return final_image;
         }

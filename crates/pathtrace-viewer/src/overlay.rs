@@ -3,7 +3,7 @@
 use pathtrace::Progress;
 
 /// Keyboard and mouse shortcuts: (keys, what they do). Listed by F1 / ? and in docs/viewer.md.
-pub const SHORTCUTS: [(&str, &str); 22] = [
+pub const SHORTCUTS: [(&str, &str); 23] = [
     ("left drag / arrows", "orbit the camera around its look-at point"),
     ("right drag", "pan the camera (eye and look-at move together)"),
     ("scroll", "zoom: change the field of view"),
@@ -16,6 +16,7 @@ pub const SHORTCUTS: [(&str, &str); 22] = [
     ("T", "tone map: clamp / aces"),
     ("V", "view: render, std. error, albedo, normals, depth, difference"),
     ("G", "toggle the difference image (with --reference)"),
+    ("O", "denoise the current snapshot (Open Image Denoise, if installed) / back to the live render"),
     ("Ctrl + scroll", "magnify the picture (nearest pixel)"),
     ("middle drag", "move the picture"),
     ("1", "picture at one pixel per screen pixel, centred"),
