@@ -12,8 +12,9 @@ use std::path::{Path, PathBuf};
 /// The file names tried in each folder (OIDN 2's soname first).
 pub const LIBRARY_NAMES: [&str; 2] = ["libOpenImageDenoise.so.2", "libOpenImageDenoise.so"];
 
-/// The library files that would be tried, in order (only existing ones, except the bare
-/// soname, which the system's loader resolves).
+/// The library files that would be tried, in order: `OIDN_DIR`'s two names when it is set;
+/// otherwise the bare soname (which the system's loader resolves) and the `pyoidn` copies that
+/// exist.
 pub fn candidates() -> Vec<PathBuf> {
     if let Some(d) = std::env::var_os("OIDN_DIR") {
         let lib = Path::new(&d).join("lib");

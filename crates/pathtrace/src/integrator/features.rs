@@ -31,18 +31,20 @@ pub(super) fn record_features<const N: usize>(job: &LaneJob, paths: &mut Paths<N
         let wo = wo.lane(i);
         // Face the viewer, as the estimator does for two-sided materials.
         let n = if surface.n_geometric.dot(wo) < 0.0 { -surface.n_shading } else { surface.n_shading };
+        let class = &job.lanes.classes[s.material[i] as usize];
         let it = Interaction {
             surface,
             material: &materials[s.material[i] as usize],
             material_id: s.material[i],
             light: s.light[i],
         };
-        let material = if job.lanes.classes[s.material[i] as usize].textured {
-            scene.textured_material(&it)
-        } else {
-            *it.material
+        let material = if class.textured { scene.textured_material(&it) } else { *it.material };
+        let albedo = match material {
+            // A Lambertian surface's directional albedo is its albedo (the common case: no
+            // BSDF sampling needed).
+            Material::Lambertian(l) => l.albedo,
+            _ => directional_albedo(&material, Frame::from_normal(n).to_local(wo)),
         };
-        let albedo = directional_albedo(&material, Frame::from_normal(n).to_local(wo));
         let tint = paths.feature_tint[i];
         let feature = &mut paths.feature[i];
         feature.normal = n;
