@@ -272,6 +272,48 @@ pub struct RenderArgs {
     /// Also write timing and ray statistics as JSON to this file
     #[arg(long, value_name = "FILE")]
     pub stats_json: Option<PathBuf>,
+    /// Feature buffers to save with the image, averaged over its samples: albedo, normal, depth
+    /// (comma separated). EXR output gets them as channels albedo.R/G/B, N.X/Y/Z and Z; PNG and
+    /// PFM output as sibling files NAME.albedo.exr (.pfm for PFM output), …
+    #[arg(long, value_name = "LIST", value_delimiter = ',', value_parser = parse_from_str::<Aov>)]
+    pub aov: Vec<Aov>,
+    /// Denoise the image with Intel Open Image Denoise 2 (found at run time: see
+    /// docs/denoising.md), guided by the albedo and normal buffers
+    #[arg(long)]
+    pub denoise: bool,
+    /// With --denoise, also write the noisy image as NAME.noisy.EXT
+    #[arg(long, requires = "denoise")]
+    pub keep_noisy: bool,
+}
+
+/// A feature buffer `render --aov` can save.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Aov {
+    Albedo,
+    Normal,
+    Depth,
+}
+
+impl Aov {
+    pub const ALL: [Aov; 3] = [Aov::Albedo, Aov::Normal, Aov::Depth];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Aov::Albedo => "albedo",
+            Aov::Normal => "normal",
+            Aov::Depth => "depth",
+        }
+    }
+}
+
+impl std::str::FromStr for Aov {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Aov::ALL
+            .into_iter()
+            .find(|a| a.name() == s.trim())
+            .ok_or_else(|| format!("unknown feature buffer '{s}' (expected albedo, normal or depth)"))
+    }
 }
 
 #[derive(Debug, Args)]

@@ -1,5 +1,6 @@
 //! `pathtrace`: render scenes, measure speed, watch renders live.
 
+mod aov_output;
 mod args;
 mod bench;
 mod bench_bvh;

@@ -1,11 +1,12 @@
 //! `pathtrace.Film`: a finished (or cancelled) render's accumulation buffer, with numpy views of
-//! its image, per-pixel variance and sample counts, and writing to PNG/EXR/PFM as the CLI does.
+//! its image, per-pixel variance and sample counts, its feature buffers (with `aov=True`) and
+//! their denoised image, and writing to PNG/EXR/PFM as the CLI does.
 
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray2, PyArray3};
-use pathtrace::film::{Image, ToneMap, ToneMapSettings};
+use pathtrace::film::{FeatureBuffers, Image, ToneMap, ToneMapSettings};
 use pathtrace_scene::image_io::{write_image, ImageFormat};
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 
@@ -13,11 +14,18 @@ use std::path::PathBuf;
 #[pyclass(frozen, module = "pathtrace")]
 pub struct Film {
     film: pathtrace::film::Film,
+    features: Option<FeatureBuffers>,
 }
 
-impl From<pathtrace::film::Film> for Film {
-    fn from(film: pathtrace::film::Film) -> Self {
-        Self { film }
+impl Film {
+    pub fn new(film: pathtrace::film::Film, features: Option<FeatureBuffers>) -> Self {
+        Self { film, features }
+    }
+
+    fn features(&self) -> PyResult<&FeatureBuffers> {
+        self.features
+            .as_ref()
+            .ok_or_else(|| PyValueError::new_err("this film has no feature buffers: render with aov=True"))
     }
 }
 
@@ -39,6 +47,35 @@ impl Film {
     /// The estimated variance of each pixel's mean (s²/n per channel), float32 (H, W, 3).
     fn variance<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f32>> {
         image_array(py, &self.film.variance_image())
+    }
+
+    /// Mean albedo of the first non-specular surface seen, float32 (H, W, 3) (needs `aov=True`).
+    fn albedo<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        Ok(image_array(py, &self.features()?.albedo()))
+    }
+
+    /// Mean world-space shading normal there, components in [-1, 1], float32 (H, W, 3).
+    fn normal<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        Ok(image_array(py, &self.features()?.normal()))
+    }
+
+    /// Mean distance from the camera to the first hit (0 where rays escape), float32 (H, W).
+    fn depth<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        let depth = self.features()?.depth();
+        let values: Vec<f32> = depth.pixels.iter().map(|p| p.r).collect();
+        let shape = (depth.height as usize, depth.width as usize);
+        Ok(Array2::from_shape_vec(shape, values).expect("one depth per pixel").into_pyarray(py))
+    }
+
+    /// The image denoised by Intel Open Image Denoise 2 with the albedo and normal buffers,
+    /// float32 (H, W, 3) (needs `aov=True`; the library is found at run time: docs/denoising.md).
+    fn denoise<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        let f = self.features()?;
+        let (image, albedo, normal) = (self.film.image(), f.albedo(), f.normal());
+        let denoised = py
+            .detach(|| pathtrace_denoise::denoise(&image, &albedo, &normal))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        Ok(image_array(py, &denoised))
     }
 
     /// Samples accumulated in each pixel, uint32 (H, W).

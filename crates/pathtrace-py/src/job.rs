@@ -99,7 +99,8 @@ impl RenderJob {
             let window = Instant::now() + POLL;
             let until = deadline.map_or(window, |d| d.min(window));
             if wait_for_end(py, &self.end, until) {
-                return Ok(Some(Film::from(self.outcome().film)));
+                let outcome = self.outcome();
+                return Ok(Some(Film::new(outcome.film, outcome.features)));
             }
             py.check_signals()?;
             if deadline.is_some_and(|d| Instant::now() >= d) {

@@ -1,5 +1,5 @@
 //! The keyword arguments of `render` and `start` (spp, seed, width, height, max_depth, strategy,
-//! sampler, threads), turned into render settings by the same rule as the CLI's options
+//! sampler, threads, aov), turned into render settings by the same rule as the CLI's options
 //! (`RenderDefaults::settings` in the scene crate). Both functions take them as `**options`
 //! and parse them here, so the option list lives in one place (and in the type stubs).
 
@@ -35,6 +35,7 @@ pub fn settings(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<
     // per core; every other option left unset takes the scene's value.
     let mut o = RenderOverrides { seed: Some(0), threads: Some(0), ..RenderOverrides::default() };
     let (mut width, mut height): (Option<u32>, Option<u32>) = (None, None);
+    let mut features = false;
     for (key, v) in options.into_iter().flat_map(|d| d.iter()) {
         let key: String = key.extract()?;
         match key.as_str() {
@@ -46,6 +47,7 @@ pub fn settings(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<
             "strategy" => o.strategy = parse("strategy", value(&key, &v)?)?,
             "sampler" => o.sampler = parse("sampler", value(&key, &v)?)?,
             "threads" => o.threads = Some(value(&key, &v)?),
+            "aov" => features = value(&key, &v)?,
             _ => return Err(PyTypeError::new_err(format!("unexpected keyword argument '{key}'"))),
         }
     }
@@ -59,5 +61,5 @@ pub fn settings(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<
     if width.is_some() || height.is_some() {
         o.size = Some((width.unwrap_or(d.width), height.unwrap_or(d.height)));
     }
-    Ok(d.settings(&o))
+    Ok(RenderSettings { features, ..d.settings(&o) })
 }

@@ -65,7 +65,7 @@ pub fn render(
     if let Some(callback) = &progress {
         callback.call1((Progress::from(outcome.progress),))?;
     }
-    Ok(Film::from(outcome.film))
+    Ok(Film::new(outcome.film, outcome.features))
 }
 
 /// Starts rendering `scene` in the background; see the Python docstring of `pathtrace.start`.

@@ -99,6 +99,42 @@ pub fn write_image(path: &Path, image: &Image, settings: &ToneMapSettings) -> Re
     })
 }
 
+/// One image's channels under the names tools expect, e.g. `["albedo.R", "albedo.G",
+/// "albedo.B"]` or `["Z"]` (a one-name layer takes the image's first channel).
+#[derive(Clone, Copy, Debug)]
+pub struct ExrLayer<'a> {
+    pub names: &'a [&'a str],
+    pub image: &'a Image,
+}
+
+/// Writes `image` as the R, G, B channels of an OpenEXR file with `extra` layers beside them
+/// (feature buffers: `albedo.R/G/B`, `N.X/Y/Z`, `Z`), atomically like [`write_image`]. Every
+/// layer must have the image's size.
+pub fn write_exr_with_layers(path: &Path, image: &Image, extra: &[ExrLayer]) -> Result<(), ImageIoError> {
+    check_writable(path, image, ImageFormat::Exr)?;
+    let mut channels: Vec<(String, Vec<f32>)> = Vec::new();
+    let layers = std::iter::once(ExrLayer { names: &["R", "G", "B"], image }).chain(extra.iter().copied());
+    for layer in layers {
+        check_writable(path, layer.image, ImageFormat::Exr)?;
+        if (layer.image.width, layer.image.height) != (image.width, image.height) {
+            return Err(ImageIoError::PixelCountMismatch {
+                path: path.to_path_buf(),
+                width: image.width,
+                height: image.height,
+                actual: layer.image.pixels.len(),
+            });
+        }
+        for (k, name) in layer.names.iter().enumerate().take(3) {
+            channels.push((name.to_string(), layer.image.pixels.iter().map(|p| p.to_array()[k]).collect()));
+        }
+    }
+    let (w, h) = (image.width as usize, image.height as usize);
+    atomic::write_atomically(path, |out| {
+        exr_codec::encode_channels(out, w, h, channels)
+            .map_err(|source| ImageIoError::Exr { path: path.to_path_buf(), source })
+    })
+}
+
 /// Rejects images that no format can store: empty, inconsistent, or too large.
 fn check_writable(path: &Path, image: &Image, format: ImageFormat) -> Result<(), ImageIoError> {
     if image.is_empty() {

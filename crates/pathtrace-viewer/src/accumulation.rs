@@ -6,7 +6,7 @@
 //! the key, so they never throw samples away. Pausing cancels the session but keeps its film;
 //! resuming starts a continuation with another seed, whose independent samples are merged in.
 
-use pathtrace::film::{Film, Image};
+use pathtrace::film::{FeatureBuffers, Film, Image};
 use pathtrace::integrator::Strategy;
 use pathtrace::render::RenderError;
 use pathtrace::sampling::SamplerKind;
@@ -47,6 +47,8 @@ pub struct Accumulation {
     session: Option<RenderSession>,
     /// Films of finished segments (before a pause) of the current key.
     kept: Option<Film>,
+    /// Feature buffers of the kept segments (averaged over the same samples as `kept`).
+    kept_features: Option<FeatureBuffers>,
     /// Segments started for the current key; each continuation uses seed + segment.
     segment: u64,
     /// Bumped on every restart, so the display knows its texture is stale.
@@ -57,7 +59,17 @@ pub struct Accumulation {
 impl Accumulation {
     /// Starts rendering `scene` through `key` with `base` settings (size, spp, seed, threads).
     pub fn start(scene: Arc<Scene>, base: RenderSettings, key: RenderKey) -> Result<Self, RenderError> {
-        let mut acc = Self { scene, base, key, session: None, kept: None, segment: 0, generation: 0, paused: false };
+        let mut acc = Self {
+            scene,
+            base,
+            key,
+            session: None,
+            kept: None,
+            kept_features: None,
+            segment: 0,
+            generation: 0,
+            paused: false,
+        };
         acc.launch()?;
         Ok(acc)
     }
@@ -89,6 +101,7 @@ impl Accumulation {
         self.key = key;
         self.stop();
         self.kept = None;
+        self.kept_features = None;
         self.segment = 0;
         self.paused = false;
         self.generation += 1;
@@ -140,14 +153,34 @@ impl Accumulation {
     fn stop(&mut self) {
         if let Some(session) = self.session.take() {
             session.cancel();
-            let film = session.wait().film;
+            let outcome = session.wait();
             self.kept = Some(match self.kept.take() {
                 Some(mut kept) => {
-                    kept.merge(&film);
+                    kept.merge(&outcome.film);
                     kept
                 }
-                None => film,
+                None => outcome.film,
             });
+            self.kept_features = match (self.kept_features.take(), outcome.features) {
+                (Some(mut kept), Some(f)) => {
+                    kept.merge(&f);
+                    Some(kept)
+                }
+                (kept, f) => kept.or(f),
+            };
+        }
+    }
+
+    /// The feature buffers so far (when the settings record them), kept segments merged with the
+    /// running one.
+    pub fn features(&self) -> Option<FeatureBuffers> {
+        let running = self.session.as_ref().and_then(RenderSession::features);
+        match (self.kept_features.clone(), running) {
+            (Some(mut kept), Some(f)) => {
+                kept.merge(&f);
+                Some(kept)
+            }
+            (kept, f) => kept.or(f),
         }
     }
 

@@ -13,9 +13,8 @@ use crate::ViewerError;
 use eframe::egui::{self, Key, PointerButton};
 use eframe::{egui_glow, glow};
 use pathtrace::film::{Film, Image};
-use pathtrace::integrator::{first_hit_aovs, FirstHitAovs};
 use pathtrace::metrics;
-use pathtrace::CameraDesc;
+use pathtrace::{CameraDesc, RenderSettings};
 use pathtrace_scene::image_io::write_image;
 use pathtrace_scene::native::model::{Num, ProjectionName};
 use pathtrace_scene::native::{self, Format};
@@ -78,8 +77,12 @@ pub struct ViewerApp {
     picture: Arc<Mutex<GlPicture>>,
     uploaded: Option<Stamp>,
     uploaded_at: Option<Instant>,
-    aovs: Option<(CameraDesc, FirstHitAovs)>,
     stats: Stats,
+    /// The denoised snapshot shown instead of the live render (`O` toggles), and whether it is
+    /// on the GPU yet.
+    denoised: Option<(Image, bool)>,
+    /// Loaded on first use: Open Image Denoise is optional.
+    denoiser: Option<pathtrace_denoise::Denoiser>,
     capture: Arc<Mutex<Capture>>,
     screenshot_done: bool,
     help: bool,
@@ -92,7 +95,9 @@ impl ViewerApp {
         let gl = cc.gl.as_ref().ok_or_else(|| ViewerError::NoDisplay("no OpenGL context".into()))?;
         let picture = GlPicture::new(gl).map_err(ViewerError::NoDisplay)?;
         let key = RenderKey::new(config.camera, &config.settings);
-        let acc = Accumulation::start(Arc::clone(&config.scene), config.settings.clone(), key)
+        // Feature buffers ride along with the render, for the feature views (and denoising).
+        let settings = RenderSettings { features: true, ..config.settings.clone() };
+        let acc = Accumulation::start(Arc::clone(&config.scene), settings, key)
             .map_err(|e| ViewerError::Render(e.to_string()))?;
         let state = ViewState { key, tone: config.tone, view: ViewMode::Render, zoom: 1.0, offset: (0.0, 0.0) };
         Ok(Self {
@@ -103,8 +108,9 @@ impl ViewerApp {
             picture: Arc::new(Mutex::new(picture)),
             uploaded: None,
             uploaded_at: None,
-            aovs: None,
             stats: Stats::default(),
+            denoised: None,
+            denoiser: None,
             capture: Arc::new(Mutex::new(Capture::default())),
             screenshot_done: false,
             help: false,
@@ -206,7 +212,7 @@ impl ViewerApp {
         for a in actions {
             self.act(a);
         }
-        let (save_image, save_camera, pause, help, quit, bar, diff) = ctx.input(|i| {
+        let (save_image, save_camera, pause, help, quit, bar, diff, denoise) = ctx.input(|i| {
             (
                 i.modifiers.command && i.key_pressed(Key::S),
                 !i.modifiers.command && i.key_pressed(Key::C),
@@ -215,8 +221,12 @@ impl ViewerApp {
                 i.key_pressed(Key::Escape),
                 i.key_pressed(Key::H),
                 i.key_pressed(Key::G),
+                i.key_pressed(Key::X),
             )
         });
+        if denoise {
+            self.toggle_denoised();
+        }
         if diff && has_reference {
             self.state.view =
                 if self.state.view == ViewMode::Difference { ViewMode::Render } else { ViewMode::Difference };
@@ -244,6 +254,35 @@ impl ViewerApp {
             } else {
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
+        }
+    }
+
+    /// Shows the current snapshot denoised (Open Image Denoise with the albedo and normal
+    /// buffers), or goes back to the live render.
+    fn toggle_denoised(&mut self) {
+        if self.denoised.take().is_some() {
+            self.uploaded = None;
+            return;
+        }
+        let Some(features) = self.acc.features() else { return };
+        if self.denoiser.is_none() {
+            match pathtrace_denoise::Denoiser::new() {
+                Ok(d) => self.denoiser = Some(d),
+                Err(e) => return self.say(format!("cannot denoise: {e}")),
+            }
+        }
+        let Some(denoiser) = &self.denoiser else { return };
+        let start = Instant::now();
+        match denoiser.denoise(&self.acc.image(), &features.albedo(), &features.normal()) {
+            Ok(image) => {
+                let spp = self.acc.progress().spp_done;
+                self.denoised = Some((image, false));
+                self.say(format!(
+                    "denoised the {spp}-spp snapshot in {:.2} s (O: back to the live render)",
+                    start.elapsed().as_secs_f64()
+                ));
+            }
+            Err(e) => self.say(format!("cannot denoise: {e}")),
         }
     }
 
@@ -312,6 +351,16 @@ impl ViewerApp {
         };
         let final_image = self.acc.is_done();
         let Some(gl) = gl else { return false };
+        if let Some((image, uploaded)) = &mut self.denoised {
+            if !*uploaded {
+                let rgb: Vec<f32> = image.pixels.iter().flat_map(|p| [p.r, p.g, p.b]).collect();
+                if let Ok(mut pic) = self.picture.lock() {
+                    pic.upload(gl, image.width, image.height, &rgb);
+                }
+                *uploaded = true;
+            }
+            return final_image;
+        }
         if self.uploaded == Some(stamp) {
             return final_image;
         }
@@ -326,17 +375,11 @@ impl ViewerApp {
         let image = self.acc.image();
         let needs_film = self.state.view == ViewMode::StdError;
         let film: Option<Film> = needs_film.then(|| self.acc.film());
-        if self.state.view.needs_aovs() && self.aovs.as_ref().is_none_or(|(c, _)| *c != self.state.key.camera) {
-            let s = &self.config.settings;
-            match first_hit_aovs(&self.config.scene, &self.state.key.camera, s.width, s.height) {
-                Ok(a) => self.aovs = Some((self.state.key.camera, a)),
-                Err(e) => self.say(format!("no first-hit view: {e}")),
-            }
-        }
+        let features = self.state.view.needs_aovs().then(|| self.acc.features()).flatten();
         let src = ViewSources {
             image: &image,
             film: film.as_ref(),
-            aovs: self.aovs.as_ref().map(|(_, a)| a),
+            features: features.as_ref(),
             reference: self.config.reference.as_ref(),
         };
         let shown = view_image(self.state.view, &src).unwrap_or_else(|| image.clone());

@@ -3,7 +3,7 @@
 use pathtrace::Progress;
 
 /// Keyboard and mouse shortcuts: (keys, what they do). Listed by F1 / ? and in docs/viewer.md.
-pub const SHORTCUTS: [(&str, &str); 25] = [
+pub const SHORTCUTS: [(&str, &str); 26] = [
     ("left drag / arrows", "orbit the camera around its look-at point"),
     ("right drag", "pan the camera (eye and look-at move together)"),
     ("scroll", "zoom: change the field of view"),
@@ -19,6 +19,7 @@ pub const SHORTCUTS: [(&str, &str); 25] = [
     ("T", "tone map: clamp / aces"),
     ("V", "view: render, std. error, albedo, normals, depth, difference"),
     ("G", "toggle the difference image (with --reference)"),
+    ("X", "denoise the current snapshot (Open Image Denoise, if installed) / back to the live render"),
     ("Ctrl + scroll", "magnify the picture (nearest pixel)"),
     ("middle drag", "move the picture"),
     ("1", "picture at one pixel per screen pixel, centred"),

@@ -1,8 +1,7 @@
 //! What the picture shows: the render itself, or a diagnostic view of it. Each view becomes a
 //! linear image for the GPU plus whether the display's exposure and tone curve apply to it.
 
-use pathtrace::film::{Film, Image};
-use pathtrace::integrator::FirstHitAovs;
+use pathtrace::film::{FeatureBuffers, Film, Image};
 use pathtrace::math::Rgb;
 
 /// The views, in the order the `V` key cycles through them.
@@ -13,11 +12,11 @@ pub enum ViewMode {
     Render,
     /// Per-pixel standard error of the mean, √(s²/n), from the film's Welford statistics.
     StdError,
-    /// First-hit albedo.
+    /// The albedo feature buffer (first non-specular hit, anti-aliased like the render).
     Albedo,
-    /// First-hit shading normal (x, y, z mapped to r, g, b).
+    /// The shading-normal feature buffer (x, y, z in [-1, 1] mapped to r, g, b in [0, 1]).
     Normals,
-    /// First-hit distance, nearest white, farthest dark.
+    /// The depth feature buffer (first-hit distance), nearest white, farthest dark.
     Depth,
     /// |render − reference| per channel (only with a reference).
     Difference,
@@ -54,7 +53,7 @@ impl ViewMode {
         next
     }
 
-    /// True for views that depend on the first-hit AOVs.
+    /// True for views that show the feature buffers.
     pub fn needs_aovs(self) -> bool {
         matches!(self, ViewMode::Albedo | ViewMode::Normals | ViewMode::Depth)
     }
@@ -70,7 +69,7 @@ impl ViewMode {
 pub struct ViewSources<'a> {
     pub image: &'a Image,
     pub film: Option<&'a Film>,
-    pub aovs: Option<&'a FirstHitAovs>,
+    pub features: Option<&'a FeatureBuffers>,
     pub reference: Option<&'a Image>,
 }
 
@@ -83,9 +82,13 @@ pub fn view_image(mode: ViewMode, src: &ViewSources) -> Option<Image> {
             v.pixels.iter_mut().for_each(|p| *p = p.map(|c| c.max(0.0).sqrt()));
             Some(v)
         }
-        ViewMode::Albedo => Some(src.aovs?.albedo.clone()),
-        ViewMode::Normals => Some(src.aovs?.normal.clone()),
-        ViewMode::Depth => Some(normalised_depth(&src.aovs?.depth)),
+        ViewMode::Albedo => Some(src.features?.albedo()),
+        ViewMode::Normals => {
+            let mut n = src.features?.normal();
+            n.pixels.iter_mut().for_each(|p| *p = p.map(|c| 0.5 * c + 0.5));
+            Some(n)
+        }
+        ViewMode::Depth => Some(normalised_depth(&src.features?.depth())),
         ViewMode::Difference => {
             let r = src.reference?;
             if (r.width, r.height) != (src.image.width, src.image.height) {
@@ -135,7 +138,7 @@ mod tests {
     fn difference_is_the_absolute_error_and_needs_a_matching_reference() {
         let img = image(&[0.5, 1.0, 0.0]);
         let reference = image(&[0.25, 1.5, 0.0]);
-        let src = ViewSources { image: &img, film: None, aovs: None, reference: Some(&reference) };
+        let src = ViewSources { image: &img, film: None, features: None, reference: Some(&reference) };
         assert_eq!(view_image(ViewMode::Difference, &src), Some(image(&[0.25, 0.5, 0.0])));
         let small = image(&[0.0]);
         let src = ViewSources { reference: Some(&small), ..src };
@@ -149,7 +152,7 @@ mod tests {
             film.add_sample(0, 0, Rgb::splat(v));
         }
         let img = film.image();
-        let src = ViewSources { image: &img, film: Some(&film), aovs: None, reference: None };
+        let src = ViewSources { image: &img, film: Some(&film), features: None, reference: None };
         // s² = 4/3 (unbiased), s²/n = 1/3.
         let se = view_image(ViewMode::StdError, &src).unwrap().get(0, 0).r;
         assert!((se - (1.0f32 / 3.0).sqrt()).abs() < 1e-5, "{se}");

@@ -98,6 +98,9 @@ def render(
     CLI's default seed). ``strategy`` is ``"mis"``, ``"bsdf"``, ``"mixture"`` or ``"light"``;
     ``sampler`` is ``"independent"``, ``"stratified"`` or ``"sobol"``; ``max_depth`` counts path
     segments (-1: unlimited); ``threads=0`` uses one per core. A bad value is a ``ValueError``.
+    ``aov=True`` also accumulates the feature buffers over the same samples: the film's
+    ``albedo()``, ``normal()`` and ``depth()`` arrays, and ``denoise()`` (Intel Open Image
+    Denoise 2, found at run time: see docs/denoising.md).
 
     ``progress(p)`` is called on the calling thread about ten times a second and once at the
     end with a :class:`Progress` (``spp_done``, ``spp_target``, ``samples_per_second``,

@@ -4,7 +4,8 @@ use std::io::{Seek, Write};
 use std::path::Path;
 
 use exr::prelude::{
-    read_first_rgba_layer_from_file, Image as ExrImage, MetaData, SpecificChannels, Vec2, WritableImage,
+    read_first_rgba_layer_from_file, AnyChannel, AnyChannels, FlatSamples, Image as ExrImage, MetaData, SmallVec,
+    SpecificChannels, Vec2, WritableImage,
 };
 use pathtrace::film::Image;
 use pathtrace::math::Rgb;
@@ -18,6 +19,20 @@ pub(crate) fn encode(out: &mut (impl Write + Seek), image: &Image) -> exr::error
         (p.r, p.g, p.b)
     });
     ExrImage::from_channels((width, image.height as usize), channels).write().to_buffered(out)
+}
+
+/// Writes named 32-bit float channels of one `width × height` layer, each row-major from the top
+/// left, with lossless compression. The caller checks that every channel has `width × height`
+/// values and that the names are distinct.
+pub(crate) fn encode_channels(
+    out: &mut (impl Write + Seek),
+    width: usize,
+    height: usize,
+    channels: Vec<(String, Vec<f32>)>,
+) -> exr::error::UnitResult {
+    let list: SmallVec<[AnyChannel<FlatSamples>; 4]> =
+        channels.into_iter().map(|(name, values)| AnyChannel::new(name.as_str(), FlatSamples::F32(values))).collect();
+    ExrImage::from_channels((width, height), AnyChannels::sort(list)).write().to_buffered(out)
 }
 
 /// The pixels being filled in while reading.

@@ -2,6 +2,7 @@
 
 mod accumulator;
 mod allocation;
+mod features;
 #[allow(clippy::module_inception)]
 mod film;
 pub mod filter;
@@ -11,6 +12,7 @@ pub mod tonemap;
 
 pub use accumulator::PixelStats;
 pub use allocation::{FilmTooLarge, FILM_BYTES_PER_PIXEL};
+pub use features::{FeatureBuffers, FeaturePixel, FeatureSample};
 pub use film::{Film, RegionEstimate};
 pub use filter::{FilterSample, GaussianFilter, PixelFilter};
 pub use image::Image;

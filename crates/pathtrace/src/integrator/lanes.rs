@@ -4,7 +4,7 @@
 //! `N` is 8 with AVX2 (and in the portable build), 16 with AVX-512, and 1 for the one-lane
 //! instance of the same estimator (`Kernel::Scalar`, kept for debugging and tests).
 
-use crate::film::PixelStats;
+use crate::film::{FeaturePixel, FeatureSample, PixelStats};
 use crate::integrator::PathStats;
 use crate::math::{Ray, Rgb, Vec2, Vec3};
 use crate::scene::Primitive;
@@ -31,6 +31,13 @@ pub(crate) struct Paths<const N: usize> {
     pub segments: [u32; N],
     /// The pixel (index in the tile) each lane's sample belongs to.
     pub pixel: [u32; N],
+    /// Lanes whose feature sample still waits for its first non-specular hit (never set when
+    /// the render records no features, so the estimator skips them at one test per vertex).
+    pub feature_pending: Ms<N>,
+    /// Each lane's feature sample so far (`integrator::features`).
+    pub feature: [FeatureSample; N],
+    /// Product of the albedos of the specular surfaces the lane's path has followed.
+    pub feature_tint: [Rgb; N],
 }
 
 /// Where finished samples go.
@@ -38,6 +45,8 @@ pub(crate) struct Output {
     pub pixels: Vec<PixelStats>,
     pub stats: PathStats,
     pub dropped: u64,
+    /// Per-pixel feature sums, when the render records features.
+    pub features: Option<Vec<FeaturePixel>>,
 }
 
 impl<const N: usize> Paths<N> {
@@ -56,12 +65,16 @@ impl<const N: usize> Paths<N> {
             filter_weight: F32s::default(),
             segments: [0; N],
             pixel: [0; N],
+            feature_pending: Ms::default(),
+            feature: [FeatureSample::default(); N],
+            feature_tint: [Rgb::BLACK; N],
         }
     }
 
-    /// Starts a camera path in lane `i` for pixel `pixel` of the tile.
+    /// Starts a camera path in lane `i` for pixel `pixel` of the tile; `features`: the path
+    /// records a feature sample.
     #[inline(always)]
-    pub fn start(&mut self, i: usize, pixel: u32, ray: Ray, filter_weight: f32) {
+    pub fn start(&mut self, i: usize, pixel: u32, ray: Ray, filter_weight: f32, features: bool) {
         self.active.0[i] = u32::MAX;
         self.origin.set(i, ray.origin);
         self.dir.set(i, ray.dir);
@@ -76,6 +89,11 @@ impl<const N: usize> Paths<N> {
         self.filter_weight.0[i] = filter_weight;
         self.segments[i] = 1;
         self.pixel[i] = pixel;
+        if features {
+            self.feature_pending.0[i] = u32::MAX;
+            self.feature[i] = FeatureSample::default();
+            self.feature_tint[i] = Rgb::splat(1.0);
+        }
     }
 
     /// Lane `i`'s throughput.
@@ -92,15 +110,19 @@ impl<const N: usize> Paths<N> {
         }
     }
 
-    /// Ends lane `i`'s path: its estimate goes to its pixel (non-finite ones are dropped and
-    /// counted).
+    /// Ends lane `i`'s path: its estimate (and feature sample, if recorded) goes to its pixel
+    /// (non-finite estimates are dropped with their feature sample, and counted).
     #[inline(always)]
     pub fn finish(&mut self, i: usize, out: &mut Output) {
         self.active.0[i] = 0;
+        self.feature_pending.0[i] = 0;
         let w = self.filter_weight.0[i];
         let l = Rgb::new(self.radiance[0].0[i] * w, self.radiance[1].0[i] * w, self.radiance[2].0[i] * w);
         if l.is_finite() {
             out.pixels[self.pixel[i] as usize].add(l);
+            if let Some(features) = &mut out.features {
+                features[self.pixel[i] as usize].add(&self.feature[i], w);
+            }
         } else {
             out.dropped += 1;
         }

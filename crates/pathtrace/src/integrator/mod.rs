@@ -1,13 +1,11 @@
 //! Integrators: how a camera ray becomes a radiance estimate.
 
-mod aov;
+mod features;
 mod lanes;
 mod path;
 mod regenerate;
 mod shade;
 mod strategy;
-
-pub use aov::{first_hit_aovs, FirstHitAovs};
 
 pub use path::{PathSettings, PathStats};
 pub(crate) use regenerate::{render_tile_lanes, LaneJob};

@@ -16,6 +16,7 @@
 // iterator chains over them would hide that and vectorise no better.
 #![allow(clippy::needless_range_loop)]
 
+use super::features::record_features;
 use super::lanes::{Output, Paths, Surfaces};
 use super::regenerate::LaneJob;
 use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
@@ -150,6 +151,11 @@ pub(crate) fn vertex<const N: usize>(
     // ---- Closest hits ----------------------------------------------------------------
     let s = intersect(job, paths);
     let wo = paths.dir.neg();
+
+    // ---- Feature samples (AOVs), only for renders that record them -----------------------
+    if paths.feature_pending.any() {
+        record_features(job, paths, &s, &wo);
+    }
 
     // ---- Escape: the environment (if any) is seen, then the path ends ------------------
     let escaped = paths.active & !s.hit;

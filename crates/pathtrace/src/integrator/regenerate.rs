@@ -6,7 +6,7 @@
 use super::lanes::{Output, Paths};
 use super::path::vertex;
 use crate::camera::Camera;
-use crate::film::{PixelFilter, PixelStats};
+use crate::film::{FeaturePixel, PixelFilter, PixelStats};
 use crate::integrator::PathStats;
 use crate::render::tile::{Tile, TileResult, WaveSamples};
 use crate::sampling::Sampler;
@@ -20,6 +20,8 @@ pub(crate) struct LaneJob<'a> {
     pub lanes: &'a WideScene,
     pub camera: &'a Camera,
     pub filter: &'a PixelFilter,
+    /// Record each sample's features (albedo, normal, depth) beside its radiance.
+    pub features: bool,
 }
 
 /// The tile's pixel samples, pixel by pixel (so the camera rays of a batch are neighbours).
@@ -89,10 +91,12 @@ pub(crate) fn render_tile_lanes<const N: usize>(
     samples: WaveSamples,
 ) -> TileResult {
     let mut samplers = LaneSamplers::<N>::new(proto);
+    let tile_pixels = (tile.w * tile.h) as usize;
     let mut out = Output {
-        pixels: vec![PixelStats::default(); (tile.w * tile.h) as usize],
+        pixels: vec![PixelStats::default(); tile_pixels],
         stats: PathStats::default(),
         dropped: 0,
+        features: job.features.then(|| vec![FeaturePixel::default(); tile_pixels]),
     };
     let mut queue = Queue::new(tile, samples);
     let mut paths = Paths::<N>::new();
@@ -107,7 +111,7 @@ pub(crate) fn render_tile_lanes<const N: usize>(
             let fs = job.filter.sample(u_filter);
             let ray = job.camera.generate_ray(next.x, next.y, fs.jitter, u_aperture);
             out.stats.camera_rays += 1;
-            paths.start(i, next.pixel, ray, fs.weight);
+            paths.start(i, next.pixel, ray, fs.weight, job.features);
             if max_depth == 0 {
                 paths.finish(i, &mut out);
             }
@@ -117,5 +121,5 @@ pub(crate) fn render_tile_lanes<const N: usize>(
         }
         vertex(job, &mut paths, &mut samplers, &mut out);
     }
-    TileResult { tile, pixels: out.pixels, stats: out.stats, dropped: out.dropped }
+    TileResult { tile, pixels: out.pixels, stats: out.stats, dropped: out.dropped, features: out.features }
 }

@@ -13,7 +13,7 @@ use super::adaptive::{allocate, AdaptiveSettings};
 use super::settings::RenderSettings;
 use super::tile::{render_tile, tiles, Tile, TileJob, TileResult, WaveSamples};
 use crate::camera::{Camera, CameraDesc, CameraError};
-use crate::film::{Film, FilmTooLarge, Image};
+use crate::film::{FeatureBuffers, Film, FilmTooLarge, Image};
 use crate::integrator::PathStats;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -73,11 +73,15 @@ pub struct Progress {
 #[derive(Clone, Debug)]
 pub struct RenderOutcome {
     pub film: Film,
+    /// The feature buffers, averaged over the film's samples (when `RenderSettings::features`).
+    pub features: Option<FeatureBuffers>,
     pub progress: Progress,
 }
 
 struct Shared {
     film: Mutex<Film>,
+    /// Kept apart from the film (and locked after it) so the film stays as it is.
+    features: Mutex<Option<FeatureBuffers>>,
     cancel: AtomicBool,
     finished: AtomicBool,
     spp_done: AtomicU32,
@@ -103,8 +107,15 @@ impl Shared {
         self.film.lock().unwrap_or_else(|e| e.into_inner())
     }
 
+    fn lock_features(&self) -> MutexGuard<'_, Option<FeatureBuffers>> {
+        self.features.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
     fn record(&self, r: &TileResult) {
         self.lock_film().merge_block(r.tile.x0, r.tile.y0, r.tile.w, &r.pixels);
+        if let (Some(buffers), Some(block)) = (self.lock_features().as_mut(), &r.features) {
+            buffers.merge_block(r.tile.x0, r.tile.y0, r.tile.w, block);
+        }
         let n: u64 = r.pixels.iter().map(|p| p.count as u64).sum::<u64>() + r.dropped;
         self.samples.fetch_add(n, Ordering::Relaxed);
         self.camera_rays.fetch_add(r.stats.camera_rays, Ordering::Relaxed);
@@ -159,6 +170,8 @@ impl RenderSession {
         let camera = Camera::new(camera, settings.width, settings.height)?;
         let prep = Prepared { camera, lanes: WideScene::new(&scene, &settings.path) };
         let film = Film::try_new(settings.width, settings.height)?;
+        let features =
+            if settings.features { Some(FeatureBuffers::try_new(settings.width, settings.height)?) } else { None };
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(settings.threads)
             .thread_name(|i| format!("pathtrace-worker-{i}"))
@@ -166,6 +179,7 @@ impl RenderSession {
             .map_err(|e| RenderError::Threads(e.to_string()))?;
         let shared = Arc::new(Shared {
             film: Mutex::new(film),
+            features: Mutex::new(features),
             cancel: AtomicBool::new(false),
             finished: AtomicBool::new(false),
             spp_done: AtomicU32::new(0),
@@ -234,6 +248,11 @@ impl RenderSession {
         self.shared.lock_film().clone()
     }
 
+    /// A copy of the feature buffers so far (`None` unless the settings asked for them).
+    pub fn features(&self) -> Option<FeatureBuffers> {
+        self.shared.lock_features().clone()
+    }
+
     /// Asks the workers to stop after the tiles they are on; what is done is kept.
     pub fn cancel(&self) {
         self.shared.cancel.store(true, Ordering::Relaxed);
@@ -265,7 +284,8 @@ impl RenderSession {
         let progress = self.progress();
         let mut film = self.shared.lock_film().clone();
         film.dropped_samples = progress.dropped_samples;
-        RenderOutcome { film, progress }
+        let features = self.shared.lock_features().clone();
+        RenderOutcome { film, features, progress }
     }
 }
 
@@ -320,6 +340,7 @@ fn run_wave(
         lanes: &prep.lanes,
         one_lane: settings.kernel == Kernel::Scalar,
         filter: &settings.filter,
+        features: settings.features,
     };
     tile_list.par_iter().for_each_init(
         || Sampler::new(settings.sampler, settings.seed, settings.strata_count()),

@@ -32,6 +32,9 @@ pub struct RenderSettings {
     pub adaptive: Option<AdaptiveSettings>,
     /// How many paths run at once (default: groups of 8 or 16 SIMD lanes; `Scalar`: one).
     pub kernel: Kernel,
+    /// Accumulate feature buffers (albedo, normal, depth) beside the image, over the same
+    /// samples (`RenderOutcome::features`); off by default, costing nothing then.
+    pub features: bool,
 }
 
 impl Default for RenderSettings {
@@ -50,6 +53,7 @@ impl Default for RenderSettings {
             max_wave_spp: 16,
             adaptive: None,
             kernel: Kernel::default(),
+            features: false,
         }
     }
 }

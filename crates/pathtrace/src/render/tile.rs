@@ -1,7 +1,7 @@
 //! Rendering one tile for one wave of samples.
 
 use crate::camera::Camera;
-use crate::film::{PixelFilter, PixelStats};
+use crate::film::{FeaturePixel, PixelFilter, PixelStats};
 use crate::integrator::{render_tile_lanes, LaneJob, PathStats};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -38,6 +38,8 @@ pub(super) struct TileJob<'a> {
     /// Trace one path at a time (`Kernel::Scalar`) instead of a SIMD group.
     pub one_lane: bool,
     pub filter: &'a PixelFilter,
+    /// Record feature buffers (`RenderSettings::features`).
+    pub features: bool,
 }
 
 /// Which samples of each pixel a wave renders.
@@ -70,6 +72,8 @@ pub(crate) struct TileResult {
     pub pixels: Vec<PixelStats>,
     pub stats: PathStats,
     pub dropped: u64,
+    /// The tile's feature sums, when the render records features.
+    pub features: Option<Vec<FeaturePixel>>,
 }
 
 /// Renders the wave's samples (`samples`) of every pixel in `tile`, filtered by the job's pixel
@@ -126,8 +130,8 @@ fn render_tile_body<const N: usize>(
     tile: Tile,
     samples: WaveSamples,
 ) -> TileResult {
-    let TileJob { scene, camera, lanes, one_lane, filter } = *job;
-    let job = LaneJob { scene, lanes, camera, filter };
+    let TileJob { scene, camera, lanes, one_lane, filter, features } = *job;
+    let job = LaneJob { scene, lanes, camera, filter, features };
     if one_lane {
         return render_tile_one_lane(&job, sampler, tile, samples);
     }
