@@ -59,7 +59,7 @@ fn pixels_without_samples(film: &Film) -> usize {
 }
 
 /// The scene half of a film's key: the scene file's bytes and defines (or the built-in name),
-/// and the light selection mode, which changes samples.
+/// and the light selection mode if given, which changes samples.
 fn scene_key(a: &RenderArgs) -> Result<u64, CliError> {
     let bytes;
     let source = if scene_arg::is_file(&a.scene) || !a.defines.is_empty() {
@@ -68,8 +68,13 @@ fn scene_key(a: &RenderArgs) -> Result<u64, CliError> {
     } else {
         SceneSource::Builtin(&a.scene)
     };
-    let selection = format!("{:?}", a.quality.light_selection);
-    Ok(Fnv64::default().write(&scene_source_key(&source).to_le_bytes()).field(selection.as_bytes()).finish())
+    let key = scene_source_key(&source);
+    // Without --light-selection the key is the source's alone, as the Python module's is, so
+    // parts from either merge.
+    Ok(match a.quality.light_selection {
+        None => key,
+        Some(mode) => Fnv64::default().write(&key.to_le_bytes()).field(format!("{mode:?}").as_bytes()).finish(),
+    })
 }
 
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
