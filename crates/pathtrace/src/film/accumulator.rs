@@ -1,5 +1,5 @@
 //! Per-pixel accumulation in exact fixed point: the sample count, and per channel the sum of the
-//! samples and the sum of their squares, each sample rounded once to a multiple of 2⁻⁴⁰.
+//! samples and the sum of their squares, each sample truncated once to a multiple of 2⁻⁴⁰.
 //!
 //! **Why integers.** A floating-point running mean (Welford) merged by Chan's formula depends on
 //! the order samples arrive in: the SIMD lane count, the wave boundaries and the machine a part
@@ -13,12 +13,12 @@
 //! - a sample's magnitude is clamped to [`SAMPLE_LIMIT`] = 2⁵² ≈ 4.5·10¹⁵ (a radiance no scene
 //!   of ours comes near: a firefly that large would ruin the image anyway); then |sum| ≤ 2³² samples · 2⁵²⁺⁴⁰ = 2¹²⁴ < 2¹²⁷, so a sum
 //!   cannot overflow for any `u32` sample count;
-//! - a square is rounded to the same grid and the sum of squares saturates at `u128::MAX`
+//! - a square is truncated to the same grid and the sum of squares saturates at `u128::MAX`
 //!   (Σx² ≈ 3.1·10²⁶). Saturating addition of non-negative integers is still order-free
 //!   (it is min(true sum, MAX)); a saturated pixel reports an infinite variance, never a wrong
 //!   finite one.
 //!
-//! Values below 2⁻⁴¹ ≈ 4.5·10⁻¹³ round to zero, and squares below that (|x| < 6.7·10⁻⁷) do too, so
+//! Values below 2⁻⁴⁰ ≈ 9.1·10⁻¹³ truncate to zero, and squares below that (|x| < 9.5·10⁻⁷) do too, so
 //! the variance of pixels darker than about 10⁻⁶ is not resolved (they are far below what any
 //! image format displays).
 
@@ -37,17 +37,20 @@ const SCALE: f64 = (1u64 << FRACTION_BITS) as f64;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct PixelStats {
     pub count: u32,
-    /// Σ round(x · 2⁴⁰) per channel.
+    /// Σ trunc(x · 2⁴⁰) per channel.
     pub sum: [i128; 3],
-    /// Σ round(x² · 2⁴⁰) per channel, saturating.
+    /// Σ trunc(x² · 2⁴⁰) per channel, saturating.
     pub sum_sq: [u128; 3],
 }
 
-/// `x · 2⁴⁰` rounded to the nearest integer (ties to even), `x` already clamped. Most values fit
-/// an `i64`, whose conversion is one instruction; the `i128` one is a library call.
+/// `x · 2⁴⁰` truncated toward zero to an integer, `x` already clamped. Truncation is as pure a
+/// function of the sample as rounding (which is all exactness needs) and is one instruction: an
+/// f32 of magnitude ≥ 2⁻¹⁷ times 2⁴⁰ is an integer already, and below that the error is under
+/// 2⁻⁴⁰. Most values fit an `i64`, whose conversion is one instruction; the `i128` one is a
+/// library call.
 #[inline(always)]
 fn to_fixed(x: f64) -> i128 {
-    let scaled = (x * SCALE).round_ties_even();
+    let scaled = x * SCALE;
     if scaled.abs() < 9.0e18 {
         scaled as i64 as i128
     } else {
@@ -55,10 +58,10 @@ fn to_fixed(x: f64) -> i128 {
     }
 }
 
-/// `x² · 2⁴⁰` rounded, saturating at `u128::MAX` (`as` saturates).
+/// `x² · 2⁴⁰` truncated, saturating at `u128::MAX` (`as` saturates). x² of an f32 is exact in f64.
 #[inline(always)]
 fn square_to_fixed(x: f64) -> u128 {
-    let scaled = (x * x * SCALE).round_ties_even();
+    let scaled = x * x * SCALE;
     if scaled < 1.8e19 {
         scaled as u64 as u128
     } else {
@@ -73,7 +76,7 @@ impl PixelStats {
         self.count += 1;
         for (k, x) in c.to_array().into_iter().enumerate() {
             // f32 → f64 is exact, so is the scaling by a power of two; x² of an f32 fits f64's
-            // 53 bits exactly: the only rounding is the one to the grid.
+            // 53 bits exactly: the only rounding is the truncation to the grid.
             let x = x as f64;
             let kept = x.clamp(-SAMPLE_LIMIT, SAMPLE_LIMIT);
             self.sum[k] += to_fixed(kept);
