@@ -6,6 +6,7 @@ use pathtrace::integrator::Strategy;
 use pathtrace::light::LightSelection;
 use pathtrace::sampling::SamplerKind;
 use pathtrace::wide::Kernel;
+use pathtrace::SampleRange;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -49,6 +50,37 @@ pub enum Command {
     ///
     /// Needs a display; without one, use `pathtrace render`.
     View(ViewArgs),
+    /// Merge films rendered in sample ranges (`render --sample-range A..B --film-out part.ptfilm`)
+    /// into the image one render of every sample gives, bit for bit (docs/distributed.md).
+    ///
+    /// Refuses films of another scene, settings or engine build, and overlapping ranges (exit 2).
+    Merge(MergeArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// Film files (.ptfilm) to merge, in any order
+    #[arg(required = true, value_name = "PART")]
+    pub parts: Vec<PathBuf>,
+    /// Write the merged image; the format follows the extension: .png, .exr or .pfm
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Write the merged film (to merge further, or to render the missing ranges later)
+    #[arg(long, value_name = "FILE")]
+    pub film_out: Option<PathBuf>,
+    /// Write the image even when sample ranges are missing (it is then noisier than the whole
+    /// render's, but still unbiased)
+    #[arg(long)]
+    pub partial: bool,
+    /// Exposure in stops applied before tone mapping (PNG only)
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Tone map for PNG output: clamp or aces (filmic)
+    #[arg(long, default_value = "clamp", value_parser = parse_from_str::<ToneMap>)]
+    pub tonemap: ToneMap,
+    /// No summary (errors and warnings are still printed)
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 #[derive(Debug, Args)]
@@ -205,8 +237,8 @@ pub struct QualityArgs {
     #[arg(long, value_name = "MODE", value_parser = parse_from_str::<LightSelection>)]
     pub light_selection: Option<LightSelection>,
     /// Paths traced at once: auto and wide (groups of 8 in SIMD lanes, 16 with AVX-512: every
-    /// scene) or scalar (one at a time: the same estimator in one lane, for debugging). At 1 spp
-    /// both give the same image to the bit; beyond, the same image within noise
+    /// scene), wide8 (groups of 8 even with AVX-512) or scalar (one at a time: the same estimator
+    /// in one lane, for debugging). All give the same image to the bit
     #[arg(long, value_parser = parse_from_str::<Kernel>, default_value = "auto")]
     pub kernel: Kernel,
     /// Random seed: the same seed, scene and settings give the same image [default: the scene's, else 0]
@@ -272,6 +304,14 @@ pub struct RenderArgs {
     /// Also write timing and ray statistics as JSON to this file
     #[arg(long, value_name = "FILE")]
     pub stats_json: Option<PathBuf>,
+    /// Render only samples A..B (A inclusive, B exclusive) of every pixel of an --spp render: one
+    /// machine's share of a render split across several; `pathtrace merge` joins the parts
+    #[arg(long, value_name = "A..B", value_parser = parse_from_str::<SampleRange>, conflicts_with_all = ["time", "adaptive", "target_error"])]
+    pub sample_range: Option<SampleRange>,
+    /// Also write the film (exact per-pixel sums, the scene and settings key, the sample ranges)
+    /// to this .ptfilm file, for `pathtrace merge`
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["time", "adaptive", "target_error"])]
+    pub film_out: Option<PathBuf>,
     /// Feature buffers to save with the image, averaged over its samples: albedo, normal, depth
     /// (comma separated). EXR output gets them as channels albedo.R/G/B, N.X/Y/Z and Z; PNG and
     /// PFM output as sibling files NAME.albedo.exr (.pfm for PFM output), …

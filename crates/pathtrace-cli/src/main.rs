@@ -16,6 +16,7 @@ mod cpu_clock;
 mod destination;
 mod interrupt;
 mod memory;
+mod merge;
 mod plot;
 mod progress;
 mod render;
@@ -41,6 +42,7 @@ fn main() -> ExitCode {
         args::Command::Converge(a) => converge::run(a),
         args::Command::Convert(a) => convert::run(a),
         args::Command::View(a) => view::run(a),
+        args::Command::Merge(a) => merge::run(a),
     };
     match result {
         Ok(code) => code,

@@ -7,10 +7,11 @@ use crate::interrupt::Interrupt;
 use crate::progress::{format_rate, Bar};
 use crate::stats_json::RenderStats;
 use crate::{scene_arg, CliError};
-use pathtrace::film::{Film, Image, ToneMapSettings};
+use pathtrace::film::{engine_build, render_key, Film, Fnv64, Image, RangedFilm, ToneMapSettings};
 use pathtrace::math::Rgb;
 use pathtrace::{AdaptiveSettings, RenderSession, RenderSettings};
 use pathtrace_denoise::Denoiser;
+use pathtrace_scene::film_file::{scene_source_key, write_film, SceneSource};
 use pathtrace_scene::image_io::write_image;
 use pathtrace_scene::{RenderDefaults, RenderOverrides};
 use std::path::PathBuf;
@@ -59,6 +60,25 @@ fn pixels_without_samples(film: &Film) -> usize {
     film.pixels().iter().filter(|p| p.count == 0).count()
 }
 
+/// The scene half of a film's key: the scene file's bytes and defines (or the built-in name),
+/// and the light selection mode if given, which changes samples.
+fn scene_key(a: &RenderArgs) -> Result<u64, CliError> {
+    let bytes;
+    let source = if scene_arg::is_file(&a.scene) || !a.defines.is_empty() {
+        bytes = std::fs::read(&a.scene).map_err(|e| CliError::usage(format!("{}: cannot read: {e}", a.scene)))?;
+        SceneSource::File { bytes: &bytes, defines: &a.defines }
+    } else {
+        SceneSource::Builtin(&a.scene)
+    };
+    let key = scene_source_key(&source);
+    // Without --light-selection the key is the source's alone, as the Python module's is, so
+    // parts from either merge.
+    Ok(match a.quality.light_selection {
+        None => key,
+        Some(mode) => Fnv64::default().write(&key.to_le_bytes()).field(format!("{mode:?}").as_bytes()).finish(),
+    })
+}
+
 pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let mut loaded = scene_arg::load_with(&a.scene, &a.defines)?;
     if let Some(mode) = a.quality.light_selection {
@@ -67,6 +87,7 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let mut settings =
         with_adaptive(settings_from(&a.quality, a.spp, a.time, &loaded.defaults), &a.adaptive, a.spp.is_some());
     settings.features = !a.aov.is_empty() || a.denoise;
+    settings.sample_range = a.sample_range;
     if loaded.scene.lights.has_delta() && !settings.path.strategy.is_mis() {
         eprintln!(
             "warning: the scene has point or spot lights, which only the mis strategy (or mis-balance) can see (next-event \
@@ -102,6 +123,13 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     if let Some(path) = &a.stats_json {
         check_destination(path, "--stats-json")?;
     }
+    let film_key = match &a.film_out {
+        Some(path) => {
+            check_destination(path, "--film-out")?;
+            Some(render_key(scene_key(&a)?, &settings))
+        }
+        None => None,
+    };
     if !a.exposure.is_finite() {
         return Err(CliError::usage("--exposure must be a finite number of stops"));
     }
@@ -139,6 +167,18 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
         denoise_time = Some(start.elapsed());
     }
     let siblings = write_with_aovs(&output, &image, &tone, outcome.features.as_ref(), &aovs)?;
+
+    if let (Some(path), Some(key)) = (&a.film_out, film_key) {
+        if interrupted {
+            eprintln!(
+                "note: interrupted, so {} is not written (a film file holds whole sample ranges only)",
+                path.display()
+            );
+        } else {
+            let part = RangedFilm::new(outcome.film.clone(), key, engine_build(), settings.spp, settings.samples());
+            write_film(path, &part).map_err(|e| CliError::runtime(e.to_string()))?;
+        }
+    }
 
     let (spp_min, spp_max) = outcome.film.spp_range();
     if !interrupted && outcome.progress.dropped_samples > 0 {

@@ -10,7 +10,7 @@ use pathtrace_scene::{gltf, mitsuba};
 use std::path::Path;
 
 /// True if the argument names a scene file rather than a built-in scene.
-fn is_file(arg: &str) -> bool {
+pub fn is_file(arg: &str) -> bool {
     load::is_scene_file(Path::new(arg))
 }
 

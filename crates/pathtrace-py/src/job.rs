@@ -1,6 +1,6 @@
 //! `pathtrace.RenderJob`: a render running in the background, as returned by `start`.
 
-use crate::film::{image_array, Film};
+use crate::film::{image_array, Film, Origin};
 use crate::progress::Progress;
 use crate::render::{wait_for_end, POLL};
 use numpy::PyArray3;
@@ -23,12 +23,13 @@ pub struct RenderJob {
     state: Mutex<State>,
     /// Waits for the render's end outside the lock.
     end: EndSignal,
+    origin: Origin,
 }
 
 impl RenderJob {
-    pub fn new(session: RenderSession) -> Self {
+    pub fn new(session: RenderSession, origin: Origin) -> Self {
         let end = session.end_signal();
-        Self { state: Mutex::new(State { session: Some(session), outcome: None }), end }
+        Self { state: Mutex::new(State { session: Some(session), outcome: None }), end, origin }
     }
 
     fn lock(&self) -> MutexGuard<'_, State> {
@@ -99,8 +100,7 @@ impl RenderJob {
             let window = Instant::now() + POLL;
             let until = deadline.map_or(window, |d| d.min(window));
             if wait_for_end(py, &self.end, until) {
-                let outcome = self.outcome();
-                return Ok(Some(Film::new(outcome.film, outcome.features)));
+                return Ok(Some(Film::finished(self.outcome(), self.origin)));
             }
             py.check_signals()?;
             if deadline.is_some_and(|d| Instant::now() >= d) {

@@ -24,7 +24,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::load_json, m)?)?;
     m.add_function(wrap_pyfunction!(scene::builtin, m)?)?;
     m.add_function(wrap_pyfunction!(scene::builtin_names, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::_rebuild_scene, m)?)?;
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(render::start, m)?)?;
+    m.add_function(wrap_pyfunction!(render::render_key, m)?)?;
     Ok(())
 }

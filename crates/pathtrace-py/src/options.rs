@@ -4,7 +4,7 @@
 //! and parse them here, so the option list lives in one place (and in the type stubs).
 
 use crate::scene::Scene;
-use pathtrace::RenderSettings;
+use pathtrace::{RenderSettings, SampleRange};
 use pathtrace_scene::RenderOverrides;
 use pyo3::conversion::FromPyObjectOwned;
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -36,6 +36,7 @@ pub fn settings(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<
     let mut o = RenderOverrides { seed: Some(0), threads: Some(0), ..RenderOverrides::default() };
     let (mut width, mut height): (Option<u32>, Option<u32>) = (None, None);
     let mut features = false;
+    let mut sample_range: Option<(u32, u32)> = None;
     for (key, v) in options.into_iter().flat_map(|d| d.iter()) {
         let key: String = key.extract()?;
         match key.as_str() {
@@ -48,6 +49,7 @@ pub fn settings(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<
             "sampler" => o.sampler = parse("sampler", value(&key, &v)?)?,
             "threads" => o.threads = Some(value(&key, &v)?),
             "aov" => features = value(&key, &v)?,
+            "sample_range" => sample_range = value(&key, &v)?,
             _ => return Err(PyTypeError::new_err(format!("unexpected keyword argument '{key}'"))),
         }
     }
@@ -61,5 +63,14 @@ pub fn settings(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<
     if width.is_some() || height.is_some() {
         o.size = Some((width.unwrap_or(d.width), height.unwrap_or(d.height)));
     }
-    Ok(RenderSettings { features, ..d.settings(&o) })
+    let mut settings = RenderSettings { features, ..d.settings(&o) };
+    if let Some((start, end)) = sample_range {
+        if end <= start {
+            return Err(PyValueError::new_err(format!(
+                "sample_range ({start}, {end}): end must be greater than start"
+            )));
+        }
+        settings.sample_range = Some(SampleRange::new(start, end));
+    }
+    Ok(settings)
 }

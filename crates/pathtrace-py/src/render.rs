@@ -2,14 +2,14 @@
 //! released while the engine's worker threads render, waking every poll interval to run Python
 //! signal handlers (Ctrl-C) and the progress callback.
 
-use crate::film::Film;
+use crate::film::{Film, Origin};
 use crate::job::RenderJob;
 use crate::options;
 use crate::progress::Progress;
 use crate::scene::Scene;
 use pathtrace::render::EndSignal;
 use pathtrace::RenderSession;
-use pyo3::exceptions::PyRuntimeError;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::time::{Duration, Instant};
@@ -25,9 +25,21 @@ pub fn wait_for_end(py: Python<'_>, end: &EndSignal, until: Instant) -> bool {
 }
 
 /// Starts the engine's render session for `scene` with the caller's keyword arguments.
-fn start_session(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<RenderSession> {
+fn start_session(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<(RenderSession, Origin)> {
     let settings = options::settings(scene, options)?;
-    RenderSession::start(scene.scene.clone(), settings).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    let origin = Origin::new(scene.source_key, &settings);
+    let bad_range = matches!(
+        settings.sample_range,
+        Some(r) if r.is_empty() || r.end > settings.spp
+    );
+    let session = RenderSession::start(scene.scene.clone(), settings).map_err(|e| {
+        if bad_range {
+            PyValueError::new_err(e.to_string())
+        } else {
+            PyRuntimeError::new_err(e.to_string())
+        }
+    })?;
+    Ok((session, origin))
 }
 
 /// Cancels the session and waits (without the GIL) for its workers to stop.
@@ -45,7 +57,7 @@ pub fn render(
     progress: Option<Bound<'_, PyAny>>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Film> {
-    let session = start_session(scene, options)?;
+    let (session, origin) = start_session(scene, options)?;
     loop {
         let finished = wait_for_end(py, &session.end_signal(), Instant::now() + POLL);
         // A KeyboardInterrupt from Ctrl-C, or an exception in the callback, cancels the render.
@@ -65,12 +77,22 @@ pub fn render(
     if let Some(callback) = &progress {
         callback.call1((Progress::from(outcome.progress),))?;
     }
-    Ok(Film::new(outcome.film, outcome.features))
+    Ok(Film::finished(outcome, origin))
 }
 
 /// Starts rendering `scene` in the background; see the Python docstring of `pathtrace.start`.
 #[pyfunction]
 #[pyo3(signature = (scene, **options))]
 pub fn start(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<RenderJob> {
-    Ok(RenderJob::new(start_session(scene, options)?))
+    let (session, origin) = start_session(scene, options)?;
+    Ok(RenderJob::new(session, origin))
+}
+
+/// The key films of `scene` rendered with these options record (hex): the driver of a
+/// distributed render checks a checkpoint film against it before trusting its ranges.
+#[pyfunction]
+#[pyo3(signature = (scene, **options))]
+pub fn render_key(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
+    let settings = options::settings(scene, options)?;
+    Ok(format!("{:016x}", pathtrace::film::render_key(scene.source_key, &settings)))
 }

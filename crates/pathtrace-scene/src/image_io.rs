@@ -26,6 +26,7 @@ use std::path::Path;
 use pathtrace::film::tonemap::ToneMapSettings;
 use pathtrace::film::Image;
 
+pub(crate) use atomic::write_atomically;
 pub use error::ImageIoError;
 pub use size_guard::MAX_INPUT_PIXELS;
 

@@ -4,6 +4,7 @@
 
 pub mod builtin;
 pub mod elide;
+pub mod film_file;
 pub mod gltf;
 pub mod image_io;
 pub mod load;

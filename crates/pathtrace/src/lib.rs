@@ -23,5 +23,5 @@ pub mod integrator;
 pub mod render;
 pub mod wide;
 
-pub use render::{render, AdaptiveSettings, Progress, RenderOutcome, RenderSession, RenderSettings};
+pub use render::{render, AdaptiveSettings, Progress, RenderOutcome, RenderSession, RenderSettings, SampleRange};
 pub mod metrics;

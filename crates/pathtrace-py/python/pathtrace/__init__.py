@@ -15,10 +15,12 @@ See docs/python.md in the repository.
 
 from __future__ import annotations
 
+import functools
 import json
+import operator
 import os
 import warnings
-from typing import TYPE_CHECKING, Any, Callable, Mapping, Optional, Union
+from typing import TYPE_CHECKING, Any, Callable, Iterable, List, Mapping, Optional, Tuple, Union
 
 from . import _core
 from ._core import Film, Progress, RenderJob, Scene, SceneError
@@ -29,6 +31,7 @@ if TYPE_CHECKING:  # for type checkers only: the stubs' TypedDict of render opti
     from ._core import RenderOptions
 
 __all__ = [
+    "DistributedRenderError",
     "Film",
     "Progress",
     "RenderJob",
@@ -38,6 +41,7 @@ __all__ = [
     "builtin_names",
     "load_dict",
     "load_file",
+    "merge",
     "render",
     "start",
 ]
@@ -92,7 +96,8 @@ def render(
     the engine's worker threads render, so other Python threads keep running.
 
     Options (keyword only): ``spp=None``, ``seed=0``, ``width=None``, ``height=None``,
-    ``max_depth=None``, ``strategy=None``, ``sampler=None``, ``threads=0``. Each left at
+    ``max_depth=None``, ``strategy=None``, ``sampler=None``, ``threads=0``,
+    ``sample_range=None``. Each left at
     ``None`` takes the scene file's ``[render]`` value, else the engine's default, exactly as
     the CLI's options do (``seed=None`` takes the scene's seed; the default ``seed=0`` is the
     CLI's default seed). ``strategy`` is ``"mis"``, ``"bsdf"``, ``"mixture"`` or ``"light"``;
@@ -101,6 +106,11 @@ def render(
     ``aov=True`` also accumulates the feature buffers over the same samples: the film's
     ``albedo()``, ``normal()`` and ``depth()`` arrays, and ``denoise()`` (Intel Open Image
     Denoise 2, found at run time: see docs/denoising.md).
+
+    ``sample_range=(a, b)`` renders only samples ``a`` to ``b - 1`` of every pixel of the
+    ``spp`` render: films of ranges that cover ``0..spp``, added with ``+`` or :func:`merge` in
+    any order, equal the film of rendering everything at once, bit for bit
+    (docs/distributed.md).
 
     ``progress(p)`` is called on the calling thread about ten times a second and once at the
     end with a :class:`Progress` (``spp_done``, ``spp_target``, ``samples_per_second``,
@@ -118,3 +128,29 @@ def start(scene: Scene, **options: Unpack[RenderOptions]) -> RenderJob:
     still running.
     """
     return _core.start(scene, **options)
+
+
+def merge(films: Iterable[Film]) -> Film:
+    """Adds films of sample ranges of one render (``film_a + film_b + …``): exact, so the order
+    does not change a bit. ``ValueError`` if a film belongs to another scene, other settings or
+    another engine build, or repeats samples another film holds; :attr:`Film.missing_ranges`
+    says what is still to render."""
+    films = list(films)
+    if not films:
+        raise ValueError("merge: no films given")
+    return functools.reduce(operator.add, films)
+
+
+class DistributedRenderError(RuntimeError):
+    """A distributed render (:func:`pathtrace.distributed.render`) lost chunks after every retry.
+
+    ``missing`` lists the sample ranges ``(start, end)`` no worker delivered; ``film`` is the
+    film of the chunks that did arrive (``None`` if none did): render the missing ranges later
+    (``render(..., sample_range=r)``) and add them, or pass a ``checkpoint`` file so that a
+    restarted driver renders only what is missing.
+    """
+
+    def __init__(self, message: str, missing: List[Tuple[int, int]], film: Optional[Film]) -> None:
+        super().__init__(message)
+        self.missing = missing
+        self.film = film

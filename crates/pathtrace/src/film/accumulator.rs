@@ -1,63 +1,128 @@
-//! Per-pixel accumulation: sample count, running mean and running sum of squared deviations
-//! per channel (Welford, "Note on a Method for Calculating Corrected Sums of Squares and
-//! Products", 1962), kept in f64 so that millions of samples lose no precision.
+//! Per-pixel accumulation in exact fixed point: the sample count, and per channel the sum of the
+//! samples and the sum of their squares, each sample truncated once to a multiple of 2⁻⁴⁰.
+//!
+//! **Why integers.** A floating-point running mean (Welford) merged by Chan's formula depends on
+//! the order samples arrive in: the SIMD lane count, the wave boundaries and the machine a part
+//! of the render ran on all change the last bits. Rounding each sample to a fixed grid is a pure
+//! function of the sample, and integer addition is associative and commutative, so any split of
+//! a pixel's samples, merged in any order, on any thread or lane count, gives the same bits —
+//! what rendering one image across several machines needs (docs/distributed.md).
+//!
+//! **Range.** Sums are `i128`, squares `u128`, with [`FRACTION_BITS`] = 40 fractional bits
+//! (quantum 2⁻⁴⁰ ≈ 9.1·10⁻¹³, far below an f32's resolution of any visible radiance):
+//! - a sample's magnitude is clamped to [`SAMPLE_LIMIT`] = 2⁵² ≈ 4.5·10¹⁵ (a radiance no scene
+//!   of ours comes near: a firefly that large would ruin the image anyway); then |sum| ≤ 2³² samples · 2⁵²⁺⁴⁰ = 2¹²⁴ < 2¹²⁷, so a sum
+//!   cannot overflow for any `u32` sample count;
+//! - a square is truncated to the same grid and the sum of squares saturates at `u128::MAX`
+//!   (Σx² ≈ 3.1·10²⁶). Saturating addition of non-negative integers is still order-free
+//!   (it is min(true sum, MAX)); a saturated pixel reports an infinite variance, never a wrong
+//!   finite one.
+//!
+//! Values below 2⁻⁴⁰ ≈ 9.1·10⁻¹³ truncate to zero, and squares below that (|x| < 9.5·10⁻⁷) do too, so
+//! the variance of pixels darker than about 10⁻⁶ is not resolved (they are far below what any
+//! image format displays).
 
 use crate::math::Rgb;
 
+/// Fractional bits of the fixed-point sums (and of the sums of squares).
+pub const FRACTION_BITS: i32 = 40;
+
+/// Largest sample magnitude kept as is; larger ones are clamped to it (see the module docs).
+pub const SAMPLE_LIMIT: f64 = (1u64 << 52) as f64;
+
+/// 2^FRACTION_BITS, the fixed-point scale.
+const SCALE: f64 = (1u64 << FRACTION_BITS) as f64;
+
 /// The statistics of one pixel's samples.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct PixelStats {
     pub count: u32,
-    pub mean: [f64; 3],
-    pub m2: [f64; 3],
+    /// Σ trunc(x · 2⁴⁰) per channel.
+    pub sum: [i128; 3],
+    /// Σ trunc(x² · 2⁴⁰) per channel, saturating.
+    pub sum_sq: [u128; 3],
+}
+
+/// `x · 2⁴⁰` truncated toward zero to an integer, `x` already clamped. Truncation is as pure a
+/// function of the sample as rounding (which is all exactness needs) and is one instruction: an
+/// f32 of magnitude ≥ 2⁻¹⁷ times 2⁴⁰ is an integer already, and below that the error is under
+/// 2⁻⁴⁰. Most values fit an `i64`, whose conversion is one instruction; the `i128` one is a
+/// library call.
+#[inline(always)]
+fn to_fixed(x: f64) -> i128 {
+    let scaled = x * SCALE;
+    if scaled.abs() < 9.0e18 {
+        scaled as i64 as i128
+    } else {
+        scaled as i128
+    }
+}
+
+/// `x² · 2⁴⁰` truncated, saturating at `u128::MAX` (`as` saturates). x² of an f32 is exact in f64.
+#[inline(always)]
+fn square_to_fixed(x: f64) -> u128 {
+    let scaled = x * x * SCALE;
+    if scaled < 1.8e19 {
+        scaled as u64 as u128
+    } else {
+        scaled as u128
+    }
 }
 
 impl PixelStats {
-    /// Adds one sample (Welford's update).
+    /// Adds one finite sample (channels beyond ±[`SAMPLE_LIMIT`] are clamped to it).
     #[inline]
     pub fn add(&mut self, c: Rgb) {
         self.count += 1;
-        let n = self.count as f64;
         for (k, x) in c.to_array().into_iter().enumerate() {
+            // f32 → f64 is exact, so is the scaling by a power of two; x² of an f32 fits f64's
+            // 53 bits exactly: the only rounding is the truncation to the grid.
             let x = x as f64;
-            let delta = x - self.mean[k];
-            self.mean[k] += delta / n;
-            self.m2[k] += delta * (x - self.mean[k]);
+            let kept = x.clamp(-SAMPLE_LIMIT, SAMPLE_LIMIT);
+            self.sum[k] += to_fixed(kept);
+            self.sum_sq[k] = self.sum_sq[k].saturating_add(square_to_fixed(kept));
         }
     }
 
-    /// Combines two sets of samples as if they had been added one by one (Chan, Golub &
-    /// LeVeque, "Updating Formulae and a Pairwise Algorithm for Computing Sample Variances", 1979).
+    /// Combines two sets of samples: integer addition, so the result is the same whatever the
+    /// grouping or order of the merges.
     #[inline]
     pub fn merge(&mut self, o: &PixelStats) {
-        if o.count == 0 {
-            return;
-        }
-        if self.count == 0 {
-            *self = *o;
-            return;
-        }
-        let (na, nb) = (self.count as f64, o.count as f64);
-        let n = na + nb;
-        for k in 0..3 {
-            let delta = o.mean[k] - self.mean[k];
-            self.mean[k] += delta * nb / n;
-            self.m2[k] += o.m2[k] + delta * delta * na * nb / n;
-        }
         self.count += o.count;
+        for k in 0..3 {
+            self.sum[k] += o.sum[k];
+            self.sum_sq[k] = self.sum_sq[k].saturating_add(o.sum_sq[k]);
+        }
+    }
+
+    /// The mean per channel (zero without samples).
+    #[inline]
+    pub fn mean(&self) -> [f64; 3] {
+        let n = self.count.max(1) as f64;
+        self.sum.map(|s| s as f64 / SCALE / n)
     }
 
     pub fn mean_rgb(&self) -> Rgb {
-        Rgb::new(self.mean[0] as f32, self.mean[1] as f32, self.mean[2] as f32)
+        let m = self.mean();
+        Rgb::new(m[0] as f32, m[1] as f32, m[2] as f32)
     }
 
-    /// Unbiased sample variance per channel (zero with fewer than two samples).
+    /// Unbiased sample variance per channel, (Σx² − n·mean²) / (n − 1) (zero with fewer than
+    /// two samples, infinite when the sum of squares saturated).
     pub fn sample_variance(&self) -> [f64; 3] {
         if self.count < 2 {
             return [0.0; 3];
         }
-        let d = (self.count - 1) as f64;
-        self.m2.map(|m| m / d)
+        let n = self.count as f64;
+        let mean = self.mean();
+        std::array::from_fn(|k| {
+            if self.sum_sq[k] == u128::MAX {
+                return f64::INFINITY;
+            }
+            let mean_sq = self.sum_sq[k] as f64 / SCALE / n;
+            // The difference of two rounded means can dip below zero for (near-)constant pixels.
+            ((mean_sq - mean[k] * mean[k]) * (n / (n - 1.0))).max(0.0)
+        })
     }
 
     /// Estimated variance of the pixel's mean, per channel: s² / n.
@@ -72,26 +137,72 @@ mod tests {
     use super::*;
 
     #[test]
-    fn welford_and_merge_match_the_two_pass_formulas() {
+    fn mean_and_variance_match_the_two_pass_formulas() {
         let xs: Vec<f32> = (0..50).map(|i| ((i * 37) % 11) as f32 * 0.3 + 1.0).collect();
         let mut all = PixelStats::default();
         let (mut a, mut b) = (PixelStats::default(), PixelStats::default());
         for (i, &x) in xs.iter().enumerate() {
             all.add(Rgb::splat(x));
             if i < 17 {
-                a.add(Rgb::splat(x))
+                a.add(Rgb::splat(x));
             } else {
-                b.add(Rgb::splat(x))
+                b.add(Rgb::splat(x));
             }
         }
-        a.merge(&b);
+        b.merge(&a);
+        assert_eq!(all, b, "a merge is the same integers as adding one by one");
         let n = xs.len() as f64;
         let mean = xs.iter().map(|&x| x as f64).sum::<f64>() / n;
         let var = xs.iter().map(|&x| (x as f64 - mean).powi(2)).sum::<f64>() / (n - 1.0);
-        for s in [all, a] {
-            assert_eq!(s.count, 50);
-            assert!((s.mean[0] - mean).abs() < 1e-12);
-            assert!((s.sample_variance()[1] - var).abs() < 1e-9);
+        assert_eq!(all.count, 50);
+        assert!((all.mean()[0] - mean).abs() < 1e-12);
+        assert!((all.sample_variance()[1] - var).abs() < 1e-9);
+    }
+
+    #[test]
+    fn any_grouping_of_wildly_scaled_samples_gives_the_same_bits() {
+        // Fireflies, tiny values and negatives (filter weights can be): floats would round
+        // differently in each order; the fixed-point sums may not.
+        let xs = [1e-9f32, 3.0e7, -2.5, 1e-3, 0.7, 6.0e12, 1e-12, 42.0, -1e-6, 0.1];
+        let one_by_one = xs.iter().fold(PixelStats::default(), |mut p, &x| {
+            p.add(Rgb::new(x, x * 0.5, -x));
+            p
+        });
+        for split in 1..xs.len() {
+            let mut parts = [PixelStats::default(); 2];
+            for (i, &x) in xs.iter().enumerate().rev() {
+                parts[usize::from(i >= split)].add(Rgb::new(x, x * 0.5, -x));
+            }
+            let (mut ab, mut ba) = (parts[0], parts[1]);
+            ab.merge(&parts[1]);
+            ba.merge(&parts[0]);
+            assert_eq!(ab, one_by_one);
+            assert_eq!(ba, one_by_one);
         }
+    }
+
+    #[test]
+    fn constant_samples_have_zero_variance_and_an_exact_mean() {
+        let mut p = PixelStats::default();
+        for _ in 0..1000 {
+            p.add(Rgb::new(15.0, 0.1, 0.0));
+        }
+        assert_eq!(p.mean()[0], 15.0);
+        assert!((p.mean()[1] - 0.1f32 as f64).abs() < 1e-12);
+        assert_eq!(p.sample_variance()[0], 0.0);
+        assert!(p.sample_variance()[1] < 1e-12);
+    }
+
+    #[test]
+    fn huge_samples_are_clamped_and_saturated_squares_report_infinite_variance() {
+        let mut p = PixelStats::default();
+        p.add(Rgb::splat(1.0));
+        p.add(Rgb::new(1e30, 1.0, 1.0));
+        assert_eq!(p.mean()[0], (SAMPLE_LIMIT + 1.0) / 2.0);
+        assert_eq!(p.sample_variance()[0], f64::INFINITY);
+        assert!(p.sample_variance()[1] == 0.0);
+        // 2³² samples at the limit still fit the sum: check the bound the docs claim.
+        let bound = (SAMPLE_LIMIT * SCALE) as i128 * (u32::MAX as i128);
+        assert!(bound < i128::MAX);
     }
 }

@@ -24,3 +24,17 @@ pub(super) fn try_pixels(len: u64) -> Option<Vec<PixelStats>> {
     pixels.resize(len, PixelStats::default());
     Some(pixels)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pixel_takes_the_bytes_docs_distributed_md_states() {
+        // count (4) + three i128 sums (48) + three u128 sums of squares (48), aligned to 16 where
+        // 128-bit integers are (x86-64, aarch64): docs/distributed.md's memory figure.
+        if std::mem::align_of::<u128>() == 16 {
+            assert_eq!(FILM_BYTES_PER_PIXEL, 112);
+        }
+    }
+}

@@ -1,6 +1,7 @@
-//! The film: the accumulation buffer of a render. Per pixel it keeps a sample count, the running
-//! mean and the running variance; the image is the mean (sum / count), tone mapped only on
-//! output. Films of the same size merge by adding their samples.
+//! The film: the accumulation buffer of a render. Per pixel it keeps a sample count and exact
+//! fixed-point sums of the samples and of their squares (`accumulator.rs`); the image is the mean
+//! (sum / count), tone mapped only on output. Films of the same size merge by adding their sums,
+//! which gives the same bits in any order.
 
 use super::accumulator::PixelStats;
 use super::allocation::{try_pixels, FilmTooLarge, FILM_BYTES_PER_PIXEL};
@@ -66,6 +67,12 @@ impl Film {
         let len = u64::from(width) * u64::from(height);
         let pixels = try_pixels(len).ok_or(FilmTooLarge { width, height, bytes: len * FILM_BYTES_PER_PIXEL })?;
         Ok(Self { width, height, pixels, dropped_samples: 0 })
+    }
+
+    /// A film of the given pixels (row by row; `pixels.len()` must be `width × height`).
+    pub(super) fn from_pixels(width: u32, height: u32, pixels: Vec<PixelStats>) -> Self {
+        debug_assert_eq!(pixels.len() as u64, u64::from(width) * u64::from(height));
+        Self { width, height, pixels, dropped_samples: 0 }
     }
 
     pub fn width(&self) -> u32 {
@@ -145,9 +152,9 @@ impl Film {
         for y in y0..y1 {
             for x in x0..x1 {
                 let p = self.pixel(x, y);
-                let v = p.variance_of_mean();
+                let (m, v) = (p.mean(), p.variance_of_mean());
                 for k in 0..3 {
-                    mean[k] += p.mean[k];
+                    mean[k] += m[k];
                     var[k] += v[k];
                 }
                 n += 1;
@@ -178,7 +185,7 @@ impl Film {
                 return None;
             }
             err += p.variance_of_mean().iter().sum::<f64>();
-            signal += p.mean.iter().map(|m| m * m).sum::<f64>();
+            signal += p.mean().iter().map(|m| m * m).sum::<f64>();
         }
         (signal > 0.0).then(|| (err / signal).sqrt())
     }

@@ -3,18 +3,24 @@
 mod accumulator;
 mod allocation;
 mod features;
+mod file;
 #[allow(clippy::module_inception)]
 mod film;
 pub mod filter;
+mod fingerprint;
 mod image;
 mod noise;
+mod ranged;
 pub mod tonemap;
 
-pub use accumulator::PixelStats;
+pub use accumulator::{PixelStats, FRACTION_BITS, SAMPLE_LIMIT};
 pub use allocation::{FilmTooLarge, FILM_BYTES_PER_PIXEL};
 pub use features::{FeatureBuffers, FeaturePixel, FeatureSample};
+pub use file::{FilmFileError, FILE_BYTES_PER_PIXEL, FORMAT_VERSION};
 pub use film::{Film, RegionEstimate};
 pub use filter::{FilterSample, GaussianFilter, PixelFilter};
+pub use fingerprint::{engine_build, render_key, Fnv64};
 pub use image::Image;
 pub use noise::{relative_variance, RELATIVE_EPSILON};
+pub use ranged::{MergeError, RangedFilm};
 pub use tonemap::{ToneMap, ToneMapSettings};

@@ -20,8 +20,8 @@ pub const RELATIVE_EPSILON: f64 = 0.01;
 /// A pixel's relative variance per sample, Σ_c s²_c / (mean_c² + 0.01): its contribution to the
 /// relative MSE is this divided by its sample count (and by 3N).
 pub fn relative_variance(p: &PixelStats) -> f64 {
-    let v = p.sample_variance();
-    (0..3).map(|c| v[c] / (p.mean[c] * p.mean[c] + RELATIVE_EPSILON)).sum()
+    let (v, mean) = (p.sample_variance(), p.mean());
+    (0..3).map(|c| v[c] / (mean[c] * mean[c] + RELATIVE_EPSILON)).sum()
 }
 
 impl Film {
@@ -83,7 +83,7 @@ mod tests {
         let actual: f64 = film
             .pixels()
             .iter()
-            .flat_map(|p| p.mean.iter().map(|m| (m - 0.5) * (m - 0.5) / (0.25 + 0.01)))
+            .flat_map(|p| p.mean().into_iter().map(|m| (m - 0.5) * (m - 0.5) / (0.25 + 0.01)))
             .sum::<f64>()
             / 1200.0;
         let estimate = film.relative_mse_estimate().unwrap();

@@ -10,6 +10,7 @@
 //! waves from the merged film, so that stays bit-identical too.
 
 use super::adaptive::{allocate, AdaptiveSettings};
+use super::sample_range::SampleRange;
 use super::settings::RenderSettings;
 use super::tile::{render_tile, tiles, Tile, TileJob, TileResult, WaveSamples};
 use crate::camera::{Camera, CameraDesc, CameraError};
@@ -35,6 +36,10 @@ pub enum RenderError {
     NoBudget,
     #[error(transparent)]
     Film(#[from] FilmTooLarge),
+    #[error("sample range {range} is not within the render's 0..{spp} samples per pixel: give a range inside it")]
+    SampleRangeOutside { range: SampleRange, spp: u32 },
+    #[error("a sample range cannot be combined with adaptive sampling (whose choices depend on every sample so far): render uniformly, or the whole range")]
+    SampleRangeAdaptive,
 }
 
 impl RenderError {
@@ -51,7 +56,7 @@ pub struct Progress {
     /// Samples per pixel completed by every pixel (whole waves); with adaptive sampling, the
     /// average over pixels.
     pub spp_done: u32,
-    /// The target (0 for open-ended renders).
+    /// The target (0 for open-ended renders; the range's length when rendering a sample range).
     pub spp_target: u32,
     /// Pixel samples finished, counting partly done waves.
     pub samples: u64,
@@ -167,6 +172,14 @@ impl RenderSession {
         if settings.spp == 0 && settings.time_limit.is_none() && target_error.is_none() {
             return Err(RenderError::NoBudget);
         }
+        if let Some(range) = settings.sample_range {
+            if range.is_empty() || range.end > settings.spp {
+                return Err(RenderError::SampleRangeOutside { range, spp: settings.spp });
+            }
+            if settings.adaptive.is_some() {
+                return Err(RenderError::SampleRangeAdaptive);
+            }
+        }
         let camera = Camera::new(camera, settings.width, settings.height)?;
         let prep = Prepared { camera, lanes: WideScene::new(&scene, &settings.path) };
         let film = Film::try_new(settings.width, settings.height)?;
@@ -192,7 +205,7 @@ impl RenderSession {
             start: Instant::now(),
             end: Mutex::new(None),
             ended: Condvar::new(),
-            spp_target: settings.spp,
+            spp_target: if settings.spp > 0 { settings.samples().len() } else { 0 },
             target_error,
         });
         let worker_shared = Arc::clone(&shared);
@@ -339,6 +352,7 @@ fn run_wave(
         camera: &prep.camera,
         lanes: &prep.lanes,
         one_lane: settings.kernel == Kernel::Scalar,
+        at_most_8_lanes: settings.kernel == Kernel::Wide8,
         filter: &settings.filter,
         features: settings.features,
     };
@@ -358,7 +372,8 @@ fn run_wave(
 fn run_uniform(scene: &Scene, prep: &Prepared, settings: &RenderSettings, shared: &Shared) {
     let tile_list = tiles(settings.width, settings.height, settings.tile_size);
     let deadline = settings.time_limit.map(|t| shared.start + t);
-    let mut first = 0u32;
+    let start = settings.samples().start;
+    let mut first = start;
     for count in settings.waves() {
         if shared.stop_requested(deadline) {
             break;
@@ -368,7 +383,7 @@ fn run_uniform(scene: &Scene, prep: &Prepared, settings: &RenderSettings, shared
             break;
         }
         first = first.saturating_add(count);
-        shared.spp_done.store(first, Ordering::Relaxed);
+        shared.spp_done.store(first - start, Ordering::Relaxed);
         shared.update_error_estimate();
     }
 }

@@ -1,6 +1,7 @@
 //! What to render and how long for.
 
 use super::adaptive::AdaptiveSettings;
+use super::sample_range::SampleRange;
 use crate::film::PixelFilter;
 use crate::integrator::PathSettings;
 use crate::sampling::SamplerKind;
@@ -35,6 +36,10 @@ pub struct RenderSettings {
     /// Accumulate feature buffers (albedo, normal, depth) beside the image, over the same
     /// samples (`RenderOutcome::features`); off by default, costing nothing then.
     pub features: bool,
+    /// Render only these sample indices of every pixel (`None`: all of `0..spp`); `spp` stays
+    /// the whole render's, which the stratified sampler spreads its strata over. Not with
+    /// adaptive sampling, whose choices depend on every sample so far.
+    pub sample_range: Option<SampleRange>,
 }
 
 impl Default for RenderSettings {
@@ -54,6 +59,7 @@ impl Default for RenderSettings {
             adaptive: None,
             kernel: Kernel::default(),
             features: false,
+            sample_range: None,
         }
     }
 }
@@ -69,19 +75,26 @@ impl RenderSettings {
         }
     }
 
+    /// The sample indices this render takes: `sample_range`, or `0..spp` (`spp` = 0: endless).
+    pub fn samples(&self) -> SampleRange {
+        self.sample_range.unwrap_or(SampleRange::new(0, self.spp))
+    }
+
     /// The sample counts of successive waves: 1, 2, 4, … capped at `max_wave_spp`, summing to
-    /// `spp` (endless when `spp` is 0).
+    /// the length of [`RenderSettings::samples`] (endless when `spp` is 0). Waves start at the
+    /// range's first sample; how a range is cut into waves does not change the film.
     pub fn waves(&self) -> impl Iterator<Item = u32> + '_ {
         let cap = self.max_wave_spp.max(1);
+        let total = self.samples().len();
         let mut done = 0u32;
         let mut next = 1u32;
         std::iter::from_fn(move || {
-            if self.spp > 0 && done >= self.spp {
+            if self.spp > 0 && done >= total {
                 return None;
             }
             let mut n = next.min(cap);
             if self.spp > 0 {
-                n = n.min(self.spp - done);
+                n = n.min(total - done);
             }
             done = done.saturating_add(n);
             next = next.saturating_mul(2);
@@ -103,5 +116,7 @@ mod tests {
         assert_eq!(s.waves().collect::<Vec<_>>(), vec![1, 2, 2]);
         let s = RenderSettings { spp: 0, max_wave_spp: 4, ..Default::default() };
         assert_eq!(s.waves().take(5).collect::<Vec<_>>(), vec![1, 2, 4, 4, 4]);
+        let s = RenderSettings { spp: 64, sample_range: Some(SampleRange::new(10, 20)), ..Default::default() };
+        assert_eq!(s.waves().collect::<Vec<_>>(), vec![1, 2, 4, 3]);
     }
 }

@@ -37,6 +37,8 @@ pub(super) struct TileJob<'a> {
     pub lanes: &'a WideScene,
     /// Trace one path at a time (`Kernel::Scalar`) instead of a SIMD group.
     pub one_lane: bool,
+    /// Groups of 8 lanes even with AVX-512 (`Kernel::Wide8`).
+    pub at_most_8_lanes: bool,
     pub filter: &'a PixelFilter,
     /// Record feature buffers (`RenderSettings::features`).
     pub features: bool,
@@ -83,8 +85,8 @@ pub(crate) struct TileResult {
 /// The same code runs compiled for the widest SIMD the CPU has, chosen at run time so the
 /// binary stays portable: groups of 16 lanes with AVX-512, of 8 with AVX2 (and in the portable
 /// build). Rust never fuses multiply-adds on its own, so every build computes the same values
-/// per sample; images differ only in the order a pixel's samples are summed, which depends on
-/// the group size. Setting `PATHTRACE_NO_AVX512` or `PATHTRACE_NO_AVX2` forces the narrower
+/// per sample, and the film sums them exactly, so every build gives the same image (to check it,
+/// `Kernel::Wide8` forces groups of 8 where AVX-512 would give 16). Setting `PATHTRACE_NO_AVX512` or `PATHTRACE_NO_AVX2` forces the narrower
 /// builds, to measure them (docs/benchmarks.md).
 pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     #[cfg(target_arch = "x86_64")]
@@ -96,7 +98,7 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
             && std::arch::is_x86_feature_detected!("avx512dq")
             && std::arch::is_x86_feature_detected!("avx512bw")
             && std::env::var_os("PATHTRACE_NO_AVX512").is_none();
-        if avx512 && !job.one_lane {
+        if avx512 && !job.one_lane && !job.at_most_8_lanes {
             // SAFETY: `render_tile_avx512` only requires AVX-512 F/VL/DQ/BW, which the CPU was just checked to have.
             #[allow(unsafe_code)]
             return unsafe { render_tile_avx512(job, sampler, tile, samples) };
@@ -130,7 +132,7 @@ fn render_tile_body<const N: usize>(
     tile: Tile,
     samples: WaveSamples,
 ) -> TileResult {
-    let TileJob { scene, camera, lanes, one_lane, filter, features } = *job;
+    let TileJob { scene, camera, lanes, one_lane, filter, features, .. } = *job;
     let job = LaneJob { scene, lanes, camera, filter, features };
     if one_lane {
         return render_tile_one_lane(&job, sampler, tile, samples);

@@ -41,16 +41,20 @@ pub enum Kernel {
     Scalar,
     /// Groups of 8 (16) paths, as `auto`.
     Wide,
+    /// Groups of 8 paths even where AVX-512 offers 16: to check that 8- and 16-lane machines
+    /// give the same film (docs/distributed.md), and to measure the narrower build.
+    Wide8,
 }
 
 impl Kernel {
-    pub const NAMES: [&'static str; 3] = ["auto", "scalar", "wide"];
+    pub const NAMES: [&'static str; 4] = ["auto", "scalar", "wide", "wide8"];
 
     pub fn name(self) -> &'static str {
         match self {
             Kernel::Auto => "auto",
             Kernel::Scalar => "scalar",
             Kernel::Wide => "wide",
+            Kernel::Wide8 => "wide8",
         }
     }
 
@@ -59,6 +63,7 @@ impl Kernel {
             "auto" => Some(Kernel::Auto),
             "scalar" => Some(Kernel::Scalar),
             "wide" => Some(Kernel::Wide),
+            "wide8" => Some(Kernel::Wide8),
             _ => None,
         }
     }
@@ -67,7 +72,7 @@ impl Kernel {
 impl std::str::FromStr for Kernel {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        Self::from_name(s).ok_or_else(|| format!("unknown kernel '{s}' (expected auto, scalar or wide)"))
+        Self::from_name(s).ok_or_else(|| format!("unknown kernel '{s}' (expected auto, scalar, wide or wide8)"))
     }
 }
 

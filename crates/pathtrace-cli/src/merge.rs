@@ -1,0 +1,77 @@
+//! `pathtrace merge`: joins films rendered in sample ranges into the whole render's film. The
+//! film sums are exact integers, so the merged image is bit for bit the one a single
+//! `pathtrace render` of every sample writes, whatever the order of the parts.
+
+use crate::args::MergeArgs;
+use crate::destination::{check_destination, check_image_destination};
+use crate::CliError;
+use pathtrace::film::ToneMapSettings;
+use pathtrace::SampleRange;
+use pathtrace_scene::film_file::{read_film, write_film};
+use pathtrace_scene::image_io::write_image;
+use std::process::ExitCode;
+
+/// `a..b, c..d`
+fn list(ranges: &[SampleRange]) -> String {
+    ranges.iter().map(|r| r.to_string()).collect::<Vec<_>>().join(", ")
+}
+
+pub fn run(a: MergeArgs) -> Result<ExitCode, CliError> {
+    if a.output.is_none() && a.film_out.is_none() {
+        return Err(CliError::usage("merge: nothing to write: give -o IMAGE and/or --film-out FILM"));
+    }
+    if let Some(path) = &a.output {
+        check_image_destination(path, "-o")?;
+    }
+    if let Some(path) = &a.film_out {
+        check_destination(path, "--film-out")?;
+    }
+    if !a.exposure.is_finite() {
+        return Err(CliError::usage("--exposure must be a finite number of stops"));
+    }
+    let mut merged = None;
+    for path in &a.parts {
+        let part = read_film(path).map_err(|e| CliError::usage(e.to_string()))?;
+        match &mut merged {
+            None => merged = Some(part),
+            Some(whole) => {
+                whole.merge(&part).map_err(|e| CliError::usage(format!("{}: cannot merge: {e}", path.display())))?
+            }
+        }
+    }
+    let Some(whole) = merged else { return Err(CliError::usage("merge: no film given")) };
+    let missing = whole.missing();
+    let (w, h) = (whole.film.width(), whole.film.height());
+    if !missing.is_empty() {
+        let message = format!(
+            "samples {} of the {} spp render are missing (have {})",
+            list(&missing),
+            whole.spp,
+            list(&whole.ranges)
+        );
+        if a.output.is_some() && !a.partial {
+            return Err(CliError::usage(format!(
+                "merge: {message}: render them with --sample-range, or pass --partial to write the image anyway"
+            )));
+        }
+        eprintln!("warning: {message}");
+    }
+    if let Some(path) = &a.output {
+        let tone = ToneMapSettings { exposure: a.exposure, tone_map: a.tonemap };
+        write_image(path, &whole.film.image(), &tone).map_err(|e| CliError::runtime(e.to_string()))?;
+    }
+    if let Some(path) = &a.film_out {
+        write_film(path, &whole).map_err(|e| CliError::runtime(e.to_string()))?;
+    }
+    if !a.quiet {
+        let outputs: Vec<String> = a.output.iter().chain(a.film_out.iter()).map(|p| p.display().to_string()).collect();
+        eprintln!(
+            "merged {} films — {w}×{h}, samples {} of {} spp — wrote {}",
+            a.parts.len(),
+            list(&whole.ranges),
+            whole.spp,
+            outputs.join(" and ")
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
