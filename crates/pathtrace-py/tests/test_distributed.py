@@ -114,8 +114,11 @@ def _render_killing_one_worker(scene: pathtrace.Scene, **kwargs):
     return result, killed
 
 
-# Chunks long enough to be killed in the middle (a second or more each on a 2-core machine).
-HEAVY = dict(spp=32, seed=3, width=96, height=96, max_depth=8)
+# Chunks long enough to be killed in the middle: about 6M samples each, over a second on one core
+# of a 2-core machine (at 96² × 32 spp the release build finished a chunk in about 20 ms, before
+# the test could see it running).
+HEAVY = dict(spp=512, seed=3, width=256, height=192, max_depth=8)
+QUARTER = HEAVY["spp"] // 4
 
 
 def test_a_killed_worker_costs_time_not_samples(cluster, scene: pathtrace.Scene) -> None:
@@ -133,7 +136,7 @@ def test_lost_chunk_without_retries_is_named_and_a_checkpoint_resumes(
     assert killed is not None, "no chunk was seen running"
     error = result.get("error")
     assert isinstance(error, pathtrace.DistributedRenderError), result
-    chunks = [(0, 8), (8, 16), (16, 24), (24, 32)]
+    chunks = [(k * QUARTER, (k + 1) * QUARTER) for k in range(4)]
     assert error.missing and all(r in chunks for r in error.missing), error.missing
     assert any(f"{a}..{b}" in str(error) for a, b in error.missing), str(error)
     if error.film is not None:
@@ -143,5 +146,5 @@ def test_lost_chunk_without_retries_is_named_and_a_checkpoint_resumes(
     seen = []
     film = distributed.render(scene, chunks=4, checkpoint=checkpoint, progress=lambda d, t: seen.append(d), **HEAVY)
     missing_spp = sum(b - a for a, b in error.missing)
-    assert seen[0] == 32 - missing_spp
+    assert seen[0] == HEAVY["spp"] - missing_spp
     assert film == pathtrace.render(scene, **HEAVY)
