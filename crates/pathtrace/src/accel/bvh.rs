@@ -219,11 +219,7 @@ impl Bvh {
                     self.leaves.intersect(child & !LEAF, prims, ray, &rx4, t_min, &mut t_max, &mut best);
                 }
             }
-            // All four slots are copied and the first k kept: a copy of fixed size is one vector
-            // move, while the k-long copy compiled to a call to memmove (7% of a render of the
-            // teapot scene, perf). It fits: a node at depth d finds at most 3(d − 1) entries on
-            // the stack, and 3(d − 1) + 4 ≤ 3·depth + 1 = `stack_need` ≤ N.
-            stack[sp..sp + 4].copy_from_slice(&kids);
+            stack[sp..sp + k].copy_from_slice(&kids[..k]);
             sp += k;
             loop {
                 if sp == 0 {
