@@ -1,7 +1,8 @@
 //! Command-line arguments.
 
+use crate::CliError;
 use clap::{Args, Parser, Subcommand};
-use pathtrace::film::{PixelFilter, ToneMap};
+use pathtrace::film::{PixelFilter, ToneMap, ToneMapSettings};
 use pathtrace::integrator::Strategy;
 use pathtrace::light::LightSelection;
 use pathtrace::sampling::SamplerKind;
@@ -57,6 +58,32 @@ pub enum Command {
     Merge(MergeArgs),
 }
 
+/// How an image written as PNG is tone mapped (`render` and `merge`).
+#[derive(Debug, Args)]
+pub struct ToneArgs {
+    /// Exposure in stops applied before tone mapping (PNG only)
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Tone map for PNG output: clamp or aces (filmic)
+    #[arg(long, default_value = "clamp", value_parser = parse_from_str::<ToneMap>)]
+    pub tonemap: ToneMap,
+}
+
+impl ToneArgs {
+    /// The settings, or a usage error for an exposure that is not a finite number.
+    pub fn settings(&self) -> Result<ToneMapSettings, CliError> {
+        tone_settings(self.exposure, self.tonemap)
+    }
+}
+
+/// `--exposure` and `--tonemap` as settings; the exposure must be a finite number of stops.
+pub fn tone_settings(exposure: f32, tone_map: ToneMap) -> Result<ToneMapSettings, CliError> {
+    if !exposure.is_finite() {
+        return Err(CliError::usage("--exposure must be a finite number of stops"));
+    }
+    Ok(ToneMapSettings { exposure, tone_map })
+}
+
 #[derive(Debug, Args)]
 pub struct MergeArgs {
     /// Film files (.ptfilm) to merge, in any order
@@ -72,12 +99,8 @@ pub struct MergeArgs {
     /// render's, but still unbiased)
     #[arg(long)]
     pub partial: bool,
-    /// Exposure in stops applied before tone mapping (PNG only)
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-    pub exposure: f32,
-    /// Tone map for PNG output: clamp or aces (filmic)
-    #[arg(long, default_value = "clamp", value_parser = parse_from_str::<ToneMap>)]
-    pub tonemap: ToneMap,
+    #[command(flatten)]
+    pub tone: ToneArgs,
     /// No summary (errors and warnings are still printed)
     #[arg(short, long)]
     pub quiet: bool,
@@ -292,12 +315,8 @@ pub struct RenderArgs {
     /// (linear radiance) [default: the scene's name or file stem + .png]
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
-    /// Exposure in stops applied before tone mapping (PNG only)
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-    pub exposure: f32,
-    /// Tone map for PNG output: clamp or aces (filmic)
-    #[arg(long, default_value = "clamp", value_parser = parse_from_str::<ToneMap>)]
-    pub tonemap: ToneMap,
+    #[command(flatten)]
+    pub tone: ToneArgs,
     /// No progress bar or summary (errors are still printed)
     #[arg(short, long)]
     pub quiet: bool,

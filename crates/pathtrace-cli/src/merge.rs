@@ -5,7 +5,6 @@
 use crate::args::MergeArgs;
 use crate::destination::{check_destination, check_image_destination};
 use crate::CliError;
-use pathtrace::film::ToneMapSettings;
 use pathtrace::SampleRange;
 use pathtrace_scene::film_file::{read_film, write_film};
 use pathtrace_scene::image_io::write_image;
@@ -26,9 +25,7 @@ pub fn run(a: MergeArgs) -> Result<ExitCode, CliError> {
     if let Some(path) = &a.film_out {
         check_destination(path, "--film-out")?;
     }
-    if !a.exposure.is_finite() {
-        return Err(CliError::usage("--exposure must be a finite number of stops"));
-    }
+    let tone = a.tone.settings()?;
     let mut merged = None;
     for path in &a.parts {
         let part = read_film(path).map_err(|e| CliError::usage(e.to_string()))?;
@@ -57,7 +54,6 @@ pub fn run(a: MergeArgs) -> Result<ExitCode, CliError> {
         eprintln!("warning: {message}");
     }
     if let Some(path) = &a.output {
-        let tone = ToneMapSettings { exposure: a.exposure, tone_map: a.tonemap };
         write_image(path, &whole.film.image(), &tone).map_err(|e| CliError::runtime(e.to_string()))?;
     }
     if let Some(path) = &a.film_out {

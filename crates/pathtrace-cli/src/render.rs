@@ -130,9 +130,7 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
         }
         None => None,
     };
-    if !a.exposure.is_finite() {
-        return Err(CliError::usage("--exposure must be a finite number of stops"));
-    }
+    let tone = a.tone.settings()?;
 
     let interrupt = Interrupt::install();
     let session = RenderSession::start(Arc::new(loaded.scene), settings.clone())?;
@@ -154,7 +152,6 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     let interrupted = interrupt.triggered();
 
     let mut image = outcome.film.image();
-    let tone = ToneMapSettings { exposure: a.exposure, tone_map: a.tonemap };
     let mut denoise_time = None;
     if let (Some(denoiser), Some(features)) = (&denoiser, &outcome.features) {
         if let Some(path) = &noisy_output {

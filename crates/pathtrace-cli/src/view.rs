@@ -9,15 +9,12 @@ use std::process::ExitCode;
 pub fn run(a: ViewArgs) -> Result<ExitCode, CliError> {
     use crate::render::settings_from;
     use crate::scene_arg;
-    use pathtrace::film::ToneMapSettings;
     use pathtrace_scene::image_io::read_image;
     use pathtrace_viewer::{ViewerConfig, ViewerError};
     use std::path::{Path, PathBuf};
     use std::sync::Arc;
 
-    if !a.exposure.is_finite() {
-        return Err(CliError::usage("--exposure must be a finite number of stops"));
-    }
+    let tone = crate::args::tone_settings(a.exposure, a.tonemap)?;
     // Fail before loading a large scene when there is nowhere to show it.
     if !pathtrace_viewer::display_available() {
         return Err(CliError::usage(ViewerError::NoDisplay("no display".into()).to_string()));
@@ -62,7 +59,7 @@ pub fn run(a: ViewArgs) -> Result<ExitCode, CliError> {
         camera: loaded.scene.camera,
         scene: Arc::new(loaded.scene),
         settings,
-        tone: ToneMapSettings { exposure: a.exposure, tone_map: a.tonemap },
+        tone,
         reference,
         scene_model,
         image_stem: PathBuf::from(&stem),
