@@ -40,6 +40,17 @@ def rel_mse(np, img, ref):
     return float(np.mean((img - ref) ** 2 / (ref * ref + 0.01)))
 
 
+def run_pathtrace(np, cmd, stats, out):
+    """Runs a `pathtrace render` command that writes `--stats-json stats` and `-o out` (a PFM);
+    returns its render_seconds and the image. Exits with its stderr if it fails."""
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    if proc.returncode != 0:
+        sys.exit(f"pathtrace failed: {' '.join(cmd)}\n{proc.stderr}")
+    with open(stats) as fh:
+        seconds = float(json.load(fh)["render_seconds"])
+    return seconds, load_pfm(np, out)
+
+
 def load_pfm(np, path):
     """A colour PFM as written by pathtrace: header, then rows bottom to top, little-endian f32."""
     with open(path, "rb") as fh:
@@ -108,12 +119,7 @@ class Pathtrace:
             "--max-depth", str(a.max_depth), "--strategy", "mis", "--sampler", self.sampler,
             "--filter", "box", "--threads", str(a.threads), "--seed", str(seed), "--quiet",
             "--stats-json", stats, "-o", out]
-        proc = subprocess.run(cmd, capture_output=True, text=True)
-        if proc.returncode != 0:
-            sys.exit(f"pathtrace failed: {' '.join(cmd)}\n{proc.stderr}")
-        with open(stats) as fh:
-            seconds = float(json.load(fh)["render_seconds"])
-        return seconds, load_pfm(np, out)
+        return run_pathtrace(np, cmd, stats, out)
 
 
 def main(argv=None):

@@ -34,14 +34,13 @@ import os
 import shlex
 import statistics
 import struct
-import subprocess
 import sys
 import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cornell_mitsuba as cm  # noqa: E402  (find_libllvm)
-from equal_quality import load_pfm, rel_mse, timed_render  # noqa: E402
+from equal_quality import rel_mse, run_pathtrace, timed_render  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 SHARED = os.path.abspath(os.path.join(REPO, "..", "shared", "scenes"))
@@ -133,12 +132,7 @@ def ours(np, binary, path, defines, spp, seed, threads, tmp):
                                  "--threads", str(threads), "--quiet", "--stats-json", stats, "-o", out]
     for k, v in defines.items():
         cmd += ["-D", f"{k}={v}"]
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    if proc.returncode != 0:
-        sys.exit(f"pathtrace failed: {' '.join(cmd)}\n{proc.stderr}")
-    with open(stats) as fh:
-        seconds = float(json.load(fh)["render_seconds"])
-    return seconds, load_pfm(np, out)
+    return run_pathtrace(np, cmd, stats, out)
 
 
 def reference(np, mi, dr, label, path, defines, args):
