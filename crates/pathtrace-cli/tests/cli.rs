@@ -247,6 +247,29 @@ fn bench_suite_reports_checks_and_compares() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The suite's scenes from ../shared/scenes load and pass the check against their stored
+/// references: the teapot (a PLY under point lights) and Bitterli's Veach scene (loaded with
+/// `-D integrator=path`, as the Mitsuba comparison renders it). Skipped with a note when ../shared/scenes is absent.
+#[test]
+fn bench_suite_runs_the_shared_scenes_against_their_references() {
+    let shared = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
+    if !shared.is_dir() {
+        eprintln!("skipped: {} is absent", shared.display());
+        return;
+    }
+    let o = run(&["bench", "--quick", "--scenes", "teapot,veach-mis-bitterli", "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let scenes = json["scenes"].as_array().unwrap();
+    let names: Vec<&str> = scenes.iter().map(|s| s["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["teapot", "veach-mis-bitterli"]);
+    for s in scenes {
+        assert_eq!(s["result"]["check"]["status"], "PASS", "{}: {}", s["name"], s["result"]["check"]);
+    }
+    // The Veach scene keeps its own settings: the file's path tracer of max depth 3.
+    assert_eq!(scenes[1]["result"]["max_depth"], 3, "{}", scenes[1]["result"]);
+}
+
 /// A wrong reference (the Cornell box 5% too bright) fails the check with a non-zero exit code.
 #[test]
 fn bench_check_fails_against_a_wrong_reference() {
