@@ -270,6 +270,21 @@ fn bench_suite_runs_the_shared_scenes_against_their_references() {
     assert_eq!(scenes[1]["result"]["max_depth"], 3, "{}", scenes[1]["result"]);
 }
 
+/// An exposure that is not a finite number is a usage error (exit 2) for every command that
+/// takes one, before any work.
+#[test]
+fn a_non_finite_exposure_is_refused() {
+    for args in [
+        &["render", "cornell-box", "--spp", "1", "--exposure", "nan", "-o", "x.png"][..],
+        &["merge", "missing.ptfilm", "--exposure", "inf", "-o", "x.png"][..],
+    ] {
+        let o = run(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("--exposure must be a finite number of stops"), "{args:?}: {err}");
+    }
+}
+
 /// A wrong reference (the Cornell box 5% too bright) fails the check with a non-zero exit code.
 #[test]
 fn bench_check_fails_against_a_wrong_reference() {
