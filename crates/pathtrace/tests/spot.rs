@@ -98,6 +98,11 @@ fn irradiance_under_a_spot_light_matches_the_closed_form() {
     s.path.max_depth = 2;
     let out = render(Arc::new(b.build().unwrap()), s).unwrap();
     let cam = Camera::new(&camera(), SIZE, SIZE).unwrap();
+    // With no area light or environment, the direction sampled at the last vertex could only
+    // find emission that is not there: it is not traced (the closed form below still holds).
+    let rays = out.progress.rays;
+    assert_eq!(rays.extension_rays, 0, "{rays:?}");
+    assert!(rays.shadow_rays > 0 && rays.camera_rays == (SIZE * SIZE * 64) as u64, "{rays:?}");
 
     let mut classes = [(0usize, [0.0f64; 3], [0.0f64; 3], [0.0f64; 3]); 5];
     let mut worst = (0.0f64, 0, 0);

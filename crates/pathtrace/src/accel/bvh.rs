@@ -200,27 +200,26 @@ impl Bvh {
             let (mask, near) = n.hit(&rb, t_min, t_max);
             let mut lanes = mask.bitmask();
             let near = near.to_array();
-            let mut kids = [(0u32, 0f32); 4];
-            let mut k = 0;
+            // This node's interior children go straight onto the stack, insertion-sorted
+            // farthest first among themselves (a separate buffer copied over afterwards
+            // compiled to a `memmove` call per node: 4–6% of the time on small meshes).
+            let base = sp;
             while lanes != 0 {
                 let lane = lanes.trailing_zeros() as usize;
                 let child = n.children[lane];
                 lanes &= lanes - 1;
                 if child & LEAF == 0 {
-                    // Insertion sort, farthest first.
-                    let mut i = k;
-                    while i > 0 && kids[i - 1].1 < near[lane] {
-                        kids[i] = kids[i - 1];
+                    let mut i = sp;
+                    while i > base && stack[i - 1].1 < near[lane] {
+                        stack[i] = stack[i - 1];
                         i -= 1;
                     }
-                    kids[i] = (child, near[lane]);
-                    k += 1;
+                    stack[i] = (child, near[lane]);
+                    sp += 1;
                 } else if child != EMPTY {
                     self.leaves.intersect(child & !LEAF, prims, ray, &rx4, t_min, &mut t_max, &mut best);
                 }
             }
-            stack[sp..sp + k].copy_from_slice(&kids[..k]);
-            sp += k;
             loop {
                 if sp == 0 {
                     return best;

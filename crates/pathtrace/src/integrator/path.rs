@@ -297,6 +297,19 @@ pub(crate) fn vertex<const N: usize>(
         }
     }
 
+    // ---- Last segment without emitters to find -------------------------------------------
+    // A path that has used its last segment but one would trace one more ray only to look
+    // for emission; with no area light or environment in the scene that ray finds nothing
+    // and draws no random numbers, so the path ends here with the same result (unless its
+    // feature samples still wait for a non-specular hit).
+    if !lanes.emitters_hittable && max_segments != u32::MAX {
+        let last = alive & !paths.feature_pending & Ms::from_fn(|i| paths.segments[i] + 1 >= max_segments);
+        if last.any() {
+            paths.finish_all(last, out);
+            alive = alive & !last;
+        }
+    }
+
     // ---- Next segment ------------------------------------------------------------------
     paths.prev_p = Vec3s::select(alive, &s.p, &paths.prev_p);
     paths.prev_pdf = F32s::select(alive, sc.pdf, paths.prev_pdf);

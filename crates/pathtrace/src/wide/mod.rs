@@ -107,6 +107,9 @@ pub struct WideScene {
     /// Per material: how the estimator treats it.
     pub(crate) classes: Vec<MaterialClass>,
     pub(crate) settings: PathSettings,
+    /// Some light can be hit by a ray (an area light, or an environment). Without one, a
+    /// path's last segment could only find emitters that are not there: it is not traced.
+    pub(crate) emitters_hittable: bool,
 }
 
 impl WideScene {
@@ -138,7 +141,8 @@ impl WideScene {
         } else {
             scene.flat_polygons().filter(|p| p.len() <= MAX_FLAT_POLYGONS).and_then(|p| FlatGeometry::new(&p))
         };
-        Self { geometry, lights: WideLights::new(&scene.lights), classes, settings: *settings }
+        let emitters_hittable = scene.lights.area_lights().next().is_some() || scene.lights.environment().is_some();
+        Self { geometry, lights: WideLights::new(&scene.lights), classes, settings: *settings, emitters_hittable }
     }
 
     /// True when rays are tested against every polygon (small scenes) rather than the BVH.
