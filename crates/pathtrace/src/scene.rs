@@ -12,6 +12,7 @@ use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
 use crate::shape::{MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
 use crate::texture::{ColourSlot, Texture, TextureBindings, TextureId};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Index of a material in the scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -110,8 +111,14 @@ impl Scene {
     /// Closest hit with `t ∈ [0, t_max]`.
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let mut best =
+        let best =
             self.bvh.intersect(&self.prims, ray, 0.0, t_max).map(|(hit, i)| Hit { prim: PrimRef::Bounded(i), hit });
+        self.nearer_outside_bvh(ray, best, t_max)
+    }
+
+    /// `best` (the BVH's closest hit), or a nearer hit on an infinite plane or an instance.
+    #[inline(always)]
+    fn nearer_outside_bvh(&self, ray: &Ray, mut best: Option<Hit>, t_max: f32) -> Option<Hit> {
         for (i, p) in self.unbounded.iter().enumerate() {
             let limit = best.map_or(t_max, |b| b.hit.t);
             if let Some(hit) = p.shape.intersect(ray, 0.0, limit) {
@@ -125,6 +132,57 @@ impl Scene {
             }
         }
         best
+    }
+
+    /// [`Scene::intersect`] for the rays of `active` (lane `i`: from `origin[i]` along
+    /// `dir[i]`), bit for bit the same hits, with the BVH traversed by the group of rays
+    /// together (see [`Bvh::intersect_lanes`]).
+    #[inline(always)]
+    pub fn intersect_lanes<const N: usize>(
+        &self,
+        origin: &Vec3s<N>,
+        dir: &Vec3s<N>,
+        active: Ms<N>,
+        t_max: f32,
+    ) -> [Option<Hit>; N] {
+        let found = self.bvh.intersect_lanes(&self.prims, origin, dir, active, 0.0, t_max);
+        std::array::from_fn(|i| {
+            let best = found[i].map(|(hit, i)| Hit { prim: PrimRef::Bounded(i), hit });
+            if !active.lane(i) || (self.unbounded.is_empty() && self.instances.is_empty()) {
+                return best;
+            }
+            self.nearer_outside_bvh(&Ray::new(origin.lane(i), dir.lane(i)), best, t_max)
+        })
+    }
+
+    /// [`Scene::occluded`] for the rays of `active` (lane `i`: from `origin[i]` along `dir[i]`,
+    /// up to `t_max[i]`), with the BVH traversed by the group (see [`Bvh::occluded_lanes`]).
+    #[inline(always)]
+    pub fn occluded_lanes<const N: usize>(
+        &self,
+        origin: &Vec3s<N>,
+        dir: &Vec3s<N>,
+        active: Ms<N>,
+        t_max: F32s<N>,
+    ) -> Ms<N> {
+        let blocked = self.bvh.occluded_lanes(&self.prims, origin, dir, active, 0.0, t_max);
+        Ms::from_fn(|i| {
+            if blocked & (1 << i) != 0 {
+                return true;
+            }
+            if !active.lane(i) || (self.unbounded.is_empty() && self.instances.is_empty()) {
+                return false;
+            }
+            let ray = Ray::new(origin.lane(i), dir.lane(i));
+            self.occluded_outside_bvh(&ray, t_max.0[i])
+        })
+    }
+
+    /// True if an infinite plane or an instance lies on the ray within `[0, t_max]`.
+    #[inline(always)]
+    fn occluded_outside_bvh(&self, ray: &Ray, t_max: f32) -> bool {
+        self.unbounded.iter().any(|p| p.shape.intersect(ray, 0.0, t_max).is_some())
+            || (!self.instances.is_empty() && self.instances.occluded(ray, 0.0, t_max))
     }
 
     /// True if anything lies on the ray within `[0, t_max]`.

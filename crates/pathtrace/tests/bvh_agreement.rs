@@ -386,3 +386,91 @@ fn parallel_build_gives_the_serial_tree() {
     let b = Bvh::build_with(&bounds, &kinds, &BuildOptions { bins: 8, ..Default::default() });
     assert!(!a.same_structure(&b));
 }
+
+/// Bit-identical hits: same primitive kind and index, same `t`, `u`, `v` bits.
+fn identical(a: &Option<Hit>, b: &Option<Hit>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => {
+            a.prim == b.prim
+                && [a.hit.t, a.hit.u, a.hit.v].map(f32::to_bits) == [b.hit.t, b.hit.u, b.hit.v].map(f32::to_bits)
+        }
+        _ => false,
+    }
+}
+
+/// Groups of 16 rays traversed together (`Scene::intersect_lanes`, `Scene::occluded_lanes`)
+/// give each ray exactly what it gets alone — the primitive, and `t`, `u`, `v` bit for bit — whether the group is coherent
+/// (one origin, directions within a few degrees: the tree is walked as a packet), incoherent
+/// (rays split off to single-ray traversal) or partly inactive, on the random scenes above and
+/// with rays aimed at shared edges and vertices, where two primitives are hit at one distance.
+#[test]
+fn ray_groups_find_what_single_rays_find() {
+    const N: usize = 16;
+    let mut rng = Pcg32::new(7, 3);
+    let (mut hits, mut ties_possible, mut blocked_count) = (0, 0, 0);
+    for s in 0..60 {
+        let (scene, shapes) = random_scene(&mut rng, 40, s % 2 == 1);
+        for g in 0..40 {
+            let mut rays = [Ray::new(Vec3::ZERO, Vec3::X); N];
+            match g % 3 {
+                // Coherent: one origin, directions jittered around one aimed at a shape's edge.
+                0 => {
+                    let base = random_ray(&mut rng, &shapes);
+                    for r in rays.iter_mut() {
+                        let d = (base.dir + point(&mut rng, 0.03)).normalize();
+                        *r = Ray::new(base.origin, d);
+                    }
+                    // A few rays aimed exactly at edges and vertices, from the same origin.
+                    for r in rays.iter_mut().take(4) {
+                        let shape = &shapes[rng.next_u32() as usize % shapes.len()];
+                        let target = surface_point(&mut rng, shape, true);
+                        *r = Ray::new(base.origin, (target - base.origin).normalize());
+                        ties_possible += 1;
+                    }
+                }
+                // Incoherent.
+                1 => rays.iter_mut().for_each(|r| *r = random_ray(&mut rng, &shapes)),
+                // Coherent but from points spread over a small area (shadow-ray-like).
+                _ => {
+                    let target = point(&mut rng, 4.0);
+                    let centre = point(&mut rng, 8.0);
+                    for r in rays.iter_mut() {
+                        let o = centre + point(&mut rng, 0.5);
+                        *r = Ray::new(o, (target - o).normalize());
+                    }
+                }
+            }
+            let mut origin = pathtrace::wide::simd::Vec3s::<N>::default();
+            let mut dir = pathtrace::wide::simd::Vec3s::<N>::default();
+            let mut active = pathtrace::wide::simd::Ms::<N>::NONE;
+            for (i, r) in rays.iter().enumerate() {
+                origin.set(i, r.origin);
+                dir.set(i, r.dir);
+                // Every fifth group has some lanes switched off.
+                if g % 5 != 4 || !rng.next_u32().is_multiple_of(3) {
+                    active.0[i] = u32::MAX;
+                }
+            }
+            let t_max = if g % 2 == 0 { f32::INFINITY } else { uniform(&mut rng, 1.0, 12.0) };
+            let together = scene.intersect_lanes(&origin, &dir, active, t_max);
+            // Shadow-ray lengths: some end before the closest hit, some after.
+            let lengths = pathtrace::wide::simd::F32s::<N>::from_fn(|_| uniform(&mut rng, 0.5, 14.0));
+            let blocked = scene.occluded_lanes(&origin, &dir, active, lengths);
+            for (i, r) in rays.iter().enumerate() {
+                let alone = if active.lane(i) { scene.intersect(r, t_max) } else { None };
+                assert!(
+                    identical(&together[i], &alone),
+                    "scene {s} group {g} lane {i} {r:?}: {:?} vs {alone:?}",
+                    together[i]
+                );
+                hits += alone.is_some() as usize;
+                let shadowed = active.lane(i) && scene.occluded(r, lengths.0[i]);
+                assert_eq!(blocked.lane(i), shadowed, "scene {s} group {g} lane {i} {r:?} to {}", lengths.0[i]);
+                blocked_count += shadowed as usize;
+            }
+        }
+    }
+    assert!(hits > 2000 && ties_possible > 300, "{hits} hits, {ties_possible} edge rays");
+    assert!(blocked_count > 1000 && blocked_count < 60 * 40 * N - 1000, "{blocked_count} blocked");
+}

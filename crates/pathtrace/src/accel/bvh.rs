@@ -9,9 +9,10 @@ use super::build::{BuildItem, BuildOptions};
 use super::lanes::RayX4;
 use super::leaf::{Leaves, Packable};
 use super::subtree::build_tree;
-use super::wide::{collapse, wide_depth, Node4, RayBox4, EMPTY, LEAF};
+use super::wide::{collapse, wide_depth, Node4, RayBox4, RayBoxes, EMPTY, LEAF};
 use crate::math::{Aabb, Ray};
 use crate::shape::PrimHit;
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Anything the BVH can hold.
 pub trait Intersectable {
@@ -99,6 +100,9 @@ const STACK_SIZE: usize = 3 * 64 + 1;
 /// incoherent rays on 10⁵ triangles).
 const SMALL_STACK: usize = 16;
 const MEDIUM_STACK: usize = 64;
+/// A node that fewer rays of a group reach is traversed ray by ray (see
+/// [`Bvh::intersect_lanes`]).
+const SINGLE_RAY_BELOW: u32 = 3;
 
 impl Bvh {
     /// Builds over the given primitive bounds with the production options (binned SAH, on
@@ -168,13 +172,129 @@ impl Bvh {
         if self.wide.is_empty() {
             return None;
         }
+        self.closest_from(0, prims, ray, t_min, t_max, None)
+    }
+
+    /// Closest hit in the subtree of wide node `start`, nearer than `t_max` or as near and on
+    /// a lower primitive than `best` (see `leaf::offer`).
+    #[inline(always)]
+    fn closest_from<P: PrimitiveSet + ?Sized>(
+        &self,
+        start: u32,
+        prims: &P,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        best: Option<(PrimHit, u32)>,
+    ) -> Option<(PrimHit, u32)> {
         if self.stack_need <= SMALL_STACK {
-            self.closest::<P, SMALL_STACK>(prims, ray, t_min, t_max)
+            self.closest::<P, SMALL_STACK>(start, prims, ray, t_min, t_max, best)
         } else if self.stack_need <= MEDIUM_STACK {
-            self.closest::<P, MEDIUM_STACK>(prims, ray, t_min, t_max)
+            self.closest::<P, MEDIUM_STACK>(start, prims, ray, t_min, t_max, best)
         } else {
-            self.closest::<P, STACK_SIZE>(prims, ray, t_min, t_max)
+            self.closest::<P, STACK_SIZE>(start, prims, ray, t_min, t_max, best)
         }
+    }
+
+    /// Closest hits of the rays of `active` (lane `i`: `origin[i] + t·dir[i]`, `t` in
+    /// `[t_min, t_max]`), the same as [`Bvh::intersect`] gives each (bit for bit, and the same
+    /// primitive on ties), found by traversing the tree with the group: each node's boxes are
+    /// tested against every ray of the group at once (SIMD over rays), so rays that go the same
+    /// way (the camera rays of neighbouring pixel samples, shadow rays to one light) share the
+    /// node visits; a node reached by at most [`SINGLE_RAY_BELOW`] rays is finished ray by
+    /// ray (incoherent rays would only drag each other through nodes they miss). Leaves are
+    /// tested ray by ray with the single-ray code. (Wald et al., "Interactive Rendering with
+    /// Coherent Ray Tracing", 2001, for packets; Benthin et al., "Combining Single and Packet
+    /// Ray Tracing for Arbitrary Ray Distributions on the Intel MIC Architecture", 2012, for
+    /// the switch to single rays.)
+    #[inline(always)]
+    pub fn intersect_lanes<P: PrimitiveSet + ?Sized, const N: usize>(
+        &self,
+        prims: &P,
+        origin: &Vec3s<N>,
+        dir: &Vec3s<N>,
+        active: Ms<N>,
+        t_min: f32,
+        t_max: f32,
+    ) -> [Option<(PrimHit, u32)>; N] {
+        let mut best = [None; N];
+        if self.wide.is_empty() || !active.any() {
+            return best;
+        }
+        let ray = |i: usize| Ray::new(origin.lane(i), dir.lane(i));
+        let rays = RayBoxes::new(origin, dir);
+        let mut t_far = F32s::<N>::splat(t_max);
+        let lo = F32s::<N>::splat(t_min);
+        let mut stack = [(0u32, 0u32); STACK_SIZE];
+        stack[0] = (0, active.bitmask());
+        let mut sp = 1;
+        while sp > 0 {
+            sp -= 1;
+            let (node, mask) = stack[sp];
+            if mask.count_ones() < SINGLE_RAY_BELOW {
+                let mut lanes = mask;
+                while lanes != 0 {
+                    let i = lanes.trailing_zeros() as usize;
+                    lanes &= lanes - 1;
+                    best[i] = self.closest_from(node, prims, &ray(i), t_min, t_far.0[i], best[i]);
+                    if let Some((hit, _)) = best[i] {
+                        t_far.0[i] = hit.t;
+                    }
+                }
+                continue;
+            }
+            let n = &self.wide[node as usize];
+            let mut kids = [(0u32, 0u32, 0f32); 4];
+            let mut k = 0;
+            for lane in 0..4 {
+                let child = n.children[lane];
+                if child == EMPTY {
+                    continue;
+                }
+                let (hit, near) = n.child_hit_lanes(lane, &rays, lo, t_far);
+                let hit = hit & mask;
+                if hit == 0 {
+                    continue;
+                }
+                if child & LEAF == 0 {
+                    // The nearest entry among the rays that hit orders the children.
+                    let mut entry = f32::INFINITY;
+                    let mut lanes = hit;
+                    while lanes != 0 {
+                        entry = entry.min(near.0[lanes.trailing_zeros() as usize]);
+                        lanes &= lanes - 1;
+                    }
+                    let mut i = k;
+                    while i > 0 && kids[i - 1].2 < entry {
+                        kids[i] = kids[i - 1];
+                        i -= 1;
+                    }
+                    kids[i] = (child, hit, entry);
+                    k += 1;
+                } else {
+                    let mut lanes = hit;
+                    while lanes != 0 {
+                        let i = lanes.trailing_zeros() as usize;
+                        lanes &= lanes - 1;
+                        let r = ray(i);
+                        self.leaves.intersect(
+                            child & !LEAF,
+                            prims,
+                            &r,
+                            &RayX4::new(&r),
+                            t_min,
+                            &mut t_far.0[i],
+                            &mut best[i],
+                        );
+                    }
+                }
+            }
+            for &(child, hit, _) in &kids[..k] {
+                stack[sp] = (child, hit);
+                sp += 1;
+            }
+        }
+        best
     }
 
     /// Near-child-first traversal with distance culling: a node's hit leaves are tested at once
@@ -184,17 +304,18 @@ impl Bvh {
     #[inline(always)]
     fn closest<P: PrimitiveSet + ?Sized, const N: usize>(
         &self,
+        start: u32,
         prims: &P,
         ray: &Ray,
         t_min: f32,
         mut t_max: f32,
+        mut best: Option<(PrimHit, u32)>,
     ) -> Option<(PrimHit, u32)> {
         let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
         let mut stack = [(0u32, 0f32); N];
         let mut sp = 0;
-        let mut node = 0u32;
-        let mut best = None;
+        let mut node = start;
         loop {
             let n = &self.wide[node as usize];
             let (mask, near) = n.hit(&rb, t_min, t_max);
@@ -241,21 +362,114 @@ impl Bvh {
             return false;
         }
         if self.stack_need <= SMALL_STACK {
-            self.any_hit::<P, SMALL_STACK>(prims, ray, t_min, t_max)
+            self.any_hit::<P, SMALL_STACK>(0, prims, ray, t_min, t_max)
         } else if self.stack_need <= MEDIUM_STACK {
-            self.any_hit::<P, MEDIUM_STACK>(prims, ray, t_min, t_max)
+            self.any_hit::<P, MEDIUM_STACK>(0, prims, ray, t_min, t_max)
         } else {
-            self.any_hit::<P, STACK_SIZE>(prims, ray, t_min, t_max)
+            self.any_hit::<P, STACK_SIZE>(0, prims, ray, t_min, t_max)
         }
     }
 
+    /// [`Bvh::occluded`] in the subtree of wide node `start`.
     #[inline(always)]
-    fn any_hit<P: PrimitiveSet + ?Sized, const N: usize>(&self, prims: &P, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+    fn occluded_from<P: PrimitiveSet + ?Sized>(
+        &self,
+        start: u32,
+        prims: &P,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+    ) -> bool {
+        if self.stack_need <= SMALL_STACK {
+            self.any_hit::<P, SMALL_STACK>(start, prims, ray, t_min, t_max)
+        } else if self.stack_need <= MEDIUM_STACK {
+            self.any_hit::<P, MEDIUM_STACK>(start, prims, ray, t_min, t_max)
+        } else {
+            self.any_hit::<P, STACK_SIZE>(start, prims, ray, t_min, t_max)
+        }
+    }
+
+    /// [`Bvh::occluded`] for the rays of `active` (lane `i`: `origin[i] + t·dir[i]`, `t` in
+    /// `[t_min, t_max[i]]`) as a bitmask of the blocked lanes, traversed as a group like
+    /// [`Bvh::intersect_lanes`]; a ray leaves the group as soon as it is found blocked.
+    #[inline(always)]
+    pub fn occluded_lanes<P: PrimitiveSet + ?Sized, const N: usize>(
+        &self,
+        prims: &P,
+        origin: &Vec3s<N>,
+        dir: &Vec3s<N>,
+        active: Ms<N>,
+        t_min: f32,
+        t_max: F32s<N>,
+    ) -> u32 {
+        let mut blocked = 0u32;
+        if self.wide.is_empty() || !active.any() {
+            return blocked;
+        }
+        let ray = |i: usize| Ray::new(origin.lane(i), dir.lane(i));
+        let rays = RayBoxes::new(origin, dir);
+        let lo = F32s::<N>::splat(t_min);
+        let mut stack = [(0u32, 0u32); STACK_SIZE];
+        stack[0] = (0, active.bitmask());
+        let mut sp = 1;
+        while sp > 0 {
+            sp -= 1;
+            let (node, mask) = stack[sp];
+            let mask = mask & !blocked;
+            if mask.count_ones() < SINGLE_RAY_BELOW {
+                let mut lanes = mask;
+                while lanes != 0 {
+                    let i = lanes.trailing_zeros() as usize;
+                    lanes &= lanes - 1;
+                    if self.occluded_from(node, prims, &ray(i), t_min, t_max.0[i]) {
+                        blocked |= 1 << i;
+                    }
+                }
+                continue;
+            }
+            let n = &self.wide[node as usize];
+            for lane in 0..4 {
+                let child = n.children[lane];
+                if child == EMPTY {
+                    continue;
+                }
+                let hit = n.child_hit_lanes(lane, &rays, lo, t_max).0 & mask & !blocked;
+                if hit == 0 {
+                    continue;
+                }
+                if child & LEAF == 0 {
+                    stack[sp] = (child, hit);
+                    sp += 1;
+                } else {
+                    let mut lanes = hit;
+                    while lanes != 0 {
+                        let i = lanes.trailing_zeros() as usize;
+                        lanes &= lanes - 1;
+                        let r = ray(i);
+                        if self.leaves.occluded(child & !LEAF, prims, &r, &RayX4::new(&r), t_min, t_max.0[i]) {
+                            blocked |= 1 << i;
+                        }
+                    }
+                }
+            }
+        }
+        blocked
+    }
+
+    #[inline(always)]
+    fn any_hit<P: PrimitiveSet + ?Sized, const N: usize>(
+        &self,
+        start: u32,
+        prims: &P,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+    ) -> bool {
         let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
         let mut stack = [0u32; N];
         let mut sp = 0;
-        let mut node = 0u32;
+        let mut node = start;
         loop {
             let n = &self.wide[node as usize];
             // Any hit ends the search, so the order of children does not matter.

@@ -5,7 +5,6 @@
 use glam::{BVec4A, Vec3, Vec4};
 
 use crate::math::Ray;
-use crate::shape::PrimHit;
 
 /// Three coordinates of four primitives, one `Vec4` per axis.
 #[derive(Clone, Copy, Debug)]
@@ -77,19 +76,4 @@ pub(super) struct HitX4 {
     pub t: Vec4,
     pub u: Vec4,
     pub v: Vec4,
-}
-
-impl HitX4 {
-    /// The nearest hitting lane (the lowest one on ties), if any.
-    #[inline(always)]
-    pub fn closest(&self) -> Option<(usize, PrimHit)> {
-        if !self.mask.any() {
-            return None;
-        }
-        let t = Vec4::select(self.mask, self.t, Vec4::INFINITY);
-        let nearest = t.min_element();
-        let lane = (t.cmpeq(Vec4::splat(nearest)) & self.mask).bitmask().trailing_zeros() as usize;
-        let hit = PrimHit { t: self.t[lane], u: self.u[lane], v: self.v[lane] };
-        Some((lane, hit))
-    }
 }

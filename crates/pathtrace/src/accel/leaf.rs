@@ -44,6 +44,20 @@ impl Packet for Tri4 {
     }
 }
 
+/// Keeps `hit` on primitive `id` if it comes before `best` in one fixed order — nearer, or as
+/// near and a lower primitive index — and shrinks `t_max` to it. With this order the closest hit
+/// is a function of the ray and the primitives alone, not of the order a traversal meets them
+/// in: a group of rays traversed together visits nodes in another order than a single ray,
+/// and both must name the same primitive when two are hit at one distance (a shared edge).
+/// `hit.t ≤ *t_max` (the tests' bound).
+#[inline(always)]
+fn offer(hit: PrimHit, id: u32, t_max: &mut f32, best: &mut Option<(PrimHit, u32)>) {
+    if hit.t < *t_max || (hit.t == *t_max && best.is_none_or(|(_, b)| id < b)) {
+        *t_max = hit.t;
+        *best = Some((hit, id));
+    }
+}
+
 /// Closest hit among `packets`, shrinking `t_max` and updating `best` as it goes.
 #[inline(always)]
 fn closest_in<G: Packet>(
@@ -54,9 +68,12 @@ fn closest_in<G: Packet>(
     best: &mut Option<(PrimHit, u32)>,
 ) {
     for p in packets {
-        if let Some((lane, hit)) = p.geom.hits(rx4, t_min, *t_max).closest() {
-            *t_max = hit.t;
-            *best = Some((hit, p.ids[lane]));
+        let h = p.geom.hits(rx4, t_min, *t_max);
+        let mut lanes = h.mask.bitmask();
+        while lanes != 0 {
+            let lane = lanes.trailing_zeros() as usize;
+            lanes &= lanes - 1;
+            offer(PrimHit { t: h.t[lane], u: h.u[lane], v: h.v[lane] }, p.ids[lane], t_max, best);
         }
     }
 }
@@ -219,8 +236,7 @@ impl Leaves {
         closest_in(part(&self.tris, leaf.tris, leaf.n_tris), rx4, t_min, t_max, best);
         for &i in part(&self.scalar, leaf.scalar, leaf.n_scalar) {
             if let Some(hit) = prims.intersect_one(i, ray, t_min, *t_max) {
-                *t_max = hit.t;
-                *best = Some((hit, i));
+                offer(hit, i, t_max, best);
             }
         }
     }

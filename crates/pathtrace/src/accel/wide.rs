@@ -6,6 +6,7 @@ use glam::{BVec4A, Vec4};
 
 use super::bvh::Node;
 use crate::math::Ray;
+use crate::wide::simd::{F32s, Vec3s};
 
 /// Child tag for leaves (the low bits are the leaf record).
 pub(super) const LEAF: u32 = 1 << 31;
@@ -41,7 +42,44 @@ impl RayBox4 {
     }
 }
 
+/// Rays in SIMD lanes (one ray per lane) prepared for slab tests against one box at a time.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RayBoxes<const N: usize> {
+    origin: [F32s<N>; 3],
+    inv_dir: [F32s<N>; 3],
+}
+
+impl<const N: usize> RayBoxes<N> {
+    /// The same reciprocals as [`RayBox4::new`] takes per ray.
+    #[inline(always)]
+    pub fn new(origin: &Vec3s<N>, dir: &Vec3s<N>) -> Self {
+        Self { origin: [origin.x, origin.y, origin.z], inv_dir: [dir.x, dir.y, dir.z].map(|d| F32s::ONE / d) }
+    }
+}
+
 impl Node4 {
+    /// Bitmask of the rays whose slab test against child `lane`'s box passes within
+    /// `[t_min, t_far]` (per ray), and their entry distances: per ray, the same operations as
+    /// [`Node4::hit`] (the lane type's `min`/`max` have the SIMD instructions' NaN rule too).
+    #[inline(always)]
+    pub fn child_hit_lanes<const N: usize>(
+        &self,
+        lane: usize,
+        r: &RayBoxes<N>,
+        t_min: F32s<N>,
+        t_far: F32s<N>,
+    ) -> (u32, F32s<N>) {
+        let mut near = t_min;
+        let mut far = t_far;
+        for axis in 0..3 {
+            let t0 = (F32s::splat(self.bounds[axis][lane]) - r.origin[axis]) * r.inv_dir[axis];
+            let t1 = (F32s::splat(self.bounds[axis + 3][lane]) - r.origin[axis]) * r.inv_dir[axis];
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        (near.le(far).bitmask(), near)
+    }
+
     /// Same boxes (bit for bit) and children.
     pub fn same_as(&self, o: &Node4) -> bool {
         self.children == o.children

@@ -253,7 +253,12 @@ pub(crate) fn vertex<const N: usize>(
 
     // ---- Shadow rays: unoccluded light samples add their contribution -------------------
     if sc.shadow.any() {
-        let blocked = occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, sc.shadow_t_max);
+        // Shadow rays from first hits (neighbouring points) go through the BVH together: rays
+        // to one light share most node visits, and rays to several share the upper levels (one
+        // group for the teapot's two point lights cost 6% less time than a group per light);
+        // where they scatter (an environment's samples), the traversal goes on ray by ray.
+        let first_hits = sc.shadow & Ms::from_fn(|i| paths.segments[i] == 1);
+        let blocked = occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, first_hits, sc.shadow_t_max);
         out.stats.shadow_rays += sc.shadow.bitmask().count_ones() as u64;
         let seen = sc.shadow & !blocked;
         // The Lambertian lanes' contributions are formed only now: their inputs were gathered
@@ -441,12 +446,21 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
         s.n_shading = s.n_geometric;
         return s;
     }
-    // Larger scenes: the BVH, one lane at a time.
+    // Larger scenes: the BVH. Camera rays (neighbouring samples of one or a few pixels) go
+    // through it together, sharing node visits; the other rays, which scatter after a bounce,
+    // go one by one (dragging them along a group would cost more than it shares).
     let mut s = Surfaces::none();
+    let camera = active & Ms::from_fn(|i| paths.segments[i] == 1);
+    let hits = job.scene.intersect_lanes(&paths.origin, &paths.dir, camera, f32::INFINITY);
     for i in active.lanes() {
-        let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
-        if let Some(hit) = job.scene.intersect(&ray, f32::INFINITY) {
-            let it = job.scene.interaction(&ray, &hit);
+        let single = if camera.lane(i) {
+            None
+        } else {
+            job.scene.intersect(&Ray::new(paths.origin.lane(i), paths.dir.lane(i)), f32::INFINITY)
+        };
+        if let Some(hit) = hits[i].as_ref().or(single.as_ref()) {
+            let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
+            let it = job.scene.interaction(&ray, hit);
             s.hit.0[i] = u32::MAX;
             s.p.set(i, it.surface.p);
             s.n_geometric.set(i, it.surface.n_geometric);
@@ -460,14 +474,23 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
     s
 }
 
-/// Lanes of `active` whose shadow ray is blocked before `t_max`.
+/// Lanes of `active` whose shadow ray is blocked before `t_max`; the rays of `together` are
+/// traced through the BVH as a group, the others one by one.
 #[inline(always)]
-fn occluded<const N: usize>(job: &LaneJob, origin: &Vec3s<N>, dir: &Vec3s<N>, active: Ms<N>, t_max: F32s<N>) -> Ms<N> {
+fn occluded<const N: usize>(
+    job: &LaneJob,
+    origin: &Vec3s<N>,
+    dir: &Vec3s<N>,
+    active: Ms<N>,
+    together: Ms<N>,
+    t_max: F32s<N>,
+) -> Ms<N> {
     if let Some(geometry) = &job.lanes.geometry {
         return geometry.occluded(origin, dir, active, t_max);
     }
-    let mut blocked = Ms::NONE;
-    for i in active.lanes() {
+    let group = active & together;
+    let mut blocked = job.scene.occluded_lanes(origin, dir, group, t_max);
+    for i in (active & !group).lanes() {
         if job.scene.occluded(&Ray::new(origin.lane(i), dir.lane(i)), t_max.0[i]) {
             blocked.0[i] = u32::MAX;
         }
