@@ -101,6 +101,9 @@ pub struct MergeArgs {
     pub partial: bool,
     #[command(flatten)]
     pub tone: ToneArgs,
+    // --aov and --denoise need -o and films rendered with the feature buffers.
+    #[command(flatten)]
+    pub features: FeatureArgs,
     /// No summary (errors and warnings are still printed)
     #[arg(short, long)]
     pub quiet: bool,
@@ -331,6 +334,13 @@ pub struct RenderArgs {
     /// to this .ptfilm file, for `pathtrace merge`
     #[arg(long, value_name = "FILE", conflicts_with_all = ["time", "adaptive", "target_error"])]
     pub film_out: Option<PathBuf>,
+    #[command(flatten)]
+    pub features: FeatureArgs,
+}
+
+/// Feature buffers and denoising (`render`, and `merge` from films that carry the buffers).
+#[derive(Debug, Args)]
+pub struct FeatureArgs {
     /// Feature buffers to save with the image, averaged over its samples: albedo, normal, depth
     /// (comma separated). EXR output gets them as channels albedo.R/G/B, N.X/Y/Z and Z; PNG and
     /// PFM output as sibling files NAME.albedo.exr (.pfm for PFM output), …
@@ -343,6 +353,13 @@ pub struct RenderArgs {
     /// With --denoise, also write the noisy image as NAME.noisy.EXT
     #[arg(long, requires = "denoise")]
     pub keep_noisy: bool,
+}
+
+impl FeatureArgs {
+    /// Whether the feature buffers are needed.
+    pub fn wanted(&self) -> bool {
+        !self.aov.is_empty() || self.denoise
+    }
 }
 
 /// A feature buffer `render --aov` can save.

@@ -92,7 +92,7 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
     let loaded = scene_arg::load(&a.scene)?;
     let d = loaded.defaults;
     let (width, height) = a.size.unwrap_or((d.width.min(256), d.height.min(256)));
-    crate::memory::check_render_fits(width, height)?;
+    crate::memory::check_render_fits(width, height, Default::default())?;
     let mut base = RenderSettings { width, height, threads: a.threads.unwrap_or(0), ..RenderSettings::default() };
     base.path.max_depth = a.max_depth.unwrap_or(d.max_depth);
     let out_dir = a.out.clone().unwrap_or_else(|| PathBuf::from(format!("converge-{}", scene_arg::stem(&a.scene))));

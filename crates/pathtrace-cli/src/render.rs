@@ -1,23 +1,23 @@
 //! `pathtrace render`.
 
-use crate::aov_output::{sibling, sibling_files, write_with_aovs};
-use crate::args::{AdaptiveArgs, Aov, QualityArgs, RenderArgs};
+use crate::aov_output::FeatureOutputs;
+use crate::args::{AdaptiveArgs, QualityArgs, RenderArgs};
 use crate::destination::{check_destination, check_image_destination};
 use crate::interrupt::Interrupt;
+use crate::memory::Extras;
 use crate::progress::{format_rate, Bar};
 use crate::stats_json::RenderStats;
 use crate::{scene_arg, CliError};
 use pathtrace::film::{engine_build, render_key, Film, Fnv64, Image, RangedFilm, ToneMapSettings};
 use pathtrace::math::Rgb;
 use pathtrace::{AdaptiveSettings, RenderSession, RenderSettings};
-use pathtrace_denoise::Denoiser;
 use pathtrace_scene::film_file::{scene_source_key, write_film, SceneSource};
 use pathtrace_scene::image_io::write_image;
 use pathtrace_scene::{RenderDefaults, RenderOverrides};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Render settings: each from the command line if given, else from the scene, else the
 /// engine's default (the rule is the scene crate's, shared with the Python module).
@@ -86,7 +86,7 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     }
     let mut settings =
         with_adaptive(settings_from(&a.quality, a.spp, a.time, &loaded.defaults), &a.adaptive, a.spp.is_some());
-    settings.features = !a.aov.is_empty() || a.denoise;
+    settings.features = a.features.wanted();
     settings.sample_range = a.sample_range;
     if loaded.scene.lights.has_delta() && !settings.path.strategy.is_mis() {
         eprintln!(
@@ -95,28 +95,10 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
             settings.path.strategy
         );
     }
-    crate::memory::check_render_fits(settings.width, settings.height)?;
+    let extras = Extras { features: settings.features, denoise: a.features.denoise };
+    crate::memory::check_render_fits(settings.width, settings.height, extras)?;
     let output = a.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}.png", scene_arg::stem(&a.scene))));
-    check_image_destination(&output, "-o")?;
-    let mut aovs: Vec<Aov> = Vec::new();
-    for aov in &a.aov {
-        if !aovs.contains(aov) {
-            aovs.push(*aov);
-        }
-    }
-    for (_, path) in sibling_files(&output, &aovs)? {
-        check_image_destination(&path, "--aov")?;
-    }
-    let ext = output.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_default();
-    let noisy_output = a.keep_noisy.then(|| sibling(&output, "noisy", &ext));
-    if let Some(path) = &noisy_output {
-        check_image_destination(path, "--keep-noisy")?;
-    }
-    // Found (or not) before rendering, so a missing library costs no render time.
-    let denoiser = match a.denoise {
-        true => Some(Denoiser::new().map_err(|e| CliError::usage(format!("--denoise: {e}")))?),
-        false => None,
-    };
+    let feature_outputs = FeatureOutputs::prepare(&a.features, &output)?;
     if let Some(path) = &a.adaptive.spp_image {
         check_image_destination(path, "--spp-image")?;
     }
@@ -151,19 +133,7 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
     bar.finish();
     let interrupted = interrupt.triggered();
 
-    let mut image = outcome.film.image();
-    let mut denoise_time = None;
-    if let (Some(denoiser), Some(features)) = (&denoiser, &outcome.features) {
-        if let Some(path) = &noisy_output {
-            write_image(path, &image, &tone).map_err(|e| CliError::runtime(e.to_string()))?;
-        }
-        let start = Instant::now();
-        image = denoiser
-            .denoise(&image, &features.albedo(), &features.normal())
-            .map_err(|e| CliError::runtime(e.to_string()))?;
-        denoise_time = Some(start.elapsed());
-    }
-    let siblings = write_with_aovs(&output, &image, &tone, outcome.features.as_ref(), &aovs)?;
+    let written = feature_outputs.write(outcome.film.image(), &tone, outcome.features.as_ref())?;
 
     if let (Some(path), Some(key)) = (&a.film_out, film_key) {
         if interrupted {
@@ -172,7 +142,8 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
                 path.display()
             );
         } else {
-            let part = RangedFilm::new(outcome.film.clone(), key, engine_build(), settings.spp, settings.samples());
+            let part = RangedFilm::new(outcome.film.clone(), key, engine_build(), settings.spp, settings.samples())
+                .with_features(outcome.features.clone());
             write_film(path, &part).map_err(|e| CliError::runtime(e.to_string()))?;
         }
     }
@@ -214,12 +185,8 @@ pub fn run(a: RenderArgs) -> Result<ExitCode, CliError> {
             String::new()
         };
         let prefix = if interrupted { "interrupted: " } else { "" };
-        let denoised = denoise_time.map_or(String::new(), |t| format!(", denoised in {:.2} s", t.as_secs_f64()));
-        let mut also: Vec<String> = siblings.iter().chain(&noisy_output).map(|p| p.display().to_string()).collect();
-        if !aovs.is_empty() && also.is_empty() {
-            also.push(format!("with channels {}", aovs.iter().map(|a| a.name()).collect::<Vec<_>>().join(", ")));
-        }
-        let also = if also.is_empty() { String::new() } else { format!(" ({})", also.join(", ")) };
+        let denoised = written.denoised_text();
+        let also = written.also_text(feature_outputs.aovs());
         eprintln!(
             "{prefix}wrote {}{also} — {}×{}, {held} ({}, {}), {:.1} s, {}, {}{noise_text}{dropped}{denoised}",
             output.display(),

@@ -129,3 +129,38 @@ fn denoise_without_the_library_exits_2_saying_how_to_get_it() {
     assert!(!out.exists(), "no image is written");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_memory_check_counts_the_feature_buffers_before_allocating_anything() {
+    // 32768² pixels (the largest --size) are over a hundred gigabytes with or without the buffers; what is checked is that the
+    // refusal (exit 2, one line, nothing written) names the buffers and their bytes per pixel.
+    let dir = temp_dir("memory");
+    let out = dir.join("huge.exr");
+    let plain = pathtrace()
+        .args(["render", "cornell-box", "--size", "32768x32768", "--spp", "1", "-o", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let plain_err = String::from_utf8_lossy(&plain.stderr).to_string();
+    assert_eq!(plain.status.code(), Some(2), "{plain_err}");
+    let bytes_per_pixel = |err: &str| -> u64 {
+        let at = err.find(" bytes per pixel").unwrap_or_else(|| panic!("no bytes per pixel in: {err}"));
+        err[..at].rsplit('(').next().unwrap().parse().unwrap()
+    };
+    for (flags, what) in [
+        (vec!["--aov", "depth"], "with feature buffers needs"),
+        (vec!["--denoise"], "with feature buffers and denoising needs"),
+    ] {
+        let mut args =
+            vec!["render", "cornell-box", "--size", "32768x32768", "--spp", "1", "-o", out.to_str().unwrap()];
+        args.extend(flags);
+        let o = pathtrace().args(&args).env("OIDN_DIR", &dir).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).to_string();
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "one line expected: {err}");
+        assert!(err.contains(what) && err.contains("--size"), "{err}");
+        // The buffers' 128 bytes of sums and their three images: at least that much more.
+        assert!(bytes_per_pixel(&err) >= bytes_per_pixel(&plain_err) + 128 + 36, "{err} vs {plain_err}");
+    }
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

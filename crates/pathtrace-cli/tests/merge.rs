@@ -1,5 +1,6 @@
 //! `render --sample-range … --film-out` and `merge`: a render split into sample ranges and merged
-//! in any order writes the same bytes as one render; merge refuses what does not belong together.
+//! in any order writes the same bytes as one render — its feature buffers and denoised image
+//! too; merge refuses what does not belong together.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -21,15 +22,42 @@ fn s(p: &Path) -> &str {
 
 /// Renders the Cornell box at 9 spp (samples `range` of them, if given) to `image` and `film`.
 fn render(dir: &Path, name: &str, range: Option<&str>, threads: &str, seed: &str) -> (PathBuf, PathBuf) {
-    let (image, film) = (dir.join(format!("{name}.pfm")), dir.join(format!("{name}.ptfilm")));
+    render_with(dir, &format!("{name}.pfm"), range, threads, seed, &[])
+}
+
+/// [`render`] to the image file `image_name`, with `extra` options.
+fn render_with(
+    dir: &Path,
+    image_name: &str,
+    range: Option<&str>,
+    threads: &str,
+    seed: &str,
+    extra: &[&str],
+) -> (PathBuf, PathBuf) {
+    let image = dir.join(image_name);
+    let film = image.with_extension("ptfilm");
     let mut args = vec!["render", "cornell-box", "--size", "24x20", "--spp", "9", "--max-depth", "6", "-q"];
     args.extend(["--threads", threads, "--seed", seed, "-o", s(&image), "--film-out", s(&film)]);
     if let Some(r) = range {
         args.extend(["--sample-range", r]);
     }
+    args.extend_from_slice(extra);
     let o = run(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     (image, film)
+}
+
+/// Whether OIDN is found here; in CI (which installs it: .ci/run) it must be.
+fn denoiser_available() -> bool {
+    match pathtrace_denoise::Denoiser::new() {
+        Ok(_) => true,
+        Err(e) => {
+            let ci = std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
+            assert!(!ci, "CI=true but the denoiser is unavailable (.ci/run should install it): {e}");
+            eprintln!("note: the --denoise half is skipped, {e}");
+            false
+        }
+    }
 }
 
 fn error_line(o: &Output) -> String {
@@ -57,6 +85,56 @@ fn three_ranges_merged_in_any_order_equal_the_whole_render_byte_for_byte() {
     // A part is not the whole: the comparison above can fail.
     let (a_image, _) = (dir.join("a.pfm"), ());
     assert_ne!(std::fs::read(&a_image).unwrap(), std::fs::read(&whole_image).unwrap());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn feature_buffers_and_the_denoised_image_of_merged_ranges_equal_the_whole_renders() {
+    let dir = temp_dir("features");
+    // Every buffer as EXR channels; denoised too where OIDN is found. The parts only need to
+    // carry the buffers (any --aov does), and are rendered with other thread counts.
+    let mut flags = vec!["--aov", "albedo,normal,depth"];
+    if denoiser_available() {
+        flags.push("--denoise");
+    }
+    let (whole_image, whole_film) = render_with(&dir, "whole.exr", None, "2", "5", &flags);
+    let (_, a) = render_with(&dir, "a.pfm", Some("0..4"), "1", "5", &["--aov", "depth"]);
+    let (_, b) = render_with(&dir, "b.png", Some("4..9"), "2", "5", &["--aov", "albedo"]);
+    let (image, film) = (dir.join("merged.exr"), dir.join("merged.ptfilm"));
+    let mut args = vec!["merge", s(&b), s(&a), "-o", s(&image), "--film-out", s(&film)];
+    args.extend_from_slice(&flags);
+    let o = run(&args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("with channels albedo, normal, depth"), "{err}");
+    assert_eq!(flags.contains(&"--denoise"), err.contains("denoised in"), "{err}");
+    assert_eq!(std::fs::read(&film).unwrap(), std::fs::read(&whole_film).unwrap(), "the films with their buffers");
+    assert_eq!(std::fs::read(&image).unwrap(), std::fs::read(&whole_image).unwrap(), "the image and its channels");
+    // The comparison can fail: half the samples give other buffers.
+    let half = dir.join("half.exr");
+    let o = run(&["merge", s(&a), "--partial", "-o", s(&half), "--aov", "albedo,normal,depth"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_ne!(std::fs::read(&half).unwrap(), std::fs::read(&whole_image).unwrap());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn merge_refuses_a_mix_with_and_without_feature_buffers_and_aov_from_films_without_them() {
+    let dir = temp_dir("mixed");
+    let (_, plain) = render(&dir, "plain", Some("0..4"), "1", "5");
+    let (_, with) = render_with(&dir, "with.pfm", Some("4..9"), "1", "5", &["--aov", "normal"]);
+    let out = dir.join("m.exr");
+    let err = error_line(&run(&["merge", s(&plain), s(&with), "-o", s(&out)]));
+    assert!(err.contains("with.ptfilm") && err.contains("it has feature buffers but the others have none"), "{err}");
+    let err = error_line(&run(&["merge", s(&with), s(&plain), "-o", s(&out)]));
+    assert!(err.contains("plain.ptfilm") && err.contains("it has no feature buffers but the others have"), "{err}");
+    let (_, rest) = render(&dir, "rest", Some("4..9"), "1", "5");
+    let err = error_line(&run(&["merge", s(&plain), s(&rest), "-o", s(&out), "--aov", "albedo"]));
+    assert!(err.contains("the films have none") && err.contains("--aov"), "{err}");
+    let err =
+        error_line(&run(&["merge", s(&plain), s(&rest), "--film-out", s(&dir.join("f.ptfilm")), "--aov", "depth"]));
+    assert!(err.contains("give -o"), "{err}");
+    assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -34,16 +34,14 @@ impl Origin {
 }
 
 /// A render's result: per pixel, the sample count and exact sums of the samples and their
-/// squares; with the render it belongs to and its sample ranges when it holds whole ones.
+/// squares; with the render it belongs to and its sample ranges when it holds whole ones, and
+/// the feature buffers (exact sums too) of a render with `aov=True`.
 #[pyclass(frozen, module = "pathtrace")]
 pub struct Film {
     inner: RangedFilm,
     /// Whether `inner.ranges` is true: false for a cancelled render (which holds part of a
     /// wave), whose film cannot be merged or saved.
     whole_ranges: bool,
-    /// The feature buffers of a render with `aov=True`. They are not part of the `.ptfilm`
-    /// format: a film from bytes or a sum has none.
-    features: Option<FeatureBuffers>,
 }
 
 impl Film {
@@ -51,8 +49,9 @@ impl Film {
     pub fn finished(outcome: RenderOutcome, origin: Origin) -> Self {
         let p = &outcome.progress;
         let whole = origin.uniform && origin.spp > 0 && !p.cancelled && p.spp_done == origin.range.len();
-        let inner = RangedFilm::new(outcome.film, origin.key, engine_build(), origin.spp, origin.range);
-        let mut film = Self { inner, whole_ranges: whole, features: outcome.features };
+        let inner = RangedFilm::new(outcome.film, origin.key, engine_build(), origin.spp, origin.range)
+            .with_features(outcome.features);
+        let mut film = Self { inner, whole_ranges: whole };
         if !whole {
             film.inner.ranges.clear();
         }
@@ -70,10 +69,8 @@ impl Film {
     }
 
     fn features(&self) -> PyResult<&FeatureBuffers> {
-        self.features.as_ref().ok_or_else(|| {
-            PyValueError::new_err(
-                "this film has no feature buffers: render with aov=True (films from bytes or sums have none)",
-            )
+        self.inner.features.as_ref().ok_or_else(|| {
+            PyValueError::new_err("this film has no feature buffers: render with aov=True (every part, for a sum)")
         })
     }
 
@@ -256,7 +253,7 @@ impl Film {
     #[classmethod]
     fn from_bytes(_cls: &Bound<'_, PyType>, data: &[u8]) -> PyResult<Film> {
         let inner = RangedFilm::from_bytes(data).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(Film { inner, whole_ranges: true, features: None })
+        Ok(Film { inner, whole_ranges: true })
     }
 
     /// Pickling goes through `to_bytes`.
@@ -265,15 +262,16 @@ impl Film {
         Ok((from_bytes, (slf.get().to_bytes(slf.py())?,)))
     }
 
-    /// `a + b`: the film holding both films' samples (exact: any order of additions gives the
-    /// same bits). ValueError if they belong to different renders or share a sample range.
+    /// `a + b`: the film holding both films' samples, and their feature buffers' (exact: any order
+    /// of additions gives the same bits). ValueError if they belong to different renders, share a
+    /// sample range, or one has feature buffers and the other not.
     fn __add__(&self, other: &Film) -> PyResult<Film> {
         let mut sum = self.mergeable("+")?.clone();
         sum.merge(other.mergeable("+")?).map_err(|e| PyValueError::new_err(format!("cannot merge: {e}")))?;
-        Ok(Film { inner: sum, whole_ranges: true, features: None })
+        Ok(Film { inner: sum, whole_ranges: true })
     }
 
-    /// Bit-for-bit equality of the samples, the render key and the ranges.
+    /// Bit-for-bit equality of the samples, the feature buffers, the render key and the ranges.
     fn __eq__(&self, other: &Film) -> bool {
         self.inner == other.inner && self.whole_ranges == other.whole_ranges
     }

@@ -1,7 +1,7 @@
 //! The film sums samples exactly (fixed-point integers, `film/accumulator.rs`), so a render split
 //! into sample ranges — rendered with any thread count and lane width, merged in any order — is
-//! bit for bit the render of the whole range at once. This is what lets a render be spread over
-//! machines (docs/distributed.md).
+//! bit for bit the render of the whole range at once, feature buffers included. This is what lets
+//! a render be spread over machines (docs/distributed.md).
 
 use pathtrace::film::{engine_build, render_key, Film, RangedFilm};
 use pathtrace::sampling::SamplerKind;
@@ -29,6 +29,7 @@ fn settings(sampler: SamplerKind, threads: usize, kernel: Kernel, range: Option<
         threads,
         tile_size: 8,
         sample_range: range,
+        features: true,
         ..Default::default()
     };
     s.path.max_depth = 8;
@@ -40,7 +41,7 @@ fn render_range(scene: &Arc<Scene>, s: RenderSettings) -> RangedFilm {
     let key = render_key(1, &s);
     let out = render(Arc::clone(scene), s).unwrap();
     assert_eq!(out.progress.spp_done, range.len());
-    RangedFilm::new(out.film, key, engine_build(), SPP, range)
+    RangedFilm::new(out.film, key, engine_build(), SPP, range).with_features(out.features)
 }
 
 /// A small deterministic generator for splits and merge orders (the test must not vary).
@@ -119,6 +120,10 @@ fn split_renders_merged_in_any_order_equal_the_whole_render() {
                 assert!(merged.is_complete(), "{rel} {sampler:?} {parts:?}");
                 assert_same_film(&merged.film, &whole.film, &format!("{rel} {sampler:?} split {parts:?}"));
                 assert_eq!(merged.film.image().pixels, whole.film.image().pixels);
+                let (m, w) = (merged.features.as_ref().unwrap(), whole.features.as_ref().unwrap());
+                let differing = m.pixels().iter().zip(w.pixels()).filter(|(p, q)| p != q).count();
+                assert_eq!(differing, 0, "{rel} {sampler:?} split {parts:?}: feature pixels differ");
+                assert_eq!(m.albedo().pixels, w.albedo().pixels);
             }
         }
     }
@@ -127,11 +132,13 @@ fn split_renders_merged_in_any_order_equal_the_whole_render() {
 #[test]
 fn thread_count_and_lane_width_do_not_change_a_bit_but_the_seed_does() {
     let scene = repo_scene("scenes/cornell-box.toml");
-    let base = render_range(&scene, settings(SamplerKind::Sobol, 1, Kernel::Wide8, None)).film;
+    let base = render_range(&scene, settings(SamplerKind::Sobol, 1, Kernel::Wide8, None));
     for (threads, kernel) in [(2, Kernel::Wide8), (1, Kernel::Wide), (2, Kernel::Wide), (2, Kernel::Scalar)] {
-        let other = render_range(&scene, settings(SamplerKind::Sobol, threads, kernel, None)).film;
-        assert_same_film(&other, &base, &format!("{threads} threads, {kernel:?}"));
+        let other = render_range(&scene, settings(SamplerKind::Sobol, threads, kernel, None));
+        assert_same_film(&other.film, &base.film, &format!("{threads} threads, {kernel:?}"));
+        assert_eq!(other.features, base.features, "{threads} threads, {kernel:?}: feature buffers");
     }
+    let base = base.film;
     // The comparison can fail: another seed gives other samples.
     let mut s = settings(SamplerKind::Sobol, 1, Kernel::Wide8, None);
     s.seed = 4;

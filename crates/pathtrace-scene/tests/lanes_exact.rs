@@ -7,6 +7,7 @@
 //! between SIMD-shaded and lane-by-lane-shaded lanes — on scenes that use every material,
 //! light, texture, strategy and sampler the repository's scenes hold, and every camera.
 
+use pathtrace::film::Image;
 use pathtrace::integrator::Strategy;
 use pathtrace::sampling::SamplerKind;
 use pathtrace::wide::Kernel;
@@ -50,13 +51,25 @@ fn shared_scenes() -> Vec<(String, Arc<Scene>)> {
         .collect()
 }
 
-fn one_spp(scene: &Arc<Scene>, kernel: Kernel, strategy: Strategy, sampler: SamplerKind) -> Vec<f32> {
-    let mut s =
-        RenderSettings { width: 48, height: 36, spp: 1, seed: 9, sampler, kernel, threads: 1, ..Default::default() };
+/// The image's values, then the feature buffers' (albedo, normal, depth), recorded with it.
+fn one_spp(scene: &Arc<Scene>, kernel: Kernel, strategy: Strategy, sampler: SamplerKind) -> (Vec<f32>, Vec<f32>) {
+    let mut s = RenderSettings {
+        width: 48,
+        height: 36,
+        spp: 1,
+        seed: 9,
+        sampler,
+        kernel,
+        threads: 1,
+        features: true,
+        ..Default::default()
+    };
     s.path.strategy = strategy;
     s.path.max_depth = 12;
     let out = render(Arc::clone(scene), s).unwrap();
-    out.film.image().pixels.iter().flat_map(|p| p.to_array()).collect()
+    let values = |img: &Image| img.pixels.iter().flat_map(|p| p.to_array()).collect::<Vec<f32>>();
+    let f = out.features.expect("features were asked for");
+    (values(&out.film.image()), [values(&f.albedo()), values(&f.normal()), values(&f.depth())].concat())
 }
 
 #[test]
@@ -85,10 +98,12 @@ fn lanes_and_one_lane_give_every_sample_the_same_value() {
         let mut lit = false;
         for (j, strategy) in strategies.iter().enumerate() {
             let sampler = samplers[(j + k) % samplers.len()];
-            let wide = one_spp(scene, Kernel::Wide, *strategy, sampler);
-            let one = one_spp(scene, Kernel::Scalar, *strategy, sampler);
+            let (wide, wide_features) = one_spp(scene, Kernel::Wide, *strategy, sampler);
+            let (one, one_features) = one_spp(scene, Kernel::Scalar, *strategy, sampler);
             let differ = wide.iter().zip(&one).filter(|(a, b)| a.to_bits() != b.to_bits()).count();
             assert_eq!(differ, 0, "{rel} {strategy} {sampler}: {differ} of {} values differ", wide.len());
+            let differ = wide_features.iter().zip(&one_features).filter(|(a, b)| a.to_bits() != b.to_bits()).count();
+            assert_eq!(differ, 0, "{rel} {strategy} {sampler}: {differ} feature values differ");
             lit |= wide.iter().any(|&v| v > 0.0);
         }
         // (Point lights are black under the strategies that cannot sample them.)

@@ -1,6 +1,7 @@
 //! Feature buffers (albedo, normal, depth) accumulated with the image, against scenes whose
 //! answers are known in closed form: a textured Lambertian square filling the frame, a unit
-//! sphere seen head-on, and a mirror that shows a coloured wall behind the camera.
+//! sphere seen head-on, a mirror that shows a coloured wall behind the camera, and paths that
+//! escape to the environment.
 
 use pathtrace::film::{FeatureBuffers, PixelFilter};
 use pathtrace::light::EnvironmentLight;
@@ -99,11 +100,14 @@ fn a_textured_diffuse_square_shows_its_reflectance_normal_and_distance_in_every_
     assert_eq!(seen, [512, 512]);
 }
 
+/// The sphere scene's sky: brighter than 1 in blue, so its albedo shows the clamp.
+const SKY: Rgb = Rgb::new(0.3, 0.6, 2.5);
+
 fn sphere_scene() -> Scene {
     let mut b = SceneBuilder::new();
     let m = b.material(Material::Lambertian(Lambertian { albedo: Rgb::new(0.2, 0.4, 0.6) }));
     b.shape(Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap()), m, &Transform::IDENTITY).unwrap();
-    b.environment(EnvironmentLight::constant(Rgb::WHITE)).unwrap();
+    b.environment(EnvironmentLight::constant(SKY)).unwrap();
     b.camera(CameraDesc { look_from: Vec3::new(0.0, 0.0, 5.0), vfov_degrees: 30.0, ..camera() });
     b.build().unwrap()
 }
@@ -113,8 +117,10 @@ fn sphere_normals_are_unit_and_face_the_camera_and_depth_is_the_hit_distance() {
     let f = features(sphere_scene(), 8, Kernel::default());
     let (albedo, normal, depth) = (f.albedo(), f.normal(), f.depth());
     let eye = Vec3::new(0.0, 0.0, 5.0);
-    // The corner rays pass the sphere: nothing is recorded there.
-    for img in [&albedo, &normal, &depth] {
+    // The corner rays pass the sphere: they see the sky, whose albedo is its radiance clamped
+    // to [0, 1]; no normal, no depth.
+    assert_eq!(albedo.get(0, 0), Rgb::new(0.3, 0.6, 1.0));
+    for img in [&normal, &depth] {
         assert_eq!(img.get(0, 0), Rgb::BLACK);
     }
     let cam = pathtrace::Camera::new(&sphere_scene().camera, SIZE, SIZE).unwrap();
@@ -184,6 +190,39 @@ fn through_a_mirror_the_buffers_show_the_mirrored_object() {
 }
 
 #[test]
+fn escaped_paths_record_the_environment_clamped_and_tinted_by_the_specular_chain() {
+    // A mirror filling the frame with nothing in front of it: every path escapes after it.
+    let r = Rgb::new(0.9, 0.8, 0.7);
+    let mirror_to_sky = |sky: Option<Rgb>| {
+        let mut b = SceneBuilder::new();
+        let mirror = b.material(Material::Mirror(Mirror { reflectance: r }));
+        b.shape(unit_square(), mirror, &Transform::IDENTITY).unwrap();
+        if let Some(sky) = sky {
+            b.environment(EnvironmentLight::constant(sky)).unwrap();
+        }
+        b.allow_no_lights(true);
+        b.camera(camera());
+        b.build().unwrap()
+    };
+    for kernel in [Kernel::default(), Kernel::Scalar] {
+        let albedo = features(mirror_to_sky(Some(SKY)), 2, kernel).albedo();
+        for (x, y) in [(0, 0), (SIZE / 2, SIZE / 2), (3, 27)] {
+            assert_close("mirrored sky", albedo.get(x, y), Rgb::new(r.r * 0.3, r.g * 0.6, r.b * 1.0), 1e-6);
+        }
+        // Without an environment the escaped path keeps the mirror's own albedo, and a camera
+        // ray that escapes records zero.
+        let albedo = features(mirror_to_sky(None), 2, kernel).albedo();
+        assert_close("mirror, no sky", albedo.get(5, 5), r, 1e-6);
+        let mut b = SceneBuilder::new();
+        let m = b.material(Material::Lambertian(Lambertian { albedo: Rgb::splat(0.5) }));
+        b.shape(Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, -30.0), 0.1).unwrap()), m, &Transform::IDENTITY).unwrap();
+        b.allow_no_lights(true);
+        b.camera(camera());
+        assert_eq!(features(b.build().unwrap(), 2, kernel).albedo().get(0, 0), Rgb::BLACK);
+    }
+}
+
+#[test]
 fn features_are_off_by_default_and_do_not_change_the_image() {
     let s = RenderSettings { width: 16, height: 16, spp: 4, seed: 2, ..Default::default() };
     let scene = Arc::new(sphere_scene());
@@ -195,8 +234,8 @@ fn features_are_off_by_default_and_do_not_change_the_image() {
 
 #[test]
 fn lane_groups_and_one_lane_record_identical_buffers() {
-    // At 1 spp a pixel's sums are its one sample, whatever order the lanes finish in.
+    // The sums are exact integers, so the order the lanes finish their samples in changes no bit.
     for scene in [sphere_scene, || mirror_scene(Rgb::new(0.9, 0.8, 0.7), Rgb::new(0.1, 0.5, 0.3))] {
-        assert_eq!(features(scene(), 1, Kernel::default()), features(scene(), 1, Kernel::Scalar));
+        assert_eq!(features(scene(), 6, Kernel::default()), features(scene(), 6, Kernel::Scalar));
     }
 }

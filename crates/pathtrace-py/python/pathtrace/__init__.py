@@ -110,7 +110,8 @@ def render(
     ``sample_range=(a, b)`` renders only samples ``a`` to ``b - 1`` of every pixel of the
     ``spp`` render: films of ranges that cover ``0..spp``, added with ``+`` or :func:`merge` in
     any order, equal the film of rendering everything at once, bit for bit
-    (docs/distributed.md).
+    (docs/distributed.md) — with ``aov=True``, their feature buffers too (every part must then
+    have them).
 
     ``progress(p)`` is called on the calling thread about ten times a second and once at the
     end with a :class:`Progress` (``spp_done``, ``spp_target``, ``samples_per_second``,

@@ -58,6 +58,20 @@ fn to_fixed(x: f64) -> i128 {
     }
 }
 
+/// A value on the fixed-point grid: clamped to ±[`SAMPLE_LIMIT`], then `x · 2⁴⁰` truncated. The
+/// one conversion every exact sum uses (the film's radiance here, the feature buffers in
+/// `features.rs`). NaN converts to 0 (`as` does), so even it is a pure function of the value.
+#[inline(always)]
+pub(super) fn fixed(x: f64) -> i128 {
+    to_fixed(x.clamp(-SAMPLE_LIMIT, SAMPLE_LIMIT))
+}
+
+/// The mean of `count` values (1 if there are none) whose fixed-point sum is `sum`.
+#[inline]
+pub(super) fn fixed_mean(sum: i128, count: u32) -> f64 {
+    sum as f64 / SCALE / count.max(1) as f64
+}
+
 /// `x² · 2⁴⁰` truncated, saturating at `u128::MAX` (`as` saturates). x² of an f32 is exact in f64.
 #[inline(always)]
 fn square_to_fixed(x: f64) -> u128 {
@@ -78,8 +92,8 @@ impl PixelStats {
             // f32 → f64 is exact, so is the scaling by a power of two; x² of an f32 fits f64's
             // 53 bits exactly: the only rounding is the truncation to the grid.
             let x = x as f64;
+            self.sum[k] += fixed(x);
             let kept = x.clamp(-SAMPLE_LIMIT, SAMPLE_LIMIT);
-            self.sum[k] += to_fixed(kept);
             self.sum_sq[k] = self.sum_sq[k].saturating_add(square_to_fixed(kept));
         }
     }
@@ -98,8 +112,7 @@ impl PixelStats {
     /// The mean per channel (zero without samples).
     #[inline]
     pub fn mean(&self) -> [f64; 3] {
-        let n = self.count.max(1) as f64;
-        self.sum.map(|s| s as f64 / SCALE / n)
+        self.sum.map(|s| fixed_mean(s, self.count))
     }
 
     pub fn mean_rgb(&self) -> Rgb {

@@ -4,7 +4,8 @@
 //! which gives the same bits in any order.
 
 use super::accumulator::PixelStats;
-use super::allocation::{try_pixels, FilmTooLarge, FILM_BYTES_PER_PIXEL};
+use super::allocation::FilmTooLarge;
+use super::grid::{Mergeable, PixelGrid};
 use super::Image;
 use crate::math::Rgb;
 
@@ -41,55 +42,53 @@ impl RegionEstimate {
     }
 }
 
+impl Mergeable for PixelStats {
+    #[inline]
+    fn merge(&mut self, other: &Self) {
+        PixelStats::merge(self, other);
+    }
+}
+
 /// An accumulation buffer.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
-    width: u32,
-    height: u32,
-    pixels: Vec<PixelStats>,
+    grid: PixelGrid<PixelStats>,
     /// Samples rejected because they were NaN or infinite.
     pub dropped_samples: u64,
 }
 
 impl Film {
     pub fn new(width: u32, height: u32) -> Self {
-        Self {
-            width,
-            height,
-            pixels: vec![PixelStats::default(); width as usize * height as usize],
-            dropped_samples: 0,
-        }
+        let pixels = vec![PixelStats::default(); width as usize * height as usize];
+        Self::from_pixels(width, height, pixels)
     }
 
     /// A film of `width` × `height` pixels, or an error naming the memory it needs when it cannot
     /// be allocated (renders ask for this one; [`Film::new`] aborts like any allocation).
     pub fn try_new(width: u32, height: u32) -> Result<Self, FilmTooLarge> {
-        let len = u64::from(width) * u64::from(height);
-        let pixels = try_pixels(len).ok_or(FilmTooLarge { width, height, bytes: len * FILM_BYTES_PER_PIXEL })?;
-        Ok(Self { width, height, pixels, dropped_samples: 0 })
+        Ok(Self { grid: PixelGrid::try_new(width, height)?, dropped_samples: 0 })
     }
 
     /// A film of the given pixels (row by row; `pixels.len()` must be `width × height`).
     pub(super) fn from_pixels(width: u32, height: u32, pixels: Vec<PixelStats>) -> Self {
-        debug_assert_eq!(pixels.len() as u64, u64::from(width) * u64::from(height));
-        Self { width, height, pixels, dropped_samples: 0 }
+        Self { grid: PixelGrid::from_pixels(width, height, pixels), dropped_samples: 0 }
     }
 
     pub fn width(&self) -> u32 {
-        self.width
+        self.grid.width()
     }
 
     pub fn height(&self) -> u32 {
-        self.height
+        self.grid.height()
     }
 
     pub fn pixel(&self, x: u32, y: u32) -> &PixelStats {
-        &self.pixels[(y * self.width + x) as usize]
+        self.grid.pixel(x, y)
     }
 
     /// Every pixel's statistics, row by row.
     pub fn pixels(&self) -> &[PixelStats] {
-        &self.pixels
+        self.grid.pixels()
     }
 
     /// Adds one sample to pixel `(x, y)`; NaN or infinite samples are dropped and counted.
@@ -98,54 +97,48 @@ impl Film {
             self.dropped_samples += 1;
             return;
         }
-        self.pixels[(y * self.width + x) as usize].add(c);
+        self.grid.pixel_mut(x, y).add(c);
     }
 
     /// Merges a block of pixel statistics covering the rectangle at `(x0, y0)` of width `w`.
     pub fn merge_block(&mut self, x0: u32, y0: u32, w: u32, block: &[PixelStats]) {
-        for (i, s) in block.iter().enumerate() {
-            let (x, y) = (x0 + i as u32 % w, y0 + i as u32 / w);
-            self.pixels[(y * self.width + x) as usize].merge(s);
-        }
+        self.grid.merge_block(x0, y0, w, block);
     }
 
     /// Adds every sample of another film of the same size; `false` (and nothing changes) if
     /// the sizes differ.
     pub fn merge(&mut self, other: &Film) -> bool {
-        if other.width != self.width || other.height != self.height {
-            return false;
+        let merged = self.grid.merge(&other.grid);
+        if merged {
+            self.dropped_samples += other.dropped_samples;
         }
-        for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
-            a.merge(b);
-        }
-        self.dropped_samples += other.dropped_samples;
-        true
+        merged
     }
 
     /// The current estimate: each pixel's mean (black where no sample landed yet).
     pub fn image(&self) -> Image {
-        let pixels = self.pixels.iter().map(PixelStats::mean_rgb).collect();
-        Image { width: self.width, height: self.height, pixels }
+        let pixels = self.pixels().iter().map(PixelStats::mean_rgb).collect();
+        Image { width: self.width(), height: self.height(), pixels }
     }
 
     /// Per-pixel estimated variance of the mean (s²/n per channel).
     pub fn variance_image(&self) -> Image {
         let pixels = self
-            .pixels
+            .pixels()
             .iter()
             .map(|p| {
                 let v = p.variance_of_mean();
                 Rgb::new(v[0] as f32, v[1] as f32, v[2] as f32)
             })
             .collect();
-        Image { width: self.width, height: self.height, pixels }
+        Image { width: self.width(), height: self.height(), pixels }
     }
 
     /// Mean radiance over the pixel rectangle `[x0, x1) × [y0, y1)` with the estimated variance
     /// of that mean per channel (pixels are independent, so variances add: Σ s²ₚ/nₚ / N²).
     /// For statistical tests that compare renders.
     pub fn region_estimate(&self, x0: u32, y0: u32, x1: u32, y1: u32) -> RegionEstimate {
-        let (x1, y1) = (x1.min(self.width), y1.min(self.height));
+        let (x1, y1) = (x1.min(self.width()), y1.min(self.height()));
         let mut mean = [0.0f64; 3];
         let mut var = [0.0f64; 3];
         let mut n = 0usize;
@@ -166,12 +159,12 @@ impl Film {
 
     /// Fewest and most samples held by any pixel.
     pub fn spp_range(&self) -> (u32, u32) {
-        self.pixels.iter().fold((u32::MAX, 0), |(lo, hi), p| (lo.min(p.count), hi.max(p.count)))
+        self.pixels().iter().fold((u32::MAX, 0), |(lo, hi), p| (lo.min(p.count), hi.max(p.count)))
     }
 
     /// Total samples accumulated.
     pub fn total_samples(&self) -> u64 {
-        self.pixels.iter().map(|p| p.count as u64).sum()
+        self.pixels().iter().map(|p| p.count as u64).sum()
     }
 
     /// Estimated relative RMS error of the image: √(Σ s²/n) / √(Σ mean²) over all pixels and
@@ -180,7 +173,7 @@ impl Film {
     pub fn relative_error_estimate(&self) -> Option<f64> {
         let mut err = 0.0f64;
         let mut signal = 0.0f64;
-        for p in &self.pixels {
+        for p in self.pixels() {
             if p.count < 2 {
                 return None;
             }

@@ -1,8 +1,10 @@
 //! A film that knows which samples it holds: the render it belongs to (a key over scene and
 //! settings), the engine build that made it, the whole render's spp and the exact set of sample
 //! ranges. Merging checks all of that, so a render split over machines is put back together only
-//! from parts of itself, each sample once.
+//! from parts of itself, each sample once. The feature buffers of a render that recorded them
+//! travel and merge with it.
 
+use super::features::FeatureBuffers;
 use super::film::Film;
 use crate::render::SampleRange;
 
@@ -17,6 +19,8 @@ pub struct RangedFilm {
     /// The whole render's samples per pixel.
     pub spp: u32,
     pub ranges: Vec<SampleRange>,
+    /// The feature buffers over the same samples, for a render that recorded them.
+    pub features: Option<FeatureBuffers>,
 }
 
 /// Why two films cannot be merged.
@@ -32,12 +36,20 @@ pub enum MergeError {
     Spp(u32, u32),
     #[error("its samples {0} overlap samples {1} already merged")]
     Overlap(SampleRange, SampleRange),
+    /// `true`: the film has feature buffers and the others have none; `false`: the reverse.
+    #[error("{}: render every part with the feature buffers (--aov or --denoise; aov=True in Python) or every part without", if *.0 { "it has feature buffers but the others have none" } else { "it has no feature buffers but the others have" })]
+    Features(bool),
 }
 
 impl RangedFilm {
     /// A film holding samples `range` of a `spp` render.
     pub fn new(film: Film, key: u64, build: String, spp: u32, range: SampleRange) -> Self {
-        Self { film, key, build, spp, ranges: vec![range] }
+        Self { film, key, build, spp, ranges: vec![range], features: None }
+    }
+
+    /// The same film with the feature buffers of its samples (`None`: it has none).
+    pub fn with_features(self, features: Option<FeatureBuffers>) -> Self {
+        Self { features, ..self }
     }
 
     /// Whether `other` may be merged into this film; the error says what differs.
@@ -55,6 +67,9 @@ impl RangedFilm {
         if self.spp != other.spp {
             return Err(MergeError::Spp(other.spp, self.spp));
         }
+        if self.features.is_some() != other.features.is_some() {
+            return Err(MergeError::Features(other.features.is_some()));
+        }
         for r in &other.ranges {
             if let Some(mine) = self.ranges.iter().find(|m| m.overlaps(r)) {
                 return Err(MergeError::Overlap(*r, *mine));
@@ -67,6 +82,10 @@ impl RangedFilm {
     pub fn merge(&mut self, other: &RangedFilm) -> Result<(), MergeError> {
         self.check_mergeable(other)?;
         self.film.merge(&other.film);
+        if let (Some(mine), Some(theirs)) = (&mut self.features, &other.features) {
+            // Same size as the film, checked above.
+            mine.merge(theirs);
+        }
         self.ranges.extend_from_slice(&other.ranges);
         self.ranges = coalesce(std::mem::take(&mut self.ranges));
         Ok(())
@@ -99,7 +118,8 @@ fn coalesce(mut ranges: Vec<SampleRange>) -> Vec<SampleRange> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::Rgb;
+    use crate::film::FeatureSample;
+    use crate::math::{Rgb, Vec3};
 
     fn part(range: SampleRange) -> RangedFilm {
         let mut film = Film::new(2, 1);
@@ -126,5 +146,27 @@ mod tests {
         other.key = 7;
         other.spp = 11;
         assert!(matches!(part(SampleRange::new(1, 2)).merge(&other), Err(MergeError::Spp(11, 10))));
+    }
+
+    fn part_with_features(range: SampleRange) -> RangedFilm {
+        let mut features = FeatureBuffers::try_new(2, 1).unwrap();
+        for i in range.start..range.end {
+            let s = FeatureSample { albedo: Rgb::splat(i as f32 * 0.1), normal: Vec3::new(0.0, 1.0, 0.0), depth: 2.0 };
+            features.add_sample(1, 0, &s, 1.0);
+        }
+        part(range).with_features(Some(features))
+    }
+
+    #[test]
+    fn feature_buffers_merge_with_the_film_and_a_mix_with_and_without_is_refused() {
+        let mut merged = part_with_features(SampleRange::new(4, 10));
+        merged.merge(&part_with_features(SampleRange::new(0, 4))).unwrap();
+        assert_eq!(merged, part_with_features(SampleRange::new(0, 10)));
+        let plain = part(SampleRange::new(0, 4));
+        let err = part_with_features(SampleRange::new(4, 10)).merge(&plain).unwrap_err();
+        assert_eq!(err, MergeError::Features(false));
+        assert!(err.to_string().contains("it has no feature buffers but the others have"), "{err}");
+        let err = part(SampleRange::new(4, 10)).merge(&part_with_features(SampleRange::new(0, 4))).unwrap_err();
+        assert!(err.to_string().starts_with("it has feature buffers but the others have none"), "{err}");
     }
 }

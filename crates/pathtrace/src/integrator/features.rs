@@ -4,6 +4,14 @@
 //! shows the mirrored object, tinted by the mirror's reflectance, instead of a flat colour the
 //! denoiser would smear the reflection into).
 //!
+//! A path that escapes to an environment light records the environment's radiance in that
+//! direction, clamped to [0, 1] per channel (times the tint of the specular chain it followed),
+//! as its albedo: what the camera sees there is the environment, and its colour is the only
+//! "texture" the denoiser can keep apart from noise (OIDN's albedo input is in [0, 1], as its
+//! Python binding pyoidn 2.5.1 documents). A zero albedo there, as before, told the denoiser the
+//! sky was black. Without an environment the provisional sample stays (zero for a camera ray
+//! that escapes; the last specular surface's albedo after a chain).
+//!
 //! Runs only for lanes whose feature sample is still pending, which no lane is when the render
 //! records no features: the estimator pays one mask test per vertex for this.
 
@@ -22,6 +30,13 @@ const ALBEDO_GRID: u32 = 4;
 pub(super) fn record_features<const N: usize>(job: &LaneJob, paths: &mut Paths<N>, s: &Surfaces<N>, wo: &Vec3s<N>) {
     let scene = job.scene;
     let materials = scene.materials();
+    if let Some(env) = scene.lights.environment() {
+        let escaped: Ms<N> = paths.feature_pending & paths.active & !s.hit;
+        for i in escaped.lanes() {
+            let seen = env.radiance(paths.dir.lane(i)).map(|c| c.clamp(0.0, 1.0));
+            paths.feature[i].albedo = paths.feature_tint[i] * seen;
+        }
+    }
     let hit: Ms<N> = paths.feature_pending & paths.active & s.hit;
     for i in hit.lanes() {
         let surface = s.surface(i);
