@@ -11,7 +11,7 @@ use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
 use crate::shape::{MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
-use crate::texture::{ColourSlot, Texture, TextureBindings, TextureId};
+use crate::texture::{ColourSlot, NormalPerturbation, PerturbationKind, Texture, TextureBindings, TextureId};
 
 /// Index of a material in the scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -206,6 +206,20 @@ impl Scene {
         m
     }
 
+    /// The normal or bump map of material `id`, if it has one.
+    #[inline(always)]
+    pub fn normal_perturbation(&self, id: u32) -> Option<&NormalPerturbation> {
+        if !self.has_textures() {
+            return None;
+        }
+        self.bindings.get(id as usize).and_then(|b| b.normal.as_ref())
+    }
+
+    /// The scene's textures, indexed by [`TextureId`].
+    pub fn textures(&self) -> &[Texture] {
+        &self.textures
+    }
+
     /// The BVH's nodes, one per line.
     pub fn bvh_dump(&self) -> String {
         self.bvh.dump()
@@ -323,6 +337,27 @@ impl SceneBuilder {
             self.bindings.resize(material.0 as usize + 1, TextureBindings::default());
         }
         self.bindings[material.0 as usize].set(slot, texture);
+        Ok(())
+    }
+
+    /// Tilts `material`'s shading normal by a normal or bump map (whose texture was added with
+    /// [`SceneBuilder::texture`]); a second call replaces the first.
+    pub fn perturb_normal(&mut self, material: MaterialId, p: NormalPerturbation) -> Result<(), BuildError> {
+        self.check_material(material)?;
+        if p.texture().0 as usize >= self.textures.len() {
+            return Err(BuildError::Material(format!("texture id {} does not exist", p.texture().0)));
+        }
+        let (name, value) = match p.kind {
+            PerturbationKind::NormalMap { strength, .. } => ("normal map strength", strength),
+            PerturbationKind::BumpMap { scale, .. } => ("bump map scale", scale),
+        };
+        if !value.is_finite() {
+            return Err(BuildError::Material(format!("{name} {value} must be a finite number")));
+        }
+        if self.bindings.len() <= material.0 as usize {
+            self.bindings.resize(material.0 as usize + 1, TextureBindings::default());
+        }
+        self.bindings[material.0 as usize].normal = Some(p);
         Ok(())
     }
 

@@ -97,5 +97,5 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
     let e = m.map_or([0.0; 3], |m| m.emissive_factor()).map(|c| c * strength);
     let emission = (e.iter().any(|&c| c > 0.0))
         .then(|| EmissionDef { radiance: triple(e), two_sided: m.is_some_and(|m| m.double_sided()) });
-    MaterialDef { kind, emission }
+    MaterialDef { kind, emission, normal: None }
 }

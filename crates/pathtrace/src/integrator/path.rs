@@ -440,6 +440,7 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
             s.n_shading.set(i, it.surface.n_shading);
             s.uv[i] = it.surface.uv;
             s.dpdu[i] = it.surface.dpdu;
+            s.dpdv[i] = it.surface.dpdv;
             s.material[i] = it.material_id;
             s.light[i] = it.light;
         }

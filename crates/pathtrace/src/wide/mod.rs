@@ -117,8 +117,10 @@ impl WideScene {
             .iter()
             .enumerate()
             .map(|(id, m)| {
+                // A normal or bump map moves the frame off the shading normal: such surfaces are
+                // shaded lane by lane (`integrator::shading_frame`).
                 let simd = match m {
-                    Material::Lambertian(l) => Some(l.albedo),
+                    Material::Lambertian(l) if scene.normal_perturbation(id as u32).is_none() => Some(l.albedo),
                     _ => None,
                 };
                 MaterialClass {

@@ -43,7 +43,7 @@ impl<'a> Conv<'a, '_> {
         }
     }
 
-    fn texture(&mut self, t: &'a Element) -> R<TextureDef> {
+    pub(super) fn texture(&mut self, t: &'a Element) -> R<TextureDef> {
         let ty = self.req_attr(t, "type")?;
         let known = match ty {
             "checkerboard" => CHECKERBOARD,
