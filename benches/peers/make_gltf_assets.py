@@ -10,6 +10,13 @@ crates/pathtrace-scene/tests/data/gltf/:
   same node transforms), `diffuse` BSDFs of the same base colours, `face_normals`, the same
   camera (fov on the y axis) and a `directional` emitter of the same irradiance and direction.
 
+- ../maps/normal_map.gltf + normal_map.bin and its twin normal_map.xml + normal_floor.obj: a
+  Lambertian floor with TEXCOORD_0 and a normalTexture (../maps/normal.png, from
+  make_map_assets.py) under a KHR_lights_punctual directional light; the twin wraps the same
+  `diffuse` in a `normalmap` without the terminator shadowing (glTF has none) and reads the OBJ's
+  texture coordinates unflipped. The uv layout is not mirrored (−∂p/∂v along n × ∂p/∂u), where
+  glTF's tangent space and Mitsuba's agree.
+
     python3 benches/peers/make_gltf_assets.py
 """
 import json
@@ -155,8 +162,114 @@ def write_obj(path, positions, indices):
             f.write("f %d %d %d\n" % (indices[i] + 1, indices[i + 1] + 1, indices[i + 2] + 1))
 
 
+MAPS = os.path.join(os.path.dirname(__file__), "../../crates/pathtrace-scene/tests/data/maps")
+NFLOOR_P = [[-2, 0, -2], [2, 0, -2], [2, 0, 2], [-2, 0, 2]]
+NFLOOR_UV = [[(p[0] + 2) / 2, (p[2] + 2) / 2] for p in NFLOOR_P]  # u along +x, v along +z
+NFLOOR_I = [0, 2, 1, 0, 3, 2]  # faces +y
+NCAMERA = look_at([0.3, 2.5, -3.5], [0, 0, 0.3], [0, 1, 0])
+NLIGHT = look_at([-2.0, 2.0, -1.0], [0, 0, 0], [0, 1, 0])
+
+
+def write_normal_map_twin():
+    data = b"".join(struct.pack("<3f", *p) for p in NFLOOR_P)
+    data += b"".join(struct.pack("<3f", 0, 1, 0) for _ in NFLOOR_P)
+    data += b"".join(struct.pack("<2f", *t) for t in NFLOOR_UV)
+    data += b"".join(struct.pack("<H", i) for i in NFLOOR_I)
+    with open(os.path.join(MAPS, "normal_map.bin"), "wb") as f:
+        f.write(data)
+    n = len(NFLOOR_P)
+    views = [{"buffer": 0, "byteOffset": 0, "byteLength": 12 * n}, {"buffer": 0, "byteOffset": 12 * n, "byteLength": 12 * n},
+             {"buffer": 0, "byteOffset": 24 * n, "byteLength": 8 * n}, {"buffer": 0, "byteOffset": 32 * n, "byteLength": 12}]
+    accessors = [
+        {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
+         "min": [min(p[k] for p in NFLOOR_P) for k in range(3)], "max": [max(p[k] for p in NFLOOR_P) for k in range(3)]},
+        {"bufferView": 1, "componentType": 5126, "count": n, "type": "VEC3"},
+        {"bufferView": 2, "componentType": 5126, "count": n, "type": "VEC2"},
+        {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"},
+    ]
+    doc = {
+        "asset": {"version": "2.0", "generator": "pathtrace benches/peers/make_gltf_assets.py"},
+        "extensionsUsed": ["KHR_materials_specular", "KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"type": "directional", "color": LIGHT_COLOUR, "intensity": LIGHT_INTENSITY}]}},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1, 2]}],
+        "nodes": [{"name": "floor", "mesh": 0}, {"name": "camera", "camera": 0, "matrix": col_major(NCAMERA)},
+                  {"name": "sun", "matrix": col_major(NLIGHT), "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": YFOV, "aspectRatio": 1.0, "znear": 0.01}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3,
+                                    "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": FLOOR_COLOUR + [1.0], "metallicFactor": 0.0},
+                       "normalTexture": {"index": 0, "scale": 1.0},
+                       "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}],
+        "textures": [{"source": 0}],
+        "images": [{"uri": "normal.png"}],
+        "buffers": [{"uri": "normal_map.bin", "byteLength": len(data)}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    with open(os.path.join(MAPS, "normal_map.gltf"), "w") as f:
+        json.dump(doc, f, indent=1)
+    with open(os.path.join(MAPS, "normal_floor.obj"), "w") as f:
+        for p in NFLOOR_P:
+            f.write("v %.9g %.9g %.9g\n" % tuple(p))
+        for t in NFLOOR_UV:
+            f.write("vt %.9g %.9g\n" % tuple(t))
+        for i in range(0, 6, 3):
+            f.write("f %d/%d %d/%d %d/%d\n" % tuple(x + 1 for j in NFLOOR_I[i:i + 3] for x in (j, j)))
+    eye = [NCAMERA[i][3] for i in range(3)]
+    fwd = [-NCAMERA[i][2] for i in range(3)]
+    up = [NCAMERA[i][1] for i in range(3)]
+    direction = [-NLIGHT[i][2] for i in range(3)]
+    rgb = lambda c: ", ".join("%.9g" % x for x in c)
+    xml = f"""<?xml version="1.0"?>
+<!-- The Mitsuba 3 twin of normal_map.gltf (same floor, uv, normal map, camera and light), written
+     by benches/peers/make_gltf_assets.py. Used by crates/pathtrace-scene/tests/gltf.rs. -->
+<scene version="3.0.0">
+    <integrator type="path">
+        <integer name="max_depth" value="4"/>
+    </integrator>
+    <sensor type="perspective">
+        <string name="fov_axis" value="y"/>
+        <float name="fov" value="{math.degrees(YFOV):.9g}"/>
+        <transform name="to_world">
+            <lookat origin="{rgb(eye)}" target="{rgb([eye[k] + fwd[k] for k in range(3)])}" up="{rgb(up)}"/>
+        </transform>
+        <sampler type="independent">
+            <integer name="sample_count" value="64"/>
+        </sampler>
+        <film type="hdrfilm">
+            <integer name="width" value="64"/>
+            <integer name="height" value="64"/>
+            <rfilter type="box"/>
+        </film>
+    </sensor>
+    <shape type="obj">
+        <string name="filename" value="normal_floor.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <boolean name="flip_tex_coords" value="false"/>
+        <bsdf type="normalmap">
+            <texture name="normalmap" type="bitmap">
+                <string name="filename" value="normal.png"/>
+                <boolean name="raw" value="true"/>
+            </texture>
+            <boolean name="use_shadowing_function" value="false"/>
+            <bsdf type="diffuse"><rgb name="reflectance" value="{rgb(FLOOR_COLOUR)}"/></bsdf>
+        </bsdf>
+    </shape>
+    <emitter type="directional">
+        <vector name="direction" value="{rgb(direction)}"/>
+        <rgb name="irradiance" value="{rgb([LIGHT_INTENSITY * c for c in LIGHT_COLOUR])}"/>
+    </emitter>
+</scene>
+"""
+    with open(os.path.join(MAPS, "normal_map.xml"), "w") as f:
+        f.write(xml)
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
+    write_normal_map_twin()
     data, views, accessors, ids = buffer_and_accessors()
     with open(os.path.join(OUT, "scene.bin"), "wb") as f:
         f.write(data)

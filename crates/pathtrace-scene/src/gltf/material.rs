@@ -7,11 +7,12 @@
 //! Substituted, with a warning: other dielectrics become `rough_plastic` (GGX, same α and ior),
 //! metals a `rough_conductor` of a perfect mirror metal tinted by the base colour (no Schlick
 //! edge brightening), partial `metallic` the nearer of the two, transmission a `rough_dielectric`.
-//! A base colour texture stored as an image file becomes an image texture (see `texture.rs`).
+//! A base colour texture stored as an image file becomes an image texture (see `texture.rs`),
+//! a normal texture a normal map (see [`normal_map`]).
 
 use super::num;
 use crate::native::model::{Colour, EmissionDef, MaterialDef, MaterialKind, MetalDef, RoughnessDef};
-use crate::native::model::{MetalName, Triple};
+use crate::native::model::{MetalName, NormalDef, NormalPerturbationDef, Triple};
 use pathtrace::material::MicrofacetKind;
 
 fn triple(c: [f32; 3]) -> Triple {
@@ -38,9 +39,6 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
         }
     }
     if let Some(m) = m {
-        if m.normal_texture().is_some() {
-            w("the normal texture is not supported yet: ignored");
-        }
         if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
             w("alphaMode MASK/BLEND (opacity) is not supported yet: rendered opaque");
         }
@@ -97,5 +95,27 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
     let e = m.map_or([0.0; 3], |m| m.emissive_factor()).map(|c| c * strength);
     let emission = (e.iter().any(|&c| c > 0.0))
         .then(|| EmissionDef { radiance: triple(e), two_sided: m.is_some_and(|m| m.double_sided()) });
-    MaterialDef { kind, emission, normal: None }
+    let normal = m.and_then(|m| m.normal_texture()).and_then(|n| normal_map(&n, &mut w));
+    MaterialDef { kind, emission, normal }
+}
+
+/// A `normalTexture` as a native normal map: glTF's tangent space (+x along increasing u, +y
+/// towards decreasing v, the image's up) is the base frame's (s = ∂p/∂u, t = n × s) wherever the
+/// texture coordinates are not mirrored; `scale` scales x and y, as the glTF specification says.
+/// Tangents come from the texture coordinates (a mesh's TANGENT attribute is not read); glTF has
+/// no terminator shadowing.
+fn normal_map(n: &gltf::material::NormalTexture, w: &mut dyn FnMut(&str)) -> Option<NormalPerturbationDef> {
+    if n.extension_value("KHR_texture_transform").is_some() {
+        w("KHR_texture_transform on the normal texture is not supported: ignored");
+    }
+    match super::texture::normal_texture(n) {
+        Ok(t) => Some(NormalPerturbationDef {
+            map: NormalDef::Map { texture: Colour::Texture(t), strength: num(n.scale()) },
+            shadowing: false,
+        }),
+        Err(e) => {
+            w(&format!("normal texture: {e}: ignored"));
+            None
+        }
+    }
 }
