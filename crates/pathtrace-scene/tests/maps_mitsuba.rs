@@ -15,6 +15,7 @@ use pathtrace_scene::mitsuba::load_mitsuba;
 use std::path::Path;
 
 include!("data/maps/normal_bump_blocks.rs");
+include!("data/maps/mask_blocks.rs");
 
 fn data(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/maps").join(name)
@@ -29,6 +30,18 @@ fn normal_and_bump_maps_match_mitsuba_block_by_block() {
         (0..loaded.scene.materials().len() as u32).filter(|&m| loaded.scene.normal_perturbation(m).is_some()).count();
     assert_eq!(perturbed, 2);
     blocks::assert_agrees(&path, 1024, &NORMAL_BUMP_MEAN, &NORMAL_BUMP_SE);
+}
+
+/// Opacity masks (a textured cut-out and a constant 0.4, each around a two-sided diffuse) cast
+/// shadows with holes under an area light and a directional light; the reference is Mitsuba's
+/// `volpath`, whose shadow rays pass masks as ours do (see the scene's comment).
+#[test]
+fn opacity_masks_match_mitsuba_block_by_block() {
+    let path = data("mask.xml");
+    let (loaded, warnings) = load_mitsuba(&path, &[("integrator", "path")]).unwrap();
+    assert!(warnings.is_empty(), "{warnings:#?}");
+    assert!(loaded.scene.has_cutouts());
+    blocks::assert_scene_agrees("mask.xml", loaded, 1024, &MASK_MEAN, &MASK_SE);
 }
 
 /// A floor shape with `bsdf` around a light, in a Mitsuba scene read from the maps folder.
@@ -62,6 +75,10 @@ fn malformed_wrappers_are_located_and_explained() {
     let e = err(r#"<bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="height.png"/>
         </texture><bsdf type="normalmap"><rgb name="normalmap" value="0.5, 0.5, 1"/><bsdf type="diffuse"/></bsdf></bsdf>"#);
     assert!(e.contains("only one"), "{e}");
+    let e = err(r#"<bsdf type="mask"><float name="opacity" value="0.5"/></bsdf>"#);
+    assert!(e.contains("`mask` BSDF needs a nested <bsdf>"), "{e}");
+    let e = err(r#"<bsdf type="mask"><float name="opacity" value="oops"/><bsdf type="diffuse"/></bsdf>"#);
+    assert!(e.contains("t.xml:2:"), "{e}");
     // A normal map that is not `raw` is read raw, with a warning; a constant one is accepted.
     let (_, warnings) = pathtrace_scene::mitsuba::load_str(
         &scene_with(

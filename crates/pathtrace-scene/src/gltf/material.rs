@@ -96,7 +96,7 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
     let emission = (e.iter().any(|&c| c > 0.0))
         .then(|| EmissionDef { radiance: triple(e), two_sided: m.is_some_and(|m| m.double_sided()) });
     let normal = m.and_then(|m| m.normal_texture()).and_then(|n| normal_map(&n, &mut w));
-    MaterialDef { kind, emission, normal }
+    MaterialDef { kind, emission, normal, opacity: None }
 }
 
 /// A `normalTexture` as a native normal map: glTF's tangent space (+x along increasing u, +y

@@ -5,8 +5,8 @@ use super::parse::{Element, XmlSource};
 use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
     CameraSection, Colour, EmissionDef, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, LookAtDef, MaterialDef,
-    MaterialKind, MeshNormals, NormalPerturbationDef, Num, Num3, ObjectDef, ProjectionName, RenderSection, SamplerName,
-    SceneFile, ShapeDef, TransformStep, Triple,
+    MaterialKind, MeshNormals, Num, Num3, ObjectDef, ProjectionName, RenderSection, SamplerName, SceneFile, ShapeDef,
+    TransformStep, Triple,
 };
 use crate::native::{ItemPath, SceneError};
 use pathtrace::math::{Transform, Vec3};
@@ -16,7 +16,9 @@ use std::path::{Path, PathBuf};
 
 mod bsdf;
 mod instance;
-mod normal_maps;
+mod wrappers;
+
+use wrappers::Wrappers;
 mod texture;
 
 type R<T> = Result<T, SceneError>;
@@ -610,31 +612,34 @@ impl<'a> Conv<'a, '_> {
         (2..).map(|i| format!("{base}-{i}")).find(|n| !self.materials.contains_key(n)).unwrap_or_default()
     }
 
-    /// The scattering part of a `<bsdf>` (after `<ref>`), unwrapping `twosided`, and its normal
-    /// or bump map, unwrapping `normalmap` and `bumpmap`.
-    fn bsdf_kind(&mut self, e: &'a Element) -> R<(MaterialKind, Option<NormalPerturbationDef>)> {
-        let mut normal = None;
-        let kind = self.bsdf_kind_at(e, 0, &mut normal)?;
-        Ok((kind, normal))
+    /// The scattering part of a `<bsdf>` (after `<ref>`), unwrapping `twosided`, its normal or
+    /// bump map, unwrapping `normalmap` and `bumpmap`, and its opacity, unwrapping `mask`.
+    fn bsdf_kind(&mut self, e: &'a Element) -> R<(MaterialKind, Wrappers)> {
+        let mut maps = Wrappers::default();
+        let kind = self.bsdf_kind_at(e, 0, &mut maps)?;
+        Ok((kind, maps))
     }
 
-    fn bsdf_kind_at(
-        &mut self,
-        e: &'a Element,
-        depth: usize,
-        normal: &mut Option<NormalPerturbationDef>,
-    ) -> R<MaterialKind> {
+    fn bsdf_kind_at(&mut self, e: &'a Element, depth: usize, maps: &mut Wrappers) -> R<MaterialKind> {
         if depth > 8 {
             return Err(self.src.error(e.offset, "BSDFs are nested too deeply (a <ref> cycle?)"));
         }
         let ty = self.req_attr(e, "type")?;
         if ty == "normalmap" || ty == "bumpmap" {
-            if normal.is_some() {
+            if maps.normal.is_some() {
                 return Err(self.src.error(e.offset, "only one `normalmap` or `bumpmap` per material is supported"));
             }
             let (map, nested) = self.normal_wrapper(e, ty)?;
-            *normal = Some(map);
-            return self.bsdf_kind_at(nested, depth + 1, normal);
+            maps.normal = Some(map);
+            return self.bsdf_kind_at(nested, depth + 1, maps);
+        }
+        if ty == "mask" {
+            if maps.opacity.is_some() {
+                return Err(self.src.error(e.offset, "only one `mask` per material is supported"));
+            }
+            let (opacity, nested) = self.mask_wrapper(e)?;
+            maps.opacity = Some(opacity);
+            return self.bsdf_kind_at(nested, depth + 1, maps);
         }
         let grey = MaterialKind::Lambertian { albedo: Colour::grey(0.5) };
         Ok(match ty {
@@ -647,7 +652,7 @@ impl<'a> Conv<'a, '_> {
                 match inner {
                     Some(i) => {
                         let i = self.deref(i)?;
-                        self.bsdf_kind_at(i, depth + 1, normal)?
+                        self.bsdf_kind_at(i, depth + 1, maps)?
                     }
                     None => MaterialKind::Lambertian { albedo: Colour::grey(0.5) },
                 }
@@ -723,17 +728,20 @@ impl<'a> Conv<'a, '_> {
                 return Ok(name.clone());
             }
         }
-        let (kind, normal) = match bsdf {
+        let (kind, maps) = match bsdf {
             Some(b) => self.bsdf_kind(b)?,
-            None => (MaterialKind::Lambertian { albedo: Colour::grey(0.5) }, None),
+            None => (MaterialKind::Lambertian { albedo: Colour::grey(0.5) }, Wrappers::default()),
         };
+        if maps.opacity.is_some() && emission.is_some() {
+            return Err(self.src.error(shape.offset, "an emitting shape cannot have a `mask` BSDF (not supported)"));
+        }
         let base = match (shared, bsdf.and_then(|b| b.attr("id"))) {
             (Some(b), _) => b.attr("id").unwrap_or("bsdf").to_string(),
             (None, Some(id)) => format!("{label}-{id}"),
             (None, None) => label.to_string(),
         };
         let name = self.unique_name(&base);
-        self.materials.insert(name.clone(), MaterialDef { kind, emission, normal });
+        self.materials.insert(name.clone(), MaterialDef { kind, emission, normal: maps.normal, opacity: maps.opacity });
         let at = bsdf.or(emitter).unwrap_or(shape).offset;
         self.origins.push((ItemPath::root().field("materials").field(&name), at));
         if let Some(b) = shared {

@@ -23,7 +23,8 @@ use pathtrace::scene::{validate_material, BuildError};
 use pathtrace::shape::TriangleMesh;
 use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
 use pathtrace::texture::{
-    Bitmap, Checkerboard, ColourSlot, FilterType, NormalPerturbation, PerturbationKind, Texture, UvTransform, WrapMode,
+    Bitmap, Checkerboard, ColourSlot, FilterType, NormalPerturbation, Opacity, PerturbationKind, Texture, UvTransform,
+    WrapMode,
 };
 use pathtrace::{Camera, CameraDesc, GroupId, Lens, MaterialId, SceneBuilder, ShapeGroup};
 use std::collections::BTreeMap;
@@ -299,6 +300,14 @@ impl<L: Locate> Ctx<'_, L> {
         }
         if let Some(n) = &def.normal {
             self.add_normal_perturbation(id, name, n, &at)?;
+        }
+        if let Some(o) = &def.opacity {
+            let texture = match &o.texture {
+                Colour::Constant(t) => Texture::Constant(t.rgb()),
+                Colour::Texture(t) => self.texture(t, &at.field("opacity"))?,
+            };
+            let opacity = Opacity { texture: self.b.texture(texture), cutoff: o.cutoff.map(Num::f32) };
+            self.b.set_opacity(id, opacity).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
         }
         Ok(id)
     }

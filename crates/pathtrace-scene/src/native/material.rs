@@ -111,6 +111,15 @@ pub struct NormalPerturbationDef {
     pub shadowing: bool,
 }
 
+/// An opacity mask: how much of the surface is there (the texture's luminance, clamped to
+/// [0, 1]), or with `cutoff` (glTF's `alphaCutoff`) all where the value reaches it and none
+/// elsewhere.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OpacityDef {
+    pub texture: Colour,
+    pub cutoff: Option<Num>,
+}
+
 /// Light given off by a surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmissionDef {
@@ -130,6 +139,8 @@ pub struct MaterialDef {
     pub emission: Option<EmissionDef>,
     /// A normal or bump map, if any.
     pub normal: Option<NormalPerturbationDef>,
+    /// An opacity mask (cut-out), if any.
+    pub opacity: Option<OpacityDef>,
 }
 
 impl MaterialDef {
@@ -139,6 +150,9 @@ impl MaterialDef {
         let mut all = self.kind.colours_mut();
         if let Some(n) = &mut self.normal {
             all.push(n.map.texture_mut());
+        }
+        if let Some(o) = &mut self.opacity {
+            all.push(&mut o.texture);
         }
         all
     }
@@ -194,6 +208,10 @@ pub struct RawMaterial {
     bump_scale: Option<Num>,
     #[serde(skip_serializing_if = "Option::is_none")]
     normal_shadowing: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    opacity: Option<Colour>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    alpha_cutoff: Option<Num>,
 }
 
 /// The fields each type accepts besides `type`, `emission` and `two_sided`.
@@ -294,6 +312,11 @@ impl TryFrom<RawMaterial> for MaterialDef {
             return Err(format!("`{extra}` is not a parameter of a {name} material (it takes {ok})"));
         }
         let normal = r.normal_def()?;
+        let opacity = match (&r.opacity, r.alpha_cutoff) {
+            (Some(texture), cutoff) => Some(OpacityDef { texture: texture.clone(), cutoff }),
+            (None, Some(_)) => return Err("`alpha_cutoff` needs an `opacity`".into()),
+            (None, None) => None,
+        };
         let one = Colour::grey(1.0);
         let kind = match t {
             MaterialType::Diffuse => MaterialKind::Diffuse { albedo: required(r.albedo, &name, "albedo")? },
@@ -357,7 +380,12 @@ impl TryFrom<RawMaterial> for MaterialDef {
         if normal.is_some() && t == MaterialType::Emissive {
             return Err("an emissive material cannot take a normal or bump map (it does not scatter)".into());
         }
-        Ok(MaterialDef { kind, emission, normal })
+        if opacity.is_some() && emission.is_some() {
+            return Err(
+                "an emitting material cannot take an `opacity` (its light would shine from the cut-out parts)".into()
+            );
+        }
+        Ok(MaterialDef { kind, emission, normal, opacity })
     }
 }
 
@@ -460,6 +488,9 @@ impl From<MaterialDef> for RawMaterial {
             }
             r.normal_shadowing = (!n.shadowing).then_some(false);
         }
+        if let Some(o) = m.opacity {
+            (r.opacity, r.alpha_cutoff) = (Some(o.texture), o.cutoff);
+        }
         r
     }
 }
@@ -555,6 +586,19 @@ mod tests {
         assert!(bad("normal_map = 0.5\nbump_scale = 2").contains("goes with `bump_map`"));
         assert!(bad("bump_map = 0.5\nnormal_strength = 2").contains("goes with `normal_map`"));
         assert!(parse("type = \"emissive\"\nradiance = 1\nbump_map = 0.5").unwrap_err().contains("cannot take"));
+    }
+
+    #[test]
+    fn opacity_parses_checks_and_round_trips() {
+        let m = parse("type = \"diffuse\"\nalbedo = 0.5\nopacity = { type = \"bitmap\", filename = \"a.png\" }\nalpha_cutoff = 0.5")
+            .unwrap();
+        assert_eq!(m.opacity.as_ref().and_then(|o| o.cutoff).map(|c| c.get()), Some(0.5));
+        let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
+        assert_eq!(m, back);
+        assert!(parse("type = \"diffuse\"\nalbedo = 0.5\nalpha_cutoff = 0.5")
+            .unwrap_err()
+            .contains("needs an `opacity`"));
+        assert!(parse("type = \"emissive\"\nradiance = 1\nopacity = 0.5").unwrap_err().contains("cannot take"));
     }
 
     #[test]

@@ -428,11 +428,11 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
         s.n_shading = s.n_geometric;
         return s;
     }
-    // Larger scenes: the BVH, one lane at a time.
+    // Larger scenes: the BVH, one lane at a time (passing cut-outs, if any).
     let mut s = Surfaces::none();
     for i in active.lanes() {
         let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
-        if let Some(hit) = job.scene.intersect(&ray, f32::INFINITY) {
+        if let Some((ray, hit)) = job.scene.intersect_opaque(&ray) {
             let it = job.scene.interaction(&ray, &hit);
             s.hit.0[i] = u32::MAX;
             s.p.set(i, it.surface.p);
@@ -456,7 +456,7 @@ fn occluded<const N: usize>(job: &LaneJob, origin: &Vec3s<N>, dir: &Vec3s<N>, ac
     }
     let mut blocked = Ms::NONE;
     for i in active.lanes() {
-        if job.scene.occluded(&Ray::new(origin.lane(i), dir.lane(i)), t_max.0[i]) {
+        if job.scene.occluded_opaque(&Ray::new(origin.lane(i), dir.lane(i)), t_max.0[i]) {
             blocked.0[i] = u32::MAX;
         }
     }

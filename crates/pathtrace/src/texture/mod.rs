@@ -16,11 +16,13 @@
 mod bitmap;
 mod checkerboard;
 mod normal_perturbation;
+mod opacity;
 mod uv_transform;
 
 pub use bitmap::{Bitmap, FilterType, WrapMode};
 pub use checkerboard::Checkerboard;
 pub use normal_perturbation::{shadow_terminator, NormalPerturbation, PerturbationKind};
+pub use opacity::Opacity;
 pub use uv_transform::UvTransform;
 
 use crate::math::{Rgb, Vec2};
@@ -97,13 +99,15 @@ pub struct TextureBindings {
     pub specular: Option<TextureId>,
     /// A normal or bump map tilting the shading normal, if any.
     pub normal: Option<NormalPerturbation>,
+    /// An opacity mask, if any.
+    pub opacity: Option<Opacity>,
 }
 
 impl TextureBindings {
     /// True if no slot is textured.
     #[inline(always)]
     pub fn is_empty(&self) -> bool {
-        self.base.is_none() && self.specular.is_none() && self.normal.is_none()
+        self.base.is_none() && self.specular.is_none() && self.normal.is_none() && self.opacity.is_none()
     }
 
     /// Binds `slot` to `texture`.

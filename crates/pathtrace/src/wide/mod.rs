@@ -134,6 +134,7 @@ impl WideScene {
             .collect();
         // The brute-force intersector reports normals, material and light, not uv or ∂p/∂u:
         // it serves scenes whose shading needs neither (no textures, no anisotropic frames).
+        // Opacity masks are textures: scenes with cut-outs take the BVH, which passes them.
         let needs_uv = scene.has_textures() || scene.materials().iter().any(Material::is_anisotropic);
         let geometry = if needs_uv || scene.has_unbounded() || scene.has_instances() {
             None

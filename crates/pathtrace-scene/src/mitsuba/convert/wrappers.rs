@@ -1,5 +1,5 @@
-//! Mitsuba's `normalmap` and `bumpmap` BSDF wrappers → a native material's `normal_map` or
-//! `bump_map`:
+//! Mitsuba's `normalmap`, `bumpmap` and `mask` BSDF wrappers → a native material's `normal_map`,
+//! `bump_map` or `opacity`:
 //!
 //! - `normalmap`: the `normalmap` texture (Mitsuba's documentation asks for `raw = true`; the
 //!   native normal map is always read raw, and a file without it is warned about), the nested
@@ -7,25 +7,25 @@
 //! - `bumpmap`: the one nested texture (a height field), `scale` (default 1), the nested BSDF,
 //!   `use_shadowing_function`.
 //!
-//! Either may wrap, or be wrapped by, `twosided`; one per material.
+//! - `mask`: `opacity` (a float or a texture, default 0.5), the nested BSDF.
+//!
+//! Each may wrap, or be wrapped by, `twosided` or the others; one of each per material.
 
 use super::{num, Conv, R};
 use crate::mitsuba::parse::Element;
-use crate::native::model::{Colour, NormalDef, NormalPerturbationDef, TextureDef};
+use crate::native::model::{Colour, NormalDef, NormalPerturbationDef, OpacityDef, TextureDef, Triple};
+
+/// What the wrappers around a material's BSDF add to it.
+#[derive(Default)]
+pub(super) struct Wrappers {
+    pub normal: Option<NormalPerturbationDef>,
+    pub opacity: Option<OpacityDef>,
+}
 
 impl<'a> Conv<'a, '_> {
     /// The map of a `normalmap` or `bumpmap` element and its nested BSDF element.
     pub(super) fn normal_wrapper(&mut self, e: &'a Element, ty: &str) -> R<(NormalPerturbationDef, &'a Element)> {
-        let nested = e
-            .children
-            .iter()
-            .find(|c| c.tag == "bsdf" || (c.tag == "ref" && c.attr("name").is_none_or(|n| n == "bsdf")));
-        let Some(nested) = nested else {
-            return Err(self
-                .src
-                .error(e.offset, format!("a `{ty}` BSDF needs a nested <bsdf> (the surface it perturbs)")));
-        };
-        let nested = self.deref(nested)?;
+        let nested = self.nested_bsdf(e, ty)?;
         if self.boolean(e, "flip_invalid_normals")? == Some(false) {
             self.warn(e, "flip_invalid_normals = false is not supported: invalid normals are flipped");
         }
@@ -44,6 +44,27 @@ impl<'a> Conv<'a, '_> {
             NormalDef::Bump { height, scale: num(scale) }
         };
         Ok((NormalPerturbationDef { map, shadowing }, nested))
+    }
+
+    /// The opacity of a `mask` element and its nested BSDF element.
+    pub(super) fn mask_wrapper(&mut self, e: &'a Element) -> R<(OpacityDef, &'a Element)> {
+        let nested = self.nested_bsdf(e, "mask")?;
+        let texture = self.colour(e, "opacity")?.unwrap_or(Colour::Constant(Triple::Splat(num(0.5))));
+        Ok((OpacityDef { texture, cutoff: None }, nested))
+    }
+
+    /// The one BSDF nested in a wrapper (or referenced from it).
+    fn nested_bsdf(&mut self, e: &'a Element, ty: &str) -> R<&'a Element> {
+        let nested = e
+            .children
+            .iter()
+            .find(|c| c.tag == "bsdf" || (c.tag == "ref" && c.attr("name").is_none_or(|n| n == "bsdf")));
+        let Some(nested) = nested else {
+            return Err(self
+                .src
+                .error(e.offset, format!("a `{ty}` BSDF needs a nested <bsdf> (the surface it wraps)")));
+        };
+        self.deref(nested)
     }
 
     /// A `bumpmap`'s height field: its one nested (or referenced) texture, named or not.
