@@ -5,7 +5,9 @@ crates/pathtrace-scene/tests/data/maps/ (plain Python, no dependencies):
   n ∝ (−∂h/∂x, −∂h/∂y, 1) with h = ½·sin(2πx·3)·sin(2πy·3) stretched by 0.4, encoded (n + 1)/2,
   +y pointing to the top of the image (decreasing v);
 - height.png: an 8-bit grey height field of diagonal ridges, h = ½ + ½·sin(2π·(x + 2y)·2);
-- mask.png: an 8-bit grey opacity mask, a disc of 1 with a square hole of 0 and 0 outside.
+- mask.png: an 8-bit grey opacity mask, a disc of 1 with a square hole of 0 and 0 outside;
+- cutout.png: the same mask as the alpha channel of an 8-bit RGBA image of one colour
+  (sRGB 200, 120, 60), for glTF's alphaMode.
 
     python3 benches/peers/make_map_assets.py
 """
@@ -20,7 +22,7 @@ SIZE = 32
 
 def write_png(path, rows, channels):
     """rows: SIZE lists of SIZE*channels bytes (0..255), first row at the top."""
-    colour = {1: 0, 3: 2}[channels]
+    colour = {1: 0, 3: 2, 4: 6}[channels]
     raw = b"".join(b"\0" + bytes(r) for r in rows)
 
     def chunk(tag, data):
@@ -38,10 +40,10 @@ def byte(x):
 
 def main():
     os.makedirs(OUT, exist_ok=True)
-    normal, height, mask = [], [], []
+    normal, height, mask, cutout = [], [], [], []
     for j in range(SIZE):
         y = (j + 0.5) / SIZE  # v: down the image
-        nrow, hrow, mrow = [], [], []
+        nrow, hrow, mrow, crow = [], [], [], []
         for i in range(SIZE):
             x = (i + 0.5) / SIZE
             k = 2 * math.pi * 3
@@ -55,12 +57,15 @@ def main():
             r = math.hypot(x - 0.5, y - 0.5)
             hole = abs(x - 0.5) < 0.15 and abs(y - 0.5) < 0.15
             mrow.append(255 if r < 0.48 and not hole else 0)
+            crow += [200, 120, 60, mrow[-1]]
         normal.append(nrow)
         height.append(hrow)
         mask.append(mrow)
+        cutout.append(crow)
     write_png(os.path.join(OUT, "normal.png"), normal, 3)
     write_png(os.path.join(OUT, "height.png"), height, 1)
     write_png(os.path.join(OUT, "mask.png"), mask, 1)
+    write_png(os.path.join(OUT, "cutout.png"), cutout, 4)
 
 
 if __name__ == "__main__":

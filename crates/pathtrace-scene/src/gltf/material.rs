@@ -8,11 +8,12 @@
 //! metals a `rough_conductor` of a perfect mirror metal tinted by the base colour (no Schlick
 //! edge brightening), partial `metallic` the nearer of the two, transmission a `rough_dielectric`.
 //! A base colour texture stored as an image file becomes an image texture (see `texture.rs`),
-//! a normal texture a normal map (see [`normal_map`]).
+//! a normal texture a normal map (see [`normal_map`]), `alphaMode` an opacity (see
+//! [`alpha_opacity`]).
 
 use super::num;
 use crate::native::model::{Colour, EmissionDef, MaterialDef, MaterialKind, MetalDef, RoughnessDef};
-use crate::native::model::{MetalName, NormalDef, NormalPerturbationDef, Triple};
+use crate::native::model::{MetalName, NormalDef, NormalPerturbationDef, OpacityDef, TextureDef, Triple};
 use pathtrace::material::MicrofacetKind;
 
 fn triple(c: [f32; 3]) -> Triple {
@@ -39,9 +40,6 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
         }
     }
     if let Some(m) = m {
-        if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
-            w("alphaMode MASK/BLEND (opacity) is not supported yet: rendered opaque");
-        }
         if m.emissive_texture().is_some() {
             w("the emissive texture is not supported yet: using emissiveFactor");
         }
@@ -96,7 +94,42 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
     let emission = (e.iter().any(|&c| c > 0.0))
         .then(|| EmissionDef { radiance: triple(e), two_sided: m.is_some_and(|m| m.double_sided()) });
     let normal = m.and_then(|m| m.normal_texture()).and_then(|n| normal_map(&n, &mut w));
-    MaterialDef { kind, emission, normal, opacity: None }
+    let mut opacity = m.and_then(|m| alpha_opacity(m, base_factor[3], &mut w));
+    if opacity.is_some() && emission.is_some() {
+        w("an emissive material cannot be cut out: alphaMode ignored");
+        opacity = None;
+    }
+    MaterialDef { kind, emission, normal, opacity }
+}
+
+/// `alphaMode` `MASK` (opaque where alpha ≥ `alphaCutoff`, default 0.5) or `BLEND` (alpha as
+/// the opacity: the surface is there with that probability, which is how a path tracer sees a
+/// blended surface) as a native opacity: the base colour texture's alpha channel, or
+/// `baseColorFactor`'s alpha without a texture.
+fn alpha_opacity(m: &gltf::Material, factor_alpha: f32, w: &mut dyn FnMut(&str)) -> Option<OpacityDef> {
+    let cutoff = match m.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => return None,
+        gltf::material::AlphaMode::Mask => Some(num(m.alpha_cutoff().unwrap_or(0.5))),
+        gltf::material::AlphaMode::Blend => None,
+    };
+    let texture = m.pbr_metallic_roughness().base_color_texture().and_then(|info| {
+        super::texture::colour_texture(&info).ok().map(|t| match t {
+            TextureDef::Bitmap { filename, nearest, clamp, to_uv, .. } => {
+                TextureDef::Bitmap { filename, raw: true, nearest, clamp, to_uv, alpha: true }
+            }
+            other => other,
+        })
+    });
+    let texture = match texture {
+        Some(t) => {
+            if factor_alpha != 1.0 {
+                w("baseColorFactor's alpha times the texture's alpha is not supported: using the texture's alpha");
+            }
+            Colour::Texture(t)
+        }
+        None => Colour::Constant(Triple::Splat(num(factor_alpha))),
+    };
+    Some(OpacityDef { texture, cutoff })
 }
 
 /// A `normalTexture` as a native normal map: glTF's tangent space (+x along increasing u, +y

@@ -40,5 +40,5 @@ fn image_texture(texture: &gltf::Texture, tex_coord: u32, to_uv: UvRows, raw: bo
     let sampler = texture.sampler();
     let clamp = sampler.wrap_s() == gltf::texture::WrappingMode::ClampToEdge;
     let nearest = sampler.mag_filter() == Some(gltf::texture::MagFilter::Nearest);
-    Ok(TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv })
+    Ok(TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha: false })
 }

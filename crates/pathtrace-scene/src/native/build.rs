@@ -324,13 +324,14 @@ impl<L: Locate> Ctx<'_, L> {
         let texture = |ctx: &Self, c: &Colour, field: &str, force_raw: bool| -> Result<Texture, SceneError> {
             match c {
                 Colour::Constant(t) => Ok(Texture::Constant(t.rgb())),
-                Colour::Texture(TextureDef::Bitmap { filename, nearest, clamp, to_uv, .. }) if force_raw => {
+                Colour::Texture(TextureDef::Bitmap { filename, nearest, clamp, to_uv, alpha, .. }) if force_raw => {
                     let raw = TextureDef::Bitmap {
                         filename: filename.clone(),
                         raw: true,
                         nearest: *nearest,
                         clamp: *clamp,
                         to_uv: *to_uv,
+                        alpha: *alpha,
                     };
                     ctx.texture(&raw, &at.field(field))
                 }
@@ -360,10 +361,15 @@ impl<L: Locate> Ctx<'_, L> {
             TextureDef::Checkerboard { color0, color1, to_uv } => {
                 Ok(Texture::Checkerboard(Checkerboard { color0: color0.rgb(), color1: color1.rgb(), to_uv: uv(to_uv) }))
             }
-            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv } => {
+            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha } => {
                 let dir = self.src.path().parent().unwrap_or(std::path::Path::new(""));
-                let image = crate::image_io::read_texture(&dir.join(filename), *raw)
-                    .map_err(|e| self.src.error_at(at, format!("cannot load texture: {e}")))?;
+                let path = dir.join(filename);
+                let image = if *alpha {
+                    crate::image_io::read_texture_alpha(&path)
+                } else {
+                    crate::image_io::read_texture(&path, *raw)
+                }
+                .map_err(|e| self.src.error_at(at, format!("cannot load texture: {e}")))?;
                 let mut b = Bitmap::new(image.width, image.height, image.pixels).ok_or_else(|| {
                     self.src.error_at(at, format!("texture `{filename}` has negative or non-finite texels"))
                 })?;
