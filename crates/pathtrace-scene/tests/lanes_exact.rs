@@ -82,6 +82,7 @@ fn lanes_and_one_lane_give_every_sample_the_same_value() {
         "tests/data/orthographic_box.xml",
         "tests/data/maps/normal_bump.xml",
         "tests/data/maps/mask.xml",
+        "tests/data/maps/roughness.xml",
     ] {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel);
         let (loaded, _) = load_mitsuba(&path, &[]).unwrap_or_else(|e| panic!("{rel}: {e}"));

@@ -16,6 +16,7 @@ use std::path::Path;
 
 include!("data/maps/normal_bump_blocks.rs");
 include!("data/maps/mask_blocks.rs");
+include!("data/maps/roughness_blocks.rs");
 
 fn data(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/maps").join(name)
@@ -42,6 +43,18 @@ fn opacity_masks_match_mitsuba_block_by_block() {
     assert!(warnings.is_empty(), "{warnings:#?}");
     assert!(loaded.scene.has_cutouts());
     blocks::assert_scene_agrees("mask.xml", loaded, 1024, &MASK_MEAN, &MASK_SE);
+}
+
+/// A rough aluminium floor whose GGX α is a texture (α from 0 to 1 in ridges) reflecting a wall
+/// and a lamp: Mitsuba's textured `alpha` (reference `block_means.py roughness.xml … --name
+/// ROUGHNESS --variant llvm_ad_rgb`).
+#[test]
+fn textured_roughness_matches_mitsuba_block_by_block() {
+    let path = data("roughness.xml");
+    let (loaded, warnings) = load_mitsuba(&path, &[]).unwrap();
+    assert!(warnings.is_empty(), "{warnings:#?}");
+    assert!(loaded.scene.is_material_textured(0), "the floor's α is textured");
+    blocks::assert_agrees(&path, 1024, &ROUGHNESS_MEAN, &ROUGHNESS_SE);
 }
 
 /// A floor shape with `bsdf` around a light, in a Mitsuba scene read from the maps folder.

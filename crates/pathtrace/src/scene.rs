@@ -205,6 +205,9 @@ impl Scene {
         if let Some(t) = b.specular {
             m = m.with_colour(ColourSlot::Specular, self.textures[t.0 as usize].eval(it.surface.uv));
         }
+        if let Some(t) = b.roughness {
+            m = m.with_colour(ColourSlot::Roughness, self.textures[t.0 as usize].eval(it.surface.uv));
+        }
         m
     }
 

@@ -99,7 +99,7 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
         w("an emissive material cannot be cut out: alphaMode ignored");
         opacity = None;
     }
-    MaterialDef { kind, emission, normal, opacity }
+    MaterialDef { kind, emission, normal, opacity, roughness: None }
 }
 
 /// `alphaMode` `MASK` (opaque where alpha ≥ `alphaCutoff`, default 0.5) or `BLEND` (alpha as

@@ -670,7 +670,10 @@ impl<'a> Conv<'a, '_> {
                 MaterialKind::ThinDielectric { ior: num(int / ext), tint }
             }
             other => match self.microfacet_bsdf(e, other)? {
-                Some(kind) => kind,
+                Some(kind) => {
+                    maps.roughness = self.alpha_texture(e, other)?;
+                    kind
+                }
                 None => {
                     self.warn(e, &format!("bsdf `{other}` is not supported: using a grey (0.5) lambertian"));
                     grey
@@ -741,7 +744,10 @@ impl<'a> Conv<'a, '_> {
             (None, None) => label.to_string(),
         };
         let name = self.unique_name(&base);
-        self.materials.insert(name.clone(), MaterialDef { kind, emission, normal: maps.normal, opacity: maps.opacity });
+        self.materials.insert(
+            name.clone(),
+            MaterialDef { kind, emission, normal: maps.normal, opacity: maps.opacity, roughness: maps.roughness },
+        );
         let at = bsdf.or(emitter).unwrap_or(shape).offset;
         self.origins.push((ItemPath::root().field("materials").field(&name), at));
         if let Some(b) = shared {

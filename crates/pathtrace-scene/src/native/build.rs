@@ -301,6 +301,16 @@ impl<L: Locate> Ctx<'_, L> {
         if let Some(n) = &def.normal {
             self.add_normal_perturbation(id, name, n, &at)?;
         }
+        if let Some(c) = &def.roughness {
+            let texture = match c {
+                Colour::Constant(t) => Texture::Constant(t.rgb()),
+                Colour::Texture(t) => self.texture(t, &at.field("alpha_texture"))?,
+            };
+            let t = self.b.texture(texture);
+            self.b
+                .bind_texture(id, ColourSlot::Roughness, t)
+                .map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
+        }
         if let Some(o) = &def.opacity {
             let texture = match &o.texture {
                 Colour::Constant(t) => Texture::Constant(t.rgb()),

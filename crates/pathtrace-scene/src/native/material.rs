@@ -141,6 +141,8 @@ pub struct MaterialDef {
     pub normal: Option<NormalPerturbationDef>,
     /// An opacity mask (cut-out), if any.
     pub opacity: Option<OpacityDef>,
+    /// A texture of the isotropic roughness α (`alpha_texture`, rough conductors and dielectrics).
+    pub roughness: Option<Colour>,
 }
 
 impl MaterialDef {
@@ -153,6 +155,9 @@ impl MaterialDef {
         }
         if let Some(o) = &mut self.opacity {
             all.push(&mut o.texture);
+        }
+        if let Some(r) = &mut self.roughness {
+            all.push(r);
         }
         all
     }
@@ -212,6 +217,8 @@ pub struct RawMaterial {
     opacity: Option<Colour>,
     #[serde(skip_serializing_if = "Option::is_none")]
     alpha_cutoff: Option<Num>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    alpha_texture: Option<Colour>,
 }
 
 /// The fields each type accepts besides `type`, `emission` and `two_sided`.
@@ -224,9 +231,11 @@ fn allowed(t: MaterialType) -> &'static [&'static str] {
         MaterialType::Emissive => &["radiance"],
         MaterialType::Conductor => &["metal", "eta", "k", "reflectance"],
         MaterialType::RoughConductor => {
-            &["metal", "eta", "k", "reflectance", "distribution", "alpha", "alpha_u", "alpha_v"]
+            &["metal", "eta", "k", "reflectance", "distribution", "alpha", "alpha_u", "alpha_v", "alpha_texture"]
         }
-        MaterialType::RoughDielectric => &["ior", "tint", "distribution", "alpha", "alpha_u", "alpha_v"],
+        MaterialType::RoughDielectric => {
+            &["ior", "tint", "distribution", "alpha", "alpha_u", "alpha_v", "alpha_texture"]
+        }
         MaterialType::Plastic => &["albedo", "specular", "ior", "nonlinear"],
         MaterialType::RoughPlastic => &["albedo", "specular", "ior", "nonlinear", "distribution", "alpha"],
     }
@@ -250,6 +259,7 @@ impl RawMaterial {
             ("alpha", self.alpha.is_some()),
             ("alpha_u", self.alpha_u.is_some()),
             ("alpha_v", self.alpha_v.is_some()),
+            ("alpha_texture", self.alpha_texture.is_some()),
         ];
         fields.iter().filter(|f| f.1).map(|f| f.0).collect()
     }
@@ -385,7 +395,10 @@ impl TryFrom<RawMaterial> for MaterialDef {
                 "an emitting material cannot take an `opacity` (its light would shine from the cut-out parts)".into()
             );
         }
-        Ok(MaterialDef { kind, emission, normal, opacity })
+        if r.alpha_texture.is_some() && (r.alpha_u.is_some() || r.alpha_v.is_some()) {
+            return Err("`alpha_texture` is an isotropic α: give it without `alpha_u` and `alpha_v`".into());
+        }
+        Ok(MaterialDef { kind, emission, normal, opacity, roughness: r.alpha_texture })
     }
 }
 
@@ -491,6 +504,7 @@ impl From<MaterialDef> for RawMaterial {
         if let Some(o) = m.opacity {
             (r.opacity, r.alpha_cutoff) = (Some(o.texture), o.cutoff);
         }
+        r.alpha_texture = m.roughness;
         r
     }
 }
@@ -599,6 +613,20 @@ mod tests {
             .unwrap_err()
             .contains("needs an `opacity`"));
         assert!(parse("type = \"emissive\"\nradiance = 1\nopacity = 0.5").unwrap_err().contains("cannot take"));
+    }
+
+    #[test]
+    fn alpha_textures_parse_check_and_round_trip() {
+        let text =
+            "type = \"rough_conductor\"\nalpha_texture = { type = \"bitmap\", filename = \"r.png\", raw = true }";
+        let m = parse(text).unwrap();
+        assert!(matches!(m.roughness, Some(Colour::Texture(_))));
+        let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
+        assert_eq!(m, back);
+        assert!(parse("type = \"rough_plastic\"\nalpha_texture = 0.2").unwrap_err().contains("not a parameter"));
+        assert!(parse("type = \"rough_dielectric\"\nalpha_u = 0.1\nalpha_v = 0.2\nalpha_texture = 0.2")
+            .unwrap_err()
+            .contains("isotropic"));
     }
 
     #[test]

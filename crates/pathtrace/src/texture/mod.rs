@@ -84,6 +84,9 @@ pub enum ColourSlot {
     Base,
     /// A plastic's coating `specular` reflectance.
     Specular,
+    /// The isotropic microfacet α of a rough conductor or rough dielectric (the texture's
+    /// luminance; Mitsuba's textured `alpha`).
+    Roughness,
 }
 
 /// Index of a texture in the scene.
@@ -97,6 +100,8 @@ pub struct TextureBindings {
     pub base: Option<TextureId>,
     /// Texture of [`ColourSlot::Specular`], if any.
     pub specular: Option<TextureId>,
+    /// Texture of [`ColourSlot::Roughness`], if any.
+    pub roughness: Option<TextureId>,
     /// A normal or bump map tilting the shading normal, if any.
     pub normal: Option<NormalPerturbation>,
     /// An opacity mask, if any.
@@ -107,7 +112,11 @@ impl TextureBindings {
     /// True if no slot is textured.
     #[inline(always)]
     pub fn is_empty(&self) -> bool {
-        self.base.is_none() && self.specular.is_none() && self.normal.is_none() && self.opacity.is_none()
+        self.base.is_none()
+            && self.specular.is_none()
+            && self.roughness.is_none()
+            && self.normal.is_none()
+            && self.opacity.is_none()
     }
 
     /// Binds `slot` to `texture`.
@@ -115,6 +124,7 @@ impl TextureBindings {
         match slot {
             ColourSlot::Base => self.base = Some(texture),
             ColourSlot::Specular => self.specular = Some(texture),
+            ColourSlot::Roughness => self.roughness = Some(texture),
         }
     }
 }

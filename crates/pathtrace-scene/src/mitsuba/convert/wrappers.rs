@@ -20,6 +20,8 @@ use crate::native::model::{Colour, NormalDef, NormalPerturbationDef, OpacityDef,
 pub(super) struct Wrappers {
     pub normal: Option<NormalPerturbationDef>,
     pub opacity: Option<OpacityDef>,
+    /// A rough conductor's or dielectric's `alpha` texture.
+    pub roughness: Option<Colour>,
 }
 
 impl<'a> Conv<'a, '_> {
