@@ -138,3 +138,33 @@ fn alpha_modes_convert_and_bad_alpha_images_are_located_errors() {
     assert!(file.materials["gltf-1"].opacity.is_none());
     assert!(warnings.iter().any(|w| w.contains("cannot be cut out")), "{warnings:#?}");
 }
+
+/// An orthographic glTF camera becomes the native orthographic camera: height 2·ymag, aspect
+/// xmag/ymag; a non-positive ymag falls back to a perspective view with a warning (or is refused
+/// by the file's validation), never a panic.
+#[test]
+fn orthographic_cameras_convert() {
+    use pathtrace_scene::native::model::ProjectionName;
+    let dir = common::TempDir::new();
+    let ortho = |xmag: f64, ymag: f64| {
+        let edit = move |v: &mut serde_json::Value| {
+            v["cameras"][0] = serde_json::json!({ "type": "orthographic",
+                "orthographic": { "xmag": xmag, "ymag": ymag, "znear": 0.01, "zfar": 100.0 } });
+        };
+        edited_copy(&dir, "normal_map.gltf", &["normal_map.bin", "normal.png"], &edit)
+    };
+    let (file, warnings) = convert_file(&ortho(2.0, 1.5), &[]).unwrap();
+    assert!(warnings.is_empty(), "{warnings:#?}");
+    let c = &file.camera;
+    assert_eq!(c.projection, Some(ProjectionName::Orthographic));
+    assert_eq!(c.height.map(|h| h.get()), Some(3.0));
+    assert!((c.aspect.unwrap().get() - 4.0 / 3.0).abs() < 1e-6);
+    assert!(load_gltf(&ortho(2.0, 1.5), &[]).is_ok());
+    match convert_file(&ortho(2.0, -1.0), &[]) {
+        Ok((file, warnings)) => {
+            assert!(warnings.iter().any(|w| w.contains("ymag")), "{warnings:#?}");
+            assert_eq!(file.camera.projection, None);
+        }
+        Err(e) => assert!(e.to_string().contains("normal_map.gltf"), "{e}"),
+    }
+}
