@@ -10,6 +10,20 @@ crates/pathtrace-scene/tests/data/gltf/:
   same node transforms), `diffuse` BSDFs of the same base colours, `face_normals`, the same
   camera (fov on the y axis) and a `directional` emitter of the same irradiance and direction.
 
+- ../maps/normal_map.gltf + normal_map.bin and its twin normal_map.xml + normal_floor.obj: a
+  Lambertian floor with TEXCOORD_0 and a normalTexture (../maps/normal.png, from
+  make_map_assets.py) under a KHR_lights_punctual directional light; the twin wraps the same
+  `diffuse` in a `normalmap` without the terminator shadowing (glTF has none) and reads the OBJ's
+  texture coordinates unflipped. The uv layout is not mirrored (−∂p/∂v along n × ∂p/∂u), where
+  glTF's tangent space and Mitsuba's agree.
+
+- ../maps/cutout.gltf + cutout.bin and its twin cutout.xml + cutout_card.obj: a floor and a
+  standing card whose base colour texture (../maps/cutout.png, from make_map_assets.py) has the
+  cut-out in its alpha, alphaMode BLEND (alpha as opacity, bilinear, as Mitsuba's `mask`; MASK's
+  hard edges at alphaCutoff cannot match it block by block), under a directional light; the twin
+  wraps a two-sided `diffuse` of the texture's (sRGB-decoded) colour in a `mask` of the grey
+  mask.png (the same 0/1 alpha), rendered with `volpath` (shadow rays pass masks).
+
     python3 benches/peers/make_gltf_assets.py
 """
 import json
@@ -155,8 +169,238 @@ def write_obj(path, positions, indices):
             f.write("f %d %d %d\n" % (indices[i] + 1, indices[i + 1] + 1, indices[i + 2] + 1))
 
 
+MAPS = os.path.join(os.path.dirname(__file__), "../../crates/pathtrace-scene/tests/data/maps")
+NFLOOR_P = [[-2, 0, -2], [2, 0, -2], [2, 0, 2], [-2, 0, 2]]
+NFLOOR_UV = [[(p[0] + 2) / 2, (p[2] + 2) / 2] for p in NFLOOR_P]  # u along +x, v along +z
+NFLOOR_I = [0, 2, 1, 0, 3, 2]  # faces +y
+NCAMERA = look_at([0.3, 2.5, -3.5], [0, 0, 0.3], [0, 1, 0])
+NLIGHT = look_at([-2.0, 2.0, -1.0], [0, 0, 0], [0, 1, 0])
+
+
+def write_normal_map_twin():
+    data = b"".join(struct.pack("<3f", *p) for p in NFLOOR_P)
+    data += b"".join(struct.pack("<3f", 0, 1, 0) for _ in NFLOOR_P)
+    data += b"".join(struct.pack("<2f", *t) for t in NFLOOR_UV)
+    data += b"".join(struct.pack("<H", i) for i in NFLOOR_I)
+    with open(os.path.join(MAPS, "normal_map.bin"), "wb") as f:
+        f.write(data)
+    n = len(NFLOOR_P)
+    views = [{"buffer": 0, "byteOffset": 0, "byteLength": 12 * n}, {"buffer": 0, "byteOffset": 12 * n, "byteLength": 12 * n},
+             {"buffer": 0, "byteOffset": 24 * n, "byteLength": 8 * n}, {"buffer": 0, "byteOffset": 32 * n, "byteLength": 12}]
+    accessors = [
+        {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
+         "min": [min(p[k] for p in NFLOOR_P) for k in range(3)], "max": [max(p[k] for p in NFLOOR_P) for k in range(3)]},
+        {"bufferView": 1, "componentType": 5126, "count": n, "type": "VEC3"},
+        {"bufferView": 2, "componentType": 5126, "count": n, "type": "VEC2"},
+        {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"},
+    ]
+    doc = {
+        "asset": {"version": "2.0", "generator": "pathtrace benches/peers/make_gltf_assets.py"},
+        "extensionsUsed": ["KHR_materials_specular", "KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"type": "directional", "color": LIGHT_COLOUR, "intensity": LIGHT_INTENSITY}]}},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1, 2]}],
+        "nodes": [{"name": "floor", "mesh": 0}, {"name": "camera", "camera": 0, "matrix": col_major(NCAMERA)},
+                  {"name": "sun", "matrix": col_major(NLIGHT), "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": YFOV, "aspectRatio": 1.0, "znear": 0.01}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3,
+                                    "material": 0}]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": FLOOR_COLOUR + [1.0], "metallicFactor": 0.0},
+                       "normalTexture": {"index": 0, "scale": 1.0},
+                       "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}],
+        "textures": [{"source": 0}],
+        "images": [{"uri": "normal.png"}],
+        "buffers": [{"uri": "normal_map.bin", "byteLength": len(data)}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    with open(os.path.join(MAPS, "normal_map.gltf"), "w") as f:
+        json.dump(doc, f, indent=1)
+    with open(os.path.join(MAPS, "normal_floor.obj"), "w") as f:
+        for p in NFLOOR_P:
+            f.write("v %.9g %.9g %.9g\n" % tuple(p))
+        for t in NFLOOR_UV:
+            f.write("vt %.9g %.9g\n" % tuple(t))
+        for i in range(0, 6, 3):
+            f.write("f %d/%d %d/%d %d/%d\n" % tuple(x + 1 for j in NFLOOR_I[i:i + 3] for x in (j, j)))
+    eye = [NCAMERA[i][3] for i in range(3)]
+    fwd = [-NCAMERA[i][2] for i in range(3)]
+    up = [NCAMERA[i][1] for i in range(3)]
+    direction = [-NLIGHT[i][2] for i in range(3)]
+    rgb = lambda c: ", ".join("%.9g" % x for x in c)
+    xml = f"""<?xml version="1.0"?>
+<!-- The Mitsuba 3 twin of normal_map.gltf (same floor, uv, normal map, camera and light), written
+     by benches/peers/make_gltf_assets.py. Used by crates/pathtrace-scene/tests/gltf.rs. -->
+<scene version="3.0.0">
+    <integrator type="path">
+        <integer name="max_depth" value="4"/>
+    </integrator>
+    <sensor type="perspective">
+        <string name="fov_axis" value="y"/>
+        <float name="fov" value="{math.degrees(YFOV):.9g}"/>
+        <transform name="to_world">
+            <lookat origin="{rgb(eye)}" target="{rgb([eye[k] + fwd[k] for k in range(3)])}" up="{rgb(up)}"/>
+        </transform>
+        <sampler type="independent">
+            <integer name="sample_count" value="64"/>
+        </sampler>
+        <film type="hdrfilm">
+            <integer name="width" value="64"/>
+            <integer name="height" value="64"/>
+            <rfilter type="box"/>
+        </film>
+    </sensor>
+    <shape type="obj">
+        <string name="filename" value="normal_floor.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <boolean name="flip_tex_coords" value="false"/>
+        <bsdf type="normalmap">
+            <texture name="normalmap" type="bitmap">
+                <string name="filename" value="normal.png"/>
+                <boolean name="raw" value="true"/>
+            </texture>
+            <boolean name="use_shadowing_function" value="false"/>
+            <bsdf type="diffuse"><rgb name="reflectance" value="{rgb(FLOOR_COLOUR)}"/></bsdf>
+        </bsdf>
+    </shape>
+    <emitter type="directional">
+        <vector name="direction" value="{rgb(direction)}"/>
+        <rgb name="irradiance" value="{rgb([LIGHT_INTENSITY * c for c in LIGHT_COLOUR])}"/>
+    </emitter>
+</scene>
+"""
+    with open(os.path.join(MAPS, "normal_map.xml"), "w") as f:
+        f.write(xml)
+
+
+CARD_P = [[-0.6, 0.1, 0.3], [0.6, 0.1, 0.3], [0.6, 1.3, 0.3], [-0.6, 1.3, 0.3]]
+CARD_UV = [[(p[0] + 0.6) / 1.2, (1.3 - p[1]) / 1.2] for p in CARD_P]  # the image's top at the top
+CARD_I = [0, 1, 2, 0, 2, 3]
+CFLOOR_P = [[-2.5, 0, -2.5], [2.5, 0, -2.5], [2.5, 0, 2.5], [-2.5, 0, 2.5]]
+CCAMERA = look_at([0.4, 1.8, -3.0], [0, 0.5, 0.3], [0, 1, 0])
+CLIGHT = look_at([-1.0, 3.0, 3.0], [0, 0, 0], [0, 1, 0])
+CARD_SRGB = [200, 120, 60]
+
+
+def srgb_decode(c):
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
+def write_cutout_twin():
+    data = b"".join(struct.pack("<3f", *p) for p in CFLOOR_P + CARD_P)
+    data += b"".join(struct.pack("<2f", *t) for t in CARD_UV)
+    data += b"".join(struct.pack("<H", i) for i in FLOOR_I + CARD_I)
+    with open(os.path.join(MAPS, "cutout.bin"), "wb") as f:
+        f.write(data)
+    views = [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+             {"buffer": 0, "byteOffset": 96, "byteLength": 32}, {"buffer": 0, "byteOffset": 128, "byteLength": 12},
+             {"buffer": 0, "byteOffset": 140, "byteLength": 12}]
+    bounds = lambda ps: {"min": [min(p[k] for p in ps) for k in range(3)], "max": [max(p[k] for p in ps) for k in range(3)]}
+    accessors = [
+        dict({"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"}, **bounds(CFLOOR_P)),
+        dict({"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"}, **bounds(CARD_P)),
+        {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
+        {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"},
+        {"bufferView": 4, "componentType": 5123, "count": 6, "type": "SCALAR"},
+    ]
+    lambert = {"extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}
+    doc = {
+        "asset": {"version": "2.0", "generator": "pathtrace benches/peers/make_gltf_assets.py"},
+        "extensionsUsed": ["KHR_materials_specular", "KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [
+            {"type": "directional", "color": LIGHT_COLOUR, "intensity": LIGHT_INTENSITY}]}},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1, 2, 3]}],
+        "nodes": [{"name": "floor", "mesh": 0}, {"name": "card", "mesh": 1},
+                  {"name": "camera", "camera": 0, "matrix": col_major(CCAMERA)},
+                  {"name": "sun", "matrix": col_major(CLIGHT), "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": YFOV, "aspectRatio": 1.0, "znear": 0.01}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 3, "material": 0}]},
+                   {"primitives": [{"attributes": {"POSITION": 1, "TEXCOORD_0": 2}, "indices": 4, "material": 1}]}],
+        "materials": [
+            dict({"pbrMetallicRoughness": {"baseColorFactor": FLOOR_COLOUR + [1.0], "metallicFactor": 0.0}}, **lambert),
+            dict({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0},
+                  "alphaMode": "BLEND", "doubleSided": True}, **lambert)],
+        "textures": [{"source": 0}],
+        "images": [{"uri": "cutout.png"}],
+        "buffers": [{"uri": "cutout.bin", "byteLength": len(data)}],
+        "bufferViews": views,
+        "accessors": accessors,
+    }
+    with open(os.path.join(MAPS, "cutout.gltf"), "w") as f:
+        json.dump(doc, f, indent=1)
+    write_obj(os.path.join(MAPS, "cutout_floor.obj"), CFLOOR_P, FLOOR_I)
+    with open(os.path.join(MAPS, "cutout_card.obj"), "w") as f:
+        for p in CARD_P:
+            f.write("v %.9g %.9g %.9g\n" % tuple(p))
+        for t in CARD_UV:
+            f.write("vt %.9g %.9g\n" % tuple(t))
+        for i in range(0, 6, 3):
+            f.write("f %d/%d %d/%d %d/%d\n" % tuple(x + 1 for j in CARD_I[i:i + 3] for x in (j, j)))
+    eye = [CCAMERA[i][3] for i in range(3)]
+    fwd = [-CCAMERA[i][2] for i in range(3)]
+    up = [CCAMERA[i][1] for i in range(3)]
+    direction = [-CLIGHT[i][2] for i in range(3)]
+    rgb = lambda c: ", ".join("%.9g" % x for x in c)
+    card = [srgb_decode(c / 255) for c in CARD_SRGB]
+    xml = f"""<?xml version="1.0"?>
+<!-- The Mitsuba 3 twin of cutout.gltf (same floor, card, uv, cut-out, camera and light), written
+     by benches/peers/make_gltf_assets.py. `volpath` lets shadow rays pass the mask, as ours do;
+     our tests load it with -D integrator=path. Used by crates/pathtrace-scene/tests/gltf_maps.rs. -->
+<scene version="3.0.0">
+    <default name="integrator" value="volpath"/>
+    <integrator type="$integrator">
+        <integer name="max_depth" value="-1"/>
+    </integrator>
+    <sensor type="perspective">
+        <string name="fov_axis" value="y"/>
+        <float name="fov" value="{math.degrees(YFOV):.9g}"/>
+        <transform name="to_world">
+            <lookat origin="{rgb(eye)}" target="{rgb([eye[k] + fwd[k] for k in range(3)])}" up="{rgb(up)}"/>
+        </transform>
+        <sampler type="independent">
+            <integer name="sample_count" value="64"/>
+        </sampler>
+        <film type="hdrfilm">
+            <integer name="width" value="64"/>
+            <integer name="height" value="64"/>
+            <rfilter type="box"/>
+        </film>
+    </sensor>
+    <shape type="obj">
+        <string name="filename" value="cutout_floor.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="{rgb(FLOOR_COLOUR)}"/></bsdf>
+    </shape>
+    <shape type="obj">
+        <string name="filename" value="cutout_card.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <boolean name="flip_tex_coords" value="false"/>
+        <bsdf type="mask">
+            <texture name="opacity" type="bitmap">
+                <string name="filename" value="mask.png"/>
+                <boolean name="raw" value="true"/>
+            </texture>
+            <bsdf type="twosided">
+                <bsdf type="diffuse"><rgb name="reflectance" value="{rgb(card)}"/></bsdf>
+            </bsdf>
+        </bsdf>
+    </shape>
+    <emitter type="directional">
+        <vector name="direction" value="{rgb(direction)}"/>
+        <rgb name="irradiance" value="{rgb([LIGHT_INTENSITY * c for c in LIGHT_COLOUR])}"/>
+    </emitter>
+</scene>
+"""
+    with open(os.path.join(MAPS, "cutout.xml"), "w") as f:
+        f.write(xml)
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
+    write_normal_map_twin()
+    write_cutout_twin()
     data, views, accessors, ids = buffer_and_accessors()
     with open(os.path.join(OUT, "scene.bin"), "wb") as f:
         f.write(data)

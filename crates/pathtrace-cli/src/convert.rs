@@ -17,7 +17,7 @@ pub fn run(a: ConvertArgs) -> Result<ExitCode, CliError> {
         if from != to {
             rebase(&mut file.objects, &mut file.groups, &from);
             for m in file.materials.values_mut() {
-                for c in m.kind.colours_mut() {
+                for c in m.textures_mut() {
                     if let Colour::Texture(TextureDef::Bitmap { filename, .. }) = c {
                         rebase_path(filename, &from);
                     }

@@ -209,6 +209,20 @@ pub fn read_texture(path: &Path, raw: bool) -> Result<Image, ImageIoError> {
     texture_codec::to_linear(decoded, format, raw).map_err(texture)
 }
 
+/// Reads the alpha channel of a PNG texture as a grey image (alpha is linear in PNG: no
+/// decoding); an image without alpha reads as opaque (1), as glTF says.
+pub fn read_texture_alpha(path: &Path) -> Result<Image, ImageIoError> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let format = match ext.as_str() {
+        "png" => image::ImageFormat::Png,
+        "jpg" | "jpeg" => image::ImageFormat::Jpeg,
+        _ => return Err(ImageIoError::NoAlpha { path: path.to_path_buf() }),
+    };
+    let texture = |source| ImageIoError::Texture { path: path.to_path_buf(), source };
+    let decoded = guarded_decode::decode_file(path, format, texture)?;
+    texture_codec::alpha(decoded, format).map_err(texture)
+}
+
 /// Reads an EXR file, explaining a missing-channel failure in our own words.
 fn read_exr(path: &Path) -> Result<Image, ImageIoError> {
     // Open it ourselves first, so "not found" and permissions read as IO errors.

@@ -88,7 +88,15 @@ fn lanes_and_one_lane_give_every_sample_the_same_value() {
     let mut all: Vec<(String, Arc<Scene>)> = scenes.iter().map(|rel| (rel.to_string(), repo_scene(rel))).collect();
     all.extend(shared_scenes());
     // The thin-lens camera draws a second 2D point per camera sample; the orthographic one none.
-    for rel in ["tests/data/thinlens_box.xml", "tests/data/orthographic_box.xml"] {
+    // The normal- and bump-mapped surfaces (shaded lane by lane in a perturbed frame) and the
+    // opacity masks (rays passing cut-outs).
+    for rel in [
+        "tests/data/thinlens_box.xml",
+        "tests/data/orthographic_box.xml",
+        "tests/data/maps/normal_bump.xml",
+        "tests/data/maps/mask.xml",
+        "tests/data/maps/roughness.xml",
+    ] {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel);
         let (loaded, _) = load_mitsuba(&path, &[]).unwrap_or_else(|e| panic!("{rel}: {e}"));
         all.push((rel.to_string(), Arc::new(loaded.scene)));

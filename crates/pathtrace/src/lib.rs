@@ -4,6 +4,7 @@
 
 pub mod accel;
 pub mod camera;
+mod cutout;
 pub mod film;
 pub mod instance;
 pub mod light;

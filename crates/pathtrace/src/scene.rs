@@ -11,7 +11,7 @@ use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
 use crate::shape::{MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
-use crate::texture::{ColourSlot, Texture, TextureBindings, TextureId};
+use crate::texture::{ColourSlot, NormalPerturbation, Opacity, PerturbationKind, Texture, TextureBindings, TextureId};
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Index of a material in the scene.
@@ -103,6 +103,8 @@ pub struct Scene {
     /// Per material: the textures bound to its colour slots (most are empty).
     bindings: Vec<TextureBindings>,
     textures: Vec<Texture>,
+    /// Some material has an opacity mask (rays then pass cut-outs: `crate::cutout`).
+    cutouts: bool,
     pub lights: LightSet,
     pub camera: CameraDesc,
 }
@@ -261,7 +263,39 @@ impl Scene {
         if let Some(t) = b.specular {
             m = m.with_colour(ColourSlot::Specular, self.textures[t.0 as usize].eval(it.surface.uv));
         }
+        if let Some(t) = b.roughness {
+            m = m.with_colour(ColourSlot::Roughness, self.textures[t.0 as usize].eval(it.surface.uv));
+        }
         m
+    }
+
+    /// The normal or bump map of material `id`, if it has one.
+    #[inline(always)]
+    pub fn normal_perturbation(&self, id: u32) -> Option<&NormalPerturbation> {
+        if !self.has_textures() {
+            return None;
+        }
+        self.bindings.get(id as usize).and_then(|b| b.normal.as_ref())
+    }
+
+    /// True if some material has an opacity mask.
+    #[inline(always)]
+    pub fn has_cutouts(&self) -> bool {
+        self.cutouts
+    }
+
+    /// The opacity mask of material `id`, if it has one.
+    #[inline(always)]
+    pub fn opacity_mask(&self, id: u32) -> Option<&Opacity> {
+        if !self.cutouts {
+            return None;
+        }
+        self.bindings.get(id as usize).and_then(|b| b.opacity.as_ref())
+    }
+
+    /// The scene's textures, indexed by [`TextureId`].
+    pub fn textures(&self) -> &[Texture] {
+        &self.textures
     }
 
     /// The BVH's nodes, one per line.
@@ -381,6 +415,51 @@ impl SceneBuilder {
             self.bindings.resize(material.0 as usize + 1, TextureBindings::default());
         }
         self.bindings[material.0 as usize].set(slot, texture);
+        Ok(())
+    }
+
+    /// Tilts `material`'s shading normal by a normal or bump map (whose texture was added with
+    /// [`SceneBuilder::texture`]); a second call replaces the first.
+    pub fn perturb_normal(&mut self, material: MaterialId, p: NormalPerturbation) -> Result<(), BuildError> {
+        self.check_material(material)?;
+        if p.texture().0 as usize >= self.textures.len() {
+            return Err(BuildError::Material(format!("texture id {} does not exist", p.texture().0)));
+        }
+        let (name, value) = match p.kind {
+            PerturbationKind::NormalMap { strength, .. } => ("normal map strength", strength),
+            PerturbationKind::BumpMap { scale, .. } => ("bump map scale", scale),
+        };
+        if !value.is_finite() {
+            return Err(BuildError::Material(format!("{name} {value} must be a finite number")));
+        }
+        if self.bindings.len() <= material.0 as usize {
+            self.bindings.resize(material.0 as usize + 1, TextureBindings::default());
+        }
+        self.bindings[material.0 as usize].normal = Some(p);
+        Ok(())
+    }
+
+    /// Gives `material` an opacity mask (whose texture was added with [`SceneBuilder::texture`]);
+    /// emissive materials cannot have one (their lights would be sampled where the surface is
+    /// cut out).
+    pub fn set_opacity(&mut self, material: MaterialId, o: Opacity) -> Result<(), BuildError> {
+        self.check_material(material)?;
+        if o.texture.0 as usize >= self.textures.len() {
+            return Err(BuildError::Material(format!("texture id {} does not exist", o.texture.0)));
+        }
+        if o.cutoff.is_some_and(|c| !c.is_finite()) {
+            return Err(BuildError::Material("an alpha cutoff must be a finite number".into()));
+        }
+        if self.materials[material.0 as usize].1.is_some_and(|e| !e.radiance.is_black()) {
+            return Err(BuildError::Material(
+                "an emissive material cannot have an opacity mask (its light would shine from the cut-out parts)"
+                    .into(),
+            ));
+        }
+        if self.bindings.len() <= material.0 as usize {
+            self.bindings.resize(material.0 as usize + 1, TextureBindings::default());
+        }
+        self.bindings[material.0 as usize].opacity = Some(o);
         Ok(())
     }
 
@@ -646,6 +725,7 @@ impl SceneBuilder {
         let bvh = Bvh::build(&bounds, &prims.packables());
         let mut bindings = self.bindings;
         bindings.resize(self.materials.len(), TextureBindings::default());
+        let cutouts = bindings.iter().any(|b| b.opacity.is_some());
         Ok(Scene {
             prims,
             unbounded,
@@ -654,6 +734,7 @@ impl SceneBuilder {
             materials: self.materials.into_iter().map(|(m, _)| m).collect(),
             bindings,
             textures: self.textures,
+            cutouts,
             lights,
             camera: self.camera,
         })

@@ -232,3 +232,58 @@ fn disk_tangents_point_outwards() {
         assert!((sp2.uv.y - sp.uv.y).abs() < 1e-3, "{target}: the angle changes along dpdu");
     }
 }
+
+/// Finds a shape's surface along a ray.
+type HitSurface = Box<dyn Fn(Ray) -> Option<pathtrace::shape::SurfacePoint>>;
+
+/// ∂p/∂u and ∂p/∂v are the derivatives of each shape's parameterisation: a step of ε·∂p/∂v
+/// across the surface moves uv by (0, ε), a step of ε·∂p/∂u by (ε, 0) (bump maps scale their
+/// tilt by both).
+#[test]
+fn position_derivatives_match_the_uv_parameterisation() {
+    use pathtrace::shape::{Disk, Triangle};
+    let eps = 1e-3;
+    let tri =
+        Triangle::new(Vec3::new(-1.0, 0.2, -1.0), Vec3::new(1.5, 0.0, -0.5), Vec3::new(0.0, 0.1, 1.2), 0).unwrap();
+    let tri_uvs = [Vec2::new(0.1, 0.2), Vec2::new(0.9, 0.3), Vec2::new(0.4, 0.8)];
+    let shapes: Vec<(&str, HitSurface)> = vec![
+        (
+            "sphere",
+            Box::new(|r: Ray| {
+                let s = Shape::Sphere(Sphere::new(Vec3::new(0.0, -1.0, 0.0), 1.3).unwrap());
+                s.intersect(&r, 0.0, f32::INFINITY).map(|h| s.surface(&r, &h, &[]))
+            }),
+        ),
+        (
+            "quad",
+            Box::new(|r: Ray| {
+                let q = Quad::new(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(2.0, 0.3, 0.5), Vec3::new(0.0, 0.2, 2.0));
+                let s = Shape::Quad(q.unwrap());
+                s.intersect(&r, 0.0, f32::INFINITY).map(|h| s.surface(&r, &h, &[]))
+            }),
+        ),
+        (
+            "disk",
+            Box::new(|r: Ray| {
+                let d = Disk::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.5)).unwrap();
+                let s = Shape::Disk(d);
+                s.intersect(&r, 0.0, f32::INFINITY).map(|h| s.surface(&r, &h, &[]))
+            }),
+        ),
+        (
+            "triangle",
+            Box::new(move |r: Ray| {
+                tri.intersect(&r, 0.0, f32::INFINITY).map(|h| tri.surface_with(&h, None, Some(tri_uvs)))
+            }),
+        ),
+    ];
+    for (name, hit) in &shapes {
+        let down = |p: Vec3, n: Vec3| hit(Ray::new(p + n, -n)).unwrap_or_else(|| panic!("{name}: missed"));
+        let sp = down(Vec3::new(0.3, 2.0, 0.2), Vec3::Y);
+        assert!(sp.dpdv != Vec3::ZERO, "{name}: no ∂p/∂v");
+        for (d, expected) in [(sp.dpdu, Vec2::new(eps, 0.0)), (sp.dpdv, Vec2::new(0.0, eps))] {
+            let moved = down(sp.p + eps * d, sp.n_geometric).uv - sp.uv;
+            assert!((moved - expected).length() < 0.05 * eps, "{name}: uv moved by {moved} for {expected}");
+        }
+    }
+}

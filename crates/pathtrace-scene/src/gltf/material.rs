@@ -7,11 +7,13 @@
 //! Substituted, with a warning: other dielectrics become `rough_plastic` (GGX, same α and ior),
 //! metals a `rough_conductor` of a perfect mirror metal tinted by the base colour (no Schlick
 //! edge brightening), partial `metallic` the nearer of the two, transmission a `rough_dielectric`.
-//! A base colour texture stored as an image file becomes an image texture (see `texture.rs`).
+//! A base colour texture stored as an image file becomes an image texture (see `texture.rs`),
+//! a normal texture a normal map (see [`normal_map`]), `alphaMode` an opacity (see
+//! [`alpha_opacity`]).
 
 use super::num;
 use crate::native::model::{Colour, EmissionDef, MaterialDef, MaterialKind, MetalDef, RoughnessDef};
-use crate::native::model::{MetalName, Triple};
+use crate::native::model::{MetalName, NormalDef, NormalPerturbationDef, OpacityDef, TextureDef, Triple};
 use pathtrace::material::MicrofacetKind;
 
 fn triple(c: [f32; 3]) -> Triple {
@@ -38,12 +40,6 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
         }
     }
     if let Some(m) = m {
-        if m.normal_texture().is_some() {
-            w("the normal texture is not supported yet: ignored");
-        }
-        if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
-            w("alphaMode MASK/BLEND (opacity) is not supported yet: rendered opaque");
-        }
         if m.emissive_texture().is_some() {
             w("the emissive texture is not supported yet: using emissiveFactor");
         }
@@ -97,5 +93,62 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
     let e = m.map_or([0.0; 3], |m| m.emissive_factor()).map(|c| c * strength);
     let emission = (e.iter().any(|&c| c > 0.0))
         .then(|| EmissionDef { radiance: triple(e), two_sided: m.is_some_and(|m| m.double_sided()) });
-    MaterialDef { kind, emission }
+    let normal = m.and_then(|m| m.normal_texture()).and_then(|n| normal_map(&n, &mut w));
+    let mut opacity = m.and_then(|m| alpha_opacity(m, base_factor[3], &mut w));
+    if opacity.is_some() && emission.is_some() {
+        w("an emissive material cannot be cut out: alphaMode ignored");
+        opacity = None;
+    }
+    MaterialDef { kind, emission, normal, opacity, roughness: None }
+}
+
+/// `alphaMode` `MASK` (opaque where alpha ≥ `alphaCutoff`, default 0.5) or `BLEND` (alpha as
+/// the opacity: the surface is there with that probability, which is how a path tracer sees a
+/// blended surface) as a native opacity: the base colour texture's alpha channel, or
+/// `baseColorFactor`'s alpha without a texture.
+fn alpha_opacity(m: &gltf::Material, factor_alpha: f32, w: &mut dyn FnMut(&str)) -> Option<OpacityDef> {
+    let cutoff = match m.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => return None,
+        gltf::material::AlphaMode::Mask => Some(num(m.alpha_cutoff().unwrap_or(0.5))),
+        gltf::material::AlphaMode::Blend => None,
+    };
+    let texture = m.pbr_metallic_roughness().base_color_texture().and_then(|info| {
+        super::texture::colour_texture(&info).ok().map(|t| match t {
+            TextureDef::Bitmap { filename, nearest, clamp, to_uv, .. } => {
+                TextureDef::Bitmap { filename, raw: true, nearest, clamp, to_uv, alpha: true }
+            }
+            other => other,
+        })
+    });
+    let texture = match texture {
+        Some(t) => {
+            if factor_alpha != 1.0 {
+                w("baseColorFactor's alpha times the texture's alpha is not supported: using the texture's alpha");
+            }
+            Colour::Texture(t)
+        }
+        None => Colour::Constant(Triple::Splat(num(factor_alpha))),
+    };
+    Some(OpacityDef { texture, cutoff })
+}
+
+/// A `normalTexture` as a native normal map: glTF's tangent space (+x along increasing u, +y
+/// towards decreasing v, the image's up) is the base frame's (s = ∂p/∂u, t = n × s) wherever the
+/// texture coordinates are not mirrored; `scale` scales x and y, as the glTF specification says.
+/// Tangents come from the texture coordinates (a mesh's TANGENT attribute is not read); glTF has
+/// no terminator shadowing.
+fn normal_map(n: &gltf::material::NormalTexture, w: &mut dyn FnMut(&str)) -> Option<NormalPerturbationDef> {
+    if n.extension_value("KHR_texture_transform").is_some() {
+        w("KHR_texture_transform on the normal texture is not supported: ignored");
+    }
+    match super::texture::normal_texture(n) {
+        Ok(t) => Some(NormalPerturbationDef {
+            map: NormalDef::Map { texture: Colour::Texture(t), strength: num(n.scale()) },
+            shadowing: false,
+        }),
+        Err(e) => {
+            w(&format!("normal texture: {e}: ignored"));
+            None
+        }
+    }
 }

@@ -7,7 +7,8 @@ use super::geometry::first_parts;
 use super::material;
 use super::num;
 use crate::native::model::{
-    CameraSection, LightDef, MaterialDef, MeshNormals, Num3, ObjectDef, SceneFile, ShapeDef, TransformStep, Triple,
+    CameraSection, LightDef, MaterialDef, MeshNormals, Num3, ObjectDef, ProjectionName, SceneFile, ShapeDef,
+    TransformStep, Triple,
 };
 use gltf::khr_lights_punctual::Kind;
 use pathtrace::math::{Mat4, Vec3};
@@ -119,6 +120,14 @@ impl Converter<'_> {
                 continue;
             }
             let material = self.material_name(Some(prim.material()).filter(|m| m.index().is_some()));
+            if prim.get(&gltf::Semantic::Tangents).is_some() && prim.material().normal_texture().is_some() {
+                self.warn(format!(
+                    "meshes[{}].primitives[{}]: the TANGENT attribute is not read: the normal map's tangents come \
+                     from the texture coordinates",
+                    mesh.index(),
+                    prim.index()
+                ));
+            }
             // glTF: without NORMAL, flat normals.
             let normals =
                 if prim.get(&gltf::Semantic::Normals).is_some() { MeshNormals::File } else { MeshNormals::Face };
@@ -134,10 +143,23 @@ impl Converter<'_> {
         let up = world.transform_vector3(Vec3::Y).normalize_or_zero();
         let (vfov, aspect) = match cam.projection() {
             gltf::camera::Projection::Perspective(p) => (p.yfov().to_degrees(), p.aspect_ratio()),
-            gltf::camera::Projection::Orthographic(_) => {
+            // xmag and ymag are the view's half-width and half-height (glTF 2.0 §3.10.3).
+            gltf::camera::Projection::Orthographic(o) if o.ymag() > 0.0 && o.ymag().is_finite() => {
+                let aspect = (o.xmag() > 0.0 && o.xmag().is_finite()).then(|| num(o.xmag() / o.ymag()));
+                self.file.camera = CameraSection {
+                    projection: Some(ProjectionName::Orthographic),
+                    up: Some(n3(up)),
+                    height: Some(num(2.0 * o.ymag())),
+                    aspect,
+                    ..CameraSection::pinhole(n3(eye), n3(eye + forward))
+                };
+                return;
+            }
+            gltf::camera::Projection::Orthographic(o) => {
                 self.warn(format!(
-                    "cameras[{}]: orthographic cameras are not supported: using a 40° perspective",
-                    cam.index()
+                    "cameras[{}]: orthographic ymag {} must be a positive number: using a 40° perspective",
+                    cam.index(),
+                    o.ymag()
                 ));
                 (40.0, None)
             }

@@ -16,10 +16,23 @@ fn to_uv(t: Option<gltf::texture::TextureTransform>) -> UvRows {
 
 /// A colour texture (sRGB-decoded) from `info`, or why not.
 pub fn colour_texture(info: &gltf::texture::Info) -> Result<TextureDef, String> {
-    if info.tex_coord() != 0 || info.texture_transform().and_then(|t| t.tex_coord()).is_some_and(|c| c != 0) {
+    if info.texture_transform().and_then(|t| t.tex_coord()).is_some_and(|c| c != 0) {
         return Err("only TEXCOORD_0 is supported".into());
     }
-    let texture = info.texture();
+    image_texture(&info.texture(), info.tex_coord(), to_uv(info.texture_transform()), false)
+}
+
+/// A normal texture (read raw: its texels are directions), or why not. `KHR_texture_transform`
+/// on it is not read (the caller warns).
+pub fn normal_texture(n: &gltf::material::NormalTexture) -> Result<TextureDef, String> {
+    image_texture(&n.texture(), n.tex_coord(), to_uv(None), true)
+}
+
+/// The image file of `texture` with its sampler's options.
+fn image_texture(texture: &gltf::Texture, tex_coord: u32, to_uv: UvRows, raw: bool) -> Result<TextureDef, String> {
+    if tex_coord != 0 {
+        return Err("only TEXCOORD_0 is supported".into());
+    }
     let filename = match texture.source().source() {
         gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => percent_decode(uri),
         _ => return Err("images embedded in the file are not supported yet".into()),
@@ -27,5 +40,5 @@ pub fn colour_texture(info: &gltf::texture::Info) -> Result<TextureDef, String> 
     let sampler = texture.sampler();
     let clamp = sampler.wrap_s() == gltf::texture::WrappingMode::ClampToEdge;
     let nearest = sampler.mag_filter() == Some(gltf::texture::MagFilter::Nearest);
-    Ok(TextureDef::Bitmap { filename, raw: false, nearest, clamp, to_uv: to_uv(info.texture_transform()) })
+    Ok(TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha: false })
 }

@@ -28,6 +28,13 @@ pub enum ImageIoError {
         extension: String,
     },
 
+    /// An alpha channel was asked of a format we read without one.
+    #[error("{}: only PNG and JPEG textures give an alpha channel (opacity)", .path.display())]
+    NoAlpha {
+        /// The offending path.
+        path: PathBuf,
+    },
+
     /// The path cannot name an output file (for example it ends in `..`).
     #[error("{}: not a file path", .path.display())]
     NotAFilePath {

@@ -30,3 +30,15 @@ pub(crate) fn to_linear(decoded: DynamicImage, format: image::ImageFormat, raw: 
         ))
     })
 }
+
+/// The alpha channel of a decoded PNG or JPEG as grey texels in [0, 1] (1 without alpha).
+pub(crate) fn alpha(decoded: DynamicImage, format: image::ImageFormat) -> Result<Image, ImageError> {
+    let rgba = decoded.into_rgba16();
+    let pixels = rgba.pixels().map(|p| Rgb::splat(f32::from(p[3]) / 65535.0)).collect();
+    Image::from_pixels(rgba.width(), rgba.height(), pixels).ok_or_else(|| {
+        ImageError::Decoding(image::error::DecodingError::new(
+            format.into(),
+            "decoded pixel count does not match the image size",
+        ))
+    })
+}

@@ -16,6 +16,9 @@ use std::path::{Path, PathBuf};
 
 mod bsdf;
 mod instance;
+mod wrappers;
+
+use wrappers::Wrappers;
 mod texture;
 
 type R<T> = Result<T, SceneError>;
@@ -609,16 +612,35 @@ impl<'a> Conv<'a, '_> {
         (2..).map(|i| format!("{base}-{i}")).find(|n| !self.materials.contains_key(n)).unwrap_or_default()
     }
 
-    /// The scattering part of a `<bsdf>` (after `<ref>`), unwrapping `twosided`.
-    fn bsdf_kind(&mut self, e: &'a Element) -> R<MaterialKind> {
-        self.bsdf_kind_at(e, 0)
+    /// The scattering part of a `<bsdf>` (after `<ref>`), unwrapping `twosided`, its normal or
+    /// bump map, unwrapping `normalmap` and `bumpmap`, and its opacity, unwrapping `mask`.
+    fn bsdf_kind(&mut self, e: &'a Element) -> R<(MaterialKind, Wrappers)> {
+        let mut maps = Wrappers::default();
+        let kind = self.bsdf_kind_at(e, 0, &mut maps)?;
+        Ok((kind, maps))
     }
 
-    fn bsdf_kind_at(&mut self, e: &'a Element, depth: usize) -> R<MaterialKind> {
+    fn bsdf_kind_at(&mut self, e: &'a Element, depth: usize, maps: &mut Wrappers) -> R<MaterialKind> {
         if depth > 8 {
             return Err(self.src.error(e.offset, "BSDFs are nested too deeply (a <ref> cycle?)"));
         }
         let ty = self.req_attr(e, "type")?;
+        if ty == "normalmap" || ty == "bumpmap" {
+            if maps.normal.is_some() {
+                return Err(self.src.error(e.offset, "only one `normalmap` or `bumpmap` per material is supported"));
+            }
+            let (map, nested) = self.normal_wrapper(e, ty)?;
+            maps.normal = Some(map);
+            return self.bsdf_kind_at(nested, depth + 1, maps);
+        }
+        if ty == "mask" {
+            if maps.opacity.is_some() {
+                return Err(self.src.error(e.offset, "only one `mask` per material is supported"));
+            }
+            let (opacity, nested) = self.mask_wrapper(e)?;
+            maps.opacity = Some(opacity);
+            return self.bsdf_kind_at(nested, depth + 1, maps);
+        }
         let grey = MaterialKind::Lambertian { albedo: Colour::grey(0.5) };
         Ok(match ty {
             "diffuse" => {
@@ -630,7 +652,7 @@ impl<'a> Conv<'a, '_> {
                 match inner {
                     Some(i) => {
                         let i = self.deref(i)?;
-                        self.bsdf_kind_at(i, depth + 1)?
+                        self.bsdf_kind_at(i, depth + 1, maps)?
                     }
                     None => MaterialKind::Lambertian { albedo: Colour::grey(0.5) },
                 }
@@ -648,7 +670,10 @@ impl<'a> Conv<'a, '_> {
                 MaterialKind::ThinDielectric { ior: num(int / ext), tint }
             }
             other => match self.microfacet_bsdf(e, other)? {
-                Some(kind) => kind,
+                Some(kind) => {
+                    maps.roughness = self.alpha_texture(e, other)?;
+                    kind
+                }
                 None => {
                     self.warn(e, &format!("bsdf `{other}` is not supported: using a grey (0.5) lambertian"));
                     grey
@@ -706,17 +731,23 @@ impl<'a> Conv<'a, '_> {
                 return Ok(name.clone());
             }
         }
-        let kind = match bsdf {
+        let (kind, maps) = match bsdf {
             Some(b) => self.bsdf_kind(b)?,
-            None => MaterialKind::Lambertian { albedo: Colour::grey(0.5) },
+            None => (MaterialKind::Lambertian { albedo: Colour::grey(0.5) }, Wrappers::default()),
         };
+        if maps.opacity.is_some() && emission.is_some() {
+            return Err(self.src.error(shape.offset, "an emitting shape cannot have a `mask` BSDF (not supported)"));
+        }
         let base = match (shared, bsdf.and_then(|b| b.attr("id"))) {
             (Some(b), _) => b.attr("id").unwrap_or("bsdf").to_string(),
             (None, Some(id)) => format!("{label}-{id}"),
             (None, None) => label.to_string(),
         };
         let name = self.unique_name(&base);
-        self.materials.insert(name.clone(), MaterialDef { kind, emission });
+        self.materials.insert(
+            name.clone(),
+            MaterialDef { kind, emission, normal: maps.normal, opacity: maps.opacity, roughness: maps.roughness },
+        );
         let at = bsdf.or(emitter).unwrap_or(shape).offset;
         self.origins.push((ItemPath::root().field("materials").field(&name), at));
         if let Some(b) = shared {

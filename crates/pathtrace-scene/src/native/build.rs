@@ -6,8 +6,8 @@ use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
 use super::model::{
     CameraSection, Colour, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind,
-    MeshNormals, MetalDef, Num, ObjectDef, ProjectionName, RenderSection, RoughnessDef, SceneFile, ShapeDef,
-    TextureDef, UvRows,
+    MeshNormals, MetalDef, NormalDef, NormalPerturbationDef, Num, ObjectDef, ProjectionName, RenderSection,
+    RoughnessDef, SceneFile, ShapeDef, TextureDef, UvRows,
 };
 use super::transform::compose;
 use super::values::vec3;
@@ -22,7 +22,10 @@ use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::scene::{validate_material, BuildError};
 use pathtrace::shape::TriangleMesh;
 use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
-use pathtrace::texture::{Bitmap, Checkerboard, ColourSlot, FilterType, Texture, UvTransform, WrapMode};
+use pathtrace::texture::{
+    Bitmap, Checkerboard, ColourSlot, FilterType, NormalPerturbation, Opacity, PerturbationKind, Texture, UvTransform,
+    WrapMode,
+};
 use pathtrace::{Camera, CameraDesc, GroupId, Lens, MaterialId, SceneBuilder, ShapeGroup};
 use std::collections::BTreeMap;
 
@@ -295,7 +298,69 @@ impl<L: Locate> Ctx<'_, L> {
             let t = self.b.texture(tex);
             self.b.bind_texture(id, slot, t).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
         }
+        if let Some(n) = &def.normal {
+            self.add_normal_perturbation(id, name, n, &at)?;
+        }
+        if let Some(c) = &def.roughness {
+            let texture = match c {
+                Colour::Constant(t) => Texture::Constant(t.rgb()),
+                Colour::Texture(t) => self.texture(t, &at.field("alpha_texture"))?,
+            };
+            let t = self.b.texture(texture);
+            self.b
+                .bind_texture(id, ColourSlot::Roughness, t)
+                .map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
+        }
+        if let Some(o) = &def.opacity {
+            let texture = match &o.texture {
+                Colour::Constant(t) => Texture::Constant(t.rgb()),
+                Colour::Texture(t) => self.texture(t, &at.field("opacity"))?,
+            };
+            let opacity = Opacity { texture: self.b.texture(texture), cutoff: o.cutoff.map(Num::f32) };
+            self.b.set_opacity(id, opacity).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
+        }
         Ok(id)
+    }
+
+    /// Binds a material's normal or bump map. A normal map's texels are directions, not
+    /// colours: its bitmap is read raw whatever `raw` says.
+    fn add_normal_perturbation(
+        &mut self,
+        id: MaterialId,
+        name: &str,
+        n: &NormalPerturbationDef,
+        at: &ItemPath,
+    ) -> Result<(), SceneError> {
+        let texture = |ctx: &Self, c: &Colour, field: &str, force_raw: bool| -> Result<Texture, SceneError> {
+            match c {
+                Colour::Constant(t) => Ok(Texture::Constant(t.rgb())),
+                Colour::Texture(TextureDef::Bitmap { filename, nearest, clamp, to_uv, alpha, .. }) if force_raw => {
+                    let raw = TextureDef::Bitmap {
+                        filename: filename.clone(),
+                        raw: true,
+                        nearest: *nearest,
+                        clamp: *clamp,
+                        to_uv: *to_uv,
+                        alpha: *alpha,
+                    };
+                    ctx.texture(&raw, &at.field(field))
+                }
+                Colour::Texture(t) => ctx.texture(t, &at.field(field)),
+            }
+        };
+        let kind = match &n.map {
+            NormalDef::Map { texture: c, strength } => {
+                let t = texture(self, c, "normal_map", true)?;
+                PerturbationKind::NormalMap { texture: self.b.texture(t), strength: strength.f32() }
+            }
+            NormalDef::Bump { height, scale } => {
+                let t = texture(self, height, "bump_map", false)?;
+                PerturbationKind::BumpMap { texture: self.b.texture(t), scale: scale.f32() }
+            }
+        };
+        self.b
+            .perturb_normal(id, NormalPerturbation { kind, shadowing: n.shadowing })
+            .map_err(|e| self.src.error_at(at, format!("material `{name}`: {e}")))
     }
 
     /// The engine texture a definition describes; a bitmap's file is read relative to the scene
@@ -306,10 +371,15 @@ impl<L: Locate> Ctx<'_, L> {
             TextureDef::Checkerboard { color0, color1, to_uv } => {
                 Ok(Texture::Checkerboard(Checkerboard { color0: color0.rgb(), color1: color1.rgb(), to_uv: uv(to_uv) }))
             }
-            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv } => {
+            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha } => {
                 let dir = self.src.path().parent().unwrap_or(std::path::Path::new(""));
-                let image = crate::image_io::read_texture(&dir.join(filename), *raw)
-                    .map_err(|e| self.src.error_at(at, format!("cannot load texture: {e}")))?;
+                let path = dir.join(filename);
+                let image = if *alpha {
+                    crate::image_io::read_texture_alpha(&path)
+                } else {
+                    crate::image_io::read_texture(&path, *raw)
+                }
+                .map_err(|e| self.src.error_at(at, format!("cannot load texture: {e}")))?;
                 let mut b = Bitmap::new(image.width, image.height, image.pixels).ok_or_else(|| {
                     self.src.error_at(at, format!("texture `{filename}` has negative or non-finite texels"))
                 })?;

@@ -82,6 +82,44 @@ impl MaterialKind {
     }
 }
 
+/// A normal or bump map on a material (`normal_map`, or `bump_map` with `bump_scale`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum NormalDef {
+    /// A tangent-space normal map: texel c encodes the normal 2c − 1 (bitmaps are read raw,
+    /// whatever their `raw` says); `strength` scales its tangential part (glTF's `scale`).
+    Map { texture: Colour, strength: Num },
+    /// A height field (its luminance) scaled by `scale`.
+    Bump { height: Colour, scale: Num },
+}
+
+impl NormalDef {
+    /// The texture it reads.
+    pub fn texture_mut(&mut self) -> &mut Colour {
+        match self {
+            NormalDef::Map { texture, .. } => texture,
+            NormalDef::Bump { height, .. } => height,
+        }
+    }
+}
+
+/// How a material tilts its shading normal.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalPerturbationDef {
+    pub map: NormalDef,
+    /// Attenuate by the microfacet shadowing term at the bump terminator (Mitsuba's
+    /// `use_shadowing_function`, default true).
+    pub shadowing: bool,
+}
+
+/// An opacity mask: how much of the surface is there (the texture's luminance, clamped to
+/// [0, 1]), or with `cutoff` (glTF's `alphaCutoff`) all where the value reaches it and none
+/// elsewhere.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OpacityDef {
+    pub texture: Colour,
+    pub cutoff: Option<Num>,
+}
+
 /// Light given off by a surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmissionDef {
@@ -99,6 +137,30 @@ pub struct MaterialDef {
     pub kind: MaterialKind,
     /// How it emits (always present for `emissive`; optional otherwise, e.g. a furnace).
     pub emission: Option<EmissionDef>,
+    /// A normal or bump map, if any.
+    pub normal: Option<NormalPerturbationDef>,
+    /// An opacity mask (cut-out), if any.
+    pub opacity: Option<OpacityDef>,
+    /// A texture of the isotropic roughness α (`alpha_texture`, rough conductors and dielectrics).
+    pub roughness: Option<Colour>,
+}
+
+impl MaterialDef {
+    /// Every colour parameter and map, for edits that apply to every texture (e.g. rebasing file
+    /// paths).
+    pub fn textures_mut(&mut self) -> Vec<&mut Colour> {
+        let mut all = self.kind.colours_mut();
+        if let Some(n) = &mut self.normal {
+            all.push(n.map.texture_mut());
+        }
+        if let Some(o) = &mut self.opacity {
+            all.push(&mut o.texture);
+        }
+        if let Some(r) = &mut self.roughness {
+            all.push(r);
+        }
+        all
+    }
 }
 
 /// The file form of a material: every field of every type, checked by [`MaterialDef::try_from`].
@@ -141,6 +203,22 @@ pub struct RawMaterial {
     alpha_u: Option<Num>,
     #[serde(skip_serializing_if = "Option::is_none")]
     alpha_v: Option<Num>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normal_map: Option<Colour>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normal_strength: Option<Num>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bump_map: Option<Colour>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bump_scale: Option<Num>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    normal_shadowing: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    opacity: Option<Colour>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    alpha_cutoff: Option<Num>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    alpha_texture: Option<Colour>,
 }
 
 /// The fields each type accepts besides `type`, `emission` and `two_sided`.
@@ -153,9 +231,11 @@ fn allowed(t: MaterialType) -> &'static [&'static str] {
         MaterialType::Emissive => &["radiance"],
         MaterialType::Conductor => &["metal", "eta", "k", "reflectance"],
         MaterialType::RoughConductor => {
-            &["metal", "eta", "k", "reflectance", "distribution", "alpha", "alpha_u", "alpha_v"]
+            &["metal", "eta", "k", "reflectance", "distribution", "alpha", "alpha_u", "alpha_v", "alpha_texture"]
         }
-        MaterialType::RoughDielectric => &["ior", "tint", "distribution", "alpha", "alpha_u", "alpha_v"],
+        MaterialType::RoughDielectric => {
+            &["ior", "tint", "distribution", "alpha", "alpha_u", "alpha_v", "alpha_texture"]
+        }
         MaterialType::Plastic => &["albedo", "specular", "ior", "nonlinear"],
         MaterialType::RoughPlastic => &["albedo", "specular", "ior", "nonlinear", "distribution", "alpha"],
     }
@@ -179,6 +259,7 @@ impl RawMaterial {
             ("alpha", self.alpha.is_some()),
             ("alpha_u", self.alpha_u.is_some()),
             ("alpha_v", self.alpha_v.is_some()),
+            ("alpha_texture", self.alpha_texture.is_some()),
         ];
         fields.iter().filter(|f| f.1).map(|f| f.0).collect()
     }
@@ -240,6 +321,12 @@ impl TryFrom<RawMaterial> for MaterialDef {
             let ok = allowed(t).iter().map(|f| format!("`{f}`")).collect::<Vec<_>>().join(", ");
             return Err(format!("`{extra}` is not a parameter of a {name} material (it takes {ok})"));
         }
+        let normal = r.normal_def()?;
+        let opacity = match (&r.opacity, r.alpha_cutoff) {
+            (Some(texture), cutoff) => Some(OpacityDef { texture: texture.clone(), cutoff }),
+            (None, Some(_)) => return Err("`alpha_cutoff` needs an `opacity`".into()),
+            (None, None) => None,
+        };
         let one = Colour::grey(1.0);
         let kind = match t {
             MaterialType::Diffuse => MaterialKind::Diffuse { albedo: required(r.albedo, &name, "albedo")? },
@@ -300,7 +387,54 @@ impl TryFrom<RawMaterial> for MaterialDef {
             (None, Some(_)) => return Err("`two_sided` applies only to emitting materials (add `emission`)".into()),
             (None, None) => None,
         };
-        Ok(MaterialDef { kind, emission })
+        if normal.is_some() && t == MaterialType::Emissive {
+            return Err("an emissive material cannot take a normal or bump map (it does not scatter)".into());
+        }
+        if opacity.is_some() && emission.is_some() {
+            return Err(
+                "an emitting material cannot take an `opacity` (its light would shine from the cut-out parts)".into()
+            );
+        }
+        if r.alpha_texture.is_some() && (r.alpha_u.is_some() || r.alpha_v.is_some()) {
+            return Err("`alpha_texture` is an isotropic α: give it without `alpha_u` and `alpha_v`".into());
+        }
+        Ok(MaterialDef { kind, emission, normal, opacity, roughness: r.alpha_texture })
+    }
+}
+
+impl RawMaterial {
+    /// `normal_map` (with an optional `normal_strength`) or `bump_map` (with an optional
+    /// `bump_scale`, default 1), and `normal_shadowing` (default true).
+    fn normal_def(&self) -> Result<Option<NormalPerturbationDef>, String> {
+        let map = match (&self.normal_map, &self.bump_map) {
+            (Some(_), Some(_)) => return Err("give either `normal_map` or `bump_map`, not both".into()),
+            (Some(texture), None) => {
+                if self.bump_scale.is_some() {
+                    return Err("`bump_scale` goes with `bump_map`, not `normal_map`".into());
+                }
+                NormalDef::Map { texture: texture.clone(), strength: self.normal_strength.unwrap_or(Num::from(1.0)) }
+            }
+            (None, Some(height)) => {
+                if self.normal_strength.is_some() {
+                    return Err("`normal_strength` goes with `normal_map`, not `bump_map`".into());
+                }
+                NormalDef::Bump { height: height.clone(), scale: self.bump_scale.unwrap_or(Num::from(1.0)) }
+            }
+            (None, None) => {
+                if let Some(f) = [
+                    ("normal_strength", self.normal_strength.is_some()),
+                    ("bump_scale", self.bump_scale.is_some()),
+                    ("normal_shadowing", self.normal_shadowing.is_some()),
+                ]
+                .iter()
+                .find(|f| f.1)
+                {
+                    return Err(format!("`{}` needs a `normal_map` or `bump_map`", f.0));
+                }
+                return Ok(None);
+            }
+        };
+        Ok(Some(NormalPerturbationDef { map, shadowing: self.normal_shadowing.unwrap_or(true) }))
     }
 }
 
@@ -357,6 +491,20 @@ impl From<MaterialDef> for RawMaterial {
             }
             r.two_sided = e.two_sided.then_some(true);
         }
+        if let Some(n) = m.normal {
+            match n.map {
+                NormalDef::Map { texture, strength } => {
+                    r.normal_map = Some(texture);
+                    r.normal_strength = (strength.get() != 1.0).then_some(strength);
+                }
+                NormalDef::Bump { height, scale } => (r.bump_map, r.bump_scale) = (Some(height), Some(scale)),
+            }
+            r.normal_shadowing = (!n.shadowing).then_some(false);
+        }
+        if let Some(o) = m.opacity {
+            (r.opacity, r.alpha_cutoff) = (Some(o.texture), o.cutoff);
+        }
+        r.alpha_texture = m.roughness;
         r
     }
 }
@@ -429,6 +577,56 @@ mod tests {
             let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
             assert_eq!(m, back, "{text}");
         }
+    }
+
+    #[test]
+    fn normal_and_bump_maps_parse_check_and_round_trip() {
+        let m = parse("type = \"diffuse\"\nalbedo = 0.5\nnormal_map = { type = \"bitmap\", filename = \"n.png\" }")
+            .unwrap();
+        let n = m.normal.clone().unwrap();
+        assert!(n.shadowing && matches!(n.map, NormalDef::Map { strength, .. } if strength.get() == 1.0));
+        let bump = parse(
+            "type = \"rough_plastic\"\nbump_map = { type = \"bitmap\", filename = \"h.png\" }\nbump_scale = 0.1\n\
+             normal_shadowing = false",
+        )
+        .unwrap();
+        for m in [m, bump] {
+            let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
+            assert_eq!(m, back);
+        }
+        let bad = |s: &str| parse(&format!("type = \"diffuse\"\nalbedo = 0.5\n{s}")).unwrap_err();
+        assert!(bad("normal_map = 0.5\nbump_map = 0.5").contains("not both"));
+        assert!(bad("bump_scale = 2").contains("needs a `normal_map` or `bump_map`"));
+        assert!(bad("normal_map = 0.5\nbump_scale = 2").contains("goes with `bump_map`"));
+        assert!(bad("bump_map = 0.5\nnormal_strength = 2").contains("goes with `normal_map`"));
+        assert!(parse("type = \"emissive\"\nradiance = 1\nbump_map = 0.5").unwrap_err().contains("cannot take"));
+    }
+
+    #[test]
+    fn opacity_parses_checks_and_round_trips() {
+        let m = parse("type = \"diffuse\"\nalbedo = 0.5\nopacity = { type = \"bitmap\", filename = \"a.png\" }\nalpha_cutoff = 0.5")
+            .unwrap();
+        assert_eq!(m.opacity.as_ref().and_then(|o| o.cutoff).map(|c| c.get()), Some(0.5));
+        let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
+        assert_eq!(m, back);
+        assert!(parse("type = \"diffuse\"\nalbedo = 0.5\nalpha_cutoff = 0.5")
+            .unwrap_err()
+            .contains("needs an `opacity`"));
+        assert!(parse("type = \"emissive\"\nradiance = 1\nopacity = 0.5").unwrap_err().contains("cannot take"));
+    }
+
+    #[test]
+    fn alpha_textures_parse_check_and_round_trip() {
+        let text =
+            "type = \"rough_conductor\"\nalpha_texture = { type = \"bitmap\", filename = \"r.png\", raw = true }";
+        let m = parse(text).unwrap();
+        assert!(matches!(m.roughness, Some(Colour::Texture(_))));
+        let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
+        assert_eq!(m, back);
+        assert!(parse("type = \"rough_plastic\"\nalpha_texture = 0.2").unwrap_err().contains("not a parameter"));
+        assert!(parse("type = \"rough_dielectric\"\nalpha_u = 0.1\nalpha_v = 0.2\nalpha_texture = 0.2")
+            .unwrap_err()
+            .contains("isotropic"));
     }
 
     #[test]

@@ -2,7 +2,9 @@
 //! geometry is built. One serde model serves both formats; unknown fields are errors everywhere.
 //! The field-by-field reference with defaults is docs/scene-format.md.
 
-pub use super::material::{EmissionDef, MaterialDef, MaterialKind, MaterialType};
+pub use super::material::{
+    EmissionDef, MaterialDef, MaterialKind, MaterialType, NormalDef, NormalPerturbationDef, OpacityDef,
+};
 pub use super::object::{GroupDef, MeshNormals, ObjectDef, ShapeDef, ShapeType};
 pub use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
 pub use super::texture::{identity_uv, Colour, TextureDef, UvRows};

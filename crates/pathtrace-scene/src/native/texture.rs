@@ -60,8 +60,9 @@ pub enum TextureDef {
     /// Mitsuba's `checkerboard` (defaults color0 = 0.4, color1 = 0.2).
     Checkerboard { color0: Triple, color1: Triple, to_uv: UvRows },
     /// An image file (PNG, JPEG, EXR, HDR, PFM) relative to the scene file. 8-bit images are
-    /// sRGB-decoded unless `raw`; float images are linear.
-    Bitmap { filename: String, raw: bool, nearest: bool, clamp: bool, to_uv: UvRows },
+    /// sRGB-decoded unless `raw`; float images are linear. `alpha`: the image's alpha channel
+    /// (PNG, JPEG; 1 without one) as a grey texture (`channel = "alpha"`), for opacities.
+    Bitmap { filename: String, raw: bool, nearest: bool, clamp: bool, to_uv: UvRows, alpha: bool },
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
@@ -76,6 +77,13 @@ enum TextureType {
 enum FilterType {
     Bilinear,
     Nearest,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum Channel {
+    Rgb,
+    Alpha,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
@@ -112,6 +120,8 @@ pub struct RawTexture {
     #[serde(skip_serializing_if = "Option::is_none")]
     wrap_mode: Option<WrapMode>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    channel: Option<Channel>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     scale: Option<Scale>,
     #[serde(skip_serializing_if = "Option::is_none")]
     to_uv: Option<UvRows>,
@@ -147,6 +157,7 @@ impl TryFrom<RawTexture> for TextureDef {
                 if let Some(f) = [("filename", r.filename.is_some()), ("raw", r.raw.is_some())]
                     .iter()
                     .chain(&[("filter_type", r.filter_type.is_some()), ("wrap_mode", r.wrap_mode.is_some())])
+                    .chain(&[("channel", r.channel.is_some())])
                     .find(|f| f.1)
                 {
                     return Err(format!("`{}` is not a parameter of a checkerboard texture", f.0));
@@ -170,6 +181,7 @@ impl TryFrom<RawTexture> for TextureDef {
                     nearest: r.filter_type == Some(FilterType::Nearest),
                     clamp: r.wrap_mode == Some(WrapMode::Clamp),
                     to_uv,
+                    alpha: r.channel == Some(Channel::Alpha),
                 })
             }
         }
@@ -184,8 +196,9 @@ impl From<&TextureDef> for RawTexture {
                 (r.kind, r.color0, r.color1) = (Some(TextureType::Checkerboard), Some(*color0), Some(*color1));
                 to_uv
             }
-            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv } => {
+            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha } => {
                 (r.kind, r.filename) = (Some(TextureType::Bitmap), Some(filename.clone()));
+                r.channel = alpha.then_some(Channel::Alpha);
                 r.raw = raw.then_some(true);
                 r.filter_type = nearest.then_some(FilterType::Nearest);
                 r.wrap_mode = clamp.then_some(WrapMode::Clamp);

@@ -132,8 +132,8 @@ impl Instances {
             n_shading = -n_shading;
         }
         // ∂p/∂u is a tangent vector: it moves with the matrix (zero stays zero, the fallback).
-        let dpdu = m.vector(local.dpdu);
-        let surface = SurfacePoint { p: m.point(local.p), n_geometric, n_shading, uv: local.uv, dpdu };
+        let (dpdu, dpdv) = (m.vector(local.dpdu), m.vector(local.dpdv));
+        let surface = SurfacePoint { p: m.point(local.p), n_geometric, n_shading, uv: local.uv, dpdu, dpdv };
         let material = if inst.material == Instance::OWN_MATERIALS { material } else { inst.material };
         (surface, material)
     }

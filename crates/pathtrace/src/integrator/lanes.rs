@@ -147,6 +147,7 @@ pub(crate) struct Surfaces<const N: usize> {
     /// brute-force intersector found the hit: it serves only scenes that need neither).
     pub uv: [Vec2; N],
     pub dpdu: [Vec3; N],
+    pub dpdv: [Vec3; N],
     pub material: [u32; N],
     pub light: [u32; N],
 }
@@ -162,6 +163,7 @@ impl<const N: usize> Surfaces<N> {
             n_shading: Vec3s::default(),
             uv: [Vec2::ZERO; N],
             dpdu: [Vec3::ZERO; N],
+            dpdv: [Vec3::ZERO; N],
             material: [0; N],
             light: [Primitive::NO_LIGHT; N],
         }
@@ -176,6 +178,7 @@ impl<const N: usize> Surfaces<N> {
             n_shading: self.n_shading.lane(i),
             uv: self.uv[i],
             dpdu: self.dpdu[i],
+            dpdv: self.dpdv[i],
         }
     }
 }

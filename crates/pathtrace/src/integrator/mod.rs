@@ -5,6 +5,7 @@ mod lanes;
 mod path;
 mod regenerate;
 mod shade;
+mod shading_frame;
 mod strategy;
 
 pub use path::{PathSettings, PathStats};

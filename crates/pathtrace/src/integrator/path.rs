@@ -448,25 +448,23 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
     }
     // Larger scenes: the BVH. Camera rays (neighbouring samples of one or a few pixels) go
     // through it together, sharing node visits; the other rays, which scatter after a bounce,
-    // go one by one (dragging them along a group would cost more than it shares).
+    // go one by one (dragging them along a group would cost more than it shares). Scenes with
+    // cut-outs trace every ray alone, passing the cut-out surfaces.
     let mut s = Surfaces::none();
-    let camera = active & Ms::from_fn(|i| paths.segments[i] == 1);
+    let camera = if job.scene.has_cutouts() { Ms::NONE } else { active & Ms::from_fn(|i| paths.segments[i] == 1) };
     let hits = job.scene.intersect_lanes(&paths.origin, &paths.dir, camera, f32::INFINITY);
     for i in active.lanes() {
-        let single = if camera.lane(i) {
-            None
-        } else {
-            job.scene.intersect(&Ray::new(paths.origin.lane(i), paths.dir.lane(i)), f32::INFINITY)
-        };
-        if let Some(hit) = hits[i].as_ref().or(single.as_ref()) {
-            let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
-            let it = job.scene.interaction(&ray, hit);
+        let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
+        let found = if camera.lane(i) { hits[i].map(|hit| (ray, hit)) } else { job.scene.intersect_opaque(&ray) };
+        if let Some((ray, hit)) = found {
+            let it = job.scene.interaction(&ray, &hit);
             s.hit.0[i] = u32::MAX;
             s.p.set(i, it.surface.p);
             s.n_geometric.set(i, it.surface.n_geometric);
             s.n_shading.set(i, it.surface.n_shading);
             s.uv[i] = it.surface.uv;
             s.dpdu[i] = it.surface.dpdu;
+            s.dpdv[i] = it.surface.dpdv;
             s.material[i] = it.material_id;
             s.light[i] = it.light;
         }
@@ -488,10 +486,11 @@ fn occluded<const N: usize>(
     if let Some(geometry) = &job.lanes.geometry {
         return geometry.occluded(origin, dir, active, t_max);
     }
-    let group = active & together;
+    // Cut-outs are passed ray by ray.
+    let group = if job.scene.has_cutouts() { Ms::NONE } else { active & together };
     let mut blocked = job.scene.occluded_lanes(origin, dir, group, t_max);
     for i in (active & !group).lanes() {
-        if job.scene.occluded(&Ray::new(origin.lane(i), dir.lane(i)), t_max.0[i]) {
+        if job.scene.occluded_opaque(&Ray::new(origin.lane(i), dir.lane(i)), t_max.0[i]) {
             blocked.0[i] = u32::MAX;
         }
     }

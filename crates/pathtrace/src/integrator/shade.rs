@@ -7,6 +7,7 @@
 //! `integrator::path` take over only the lanes they can compute identically (Lambertian
 //! surfaces under flat area lights).
 
+use super::shading_frame::ShadingFrame;
 use super::Strategy;
 use crate::material::Material;
 use crate::math::{offset_ray_origin, Frame, Rgb, Vec2, Vec3};
@@ -78,16 +79,17 @@ pub(crate) fn shade(
     // Shading frame, flipped to the viewer's side for two-sided materials.
     let mut n_g = it.surface.n_geometric;
     let mut n_s = it.surface.n_shading;
-    if material.is_two_sided() && n_g.dot(wo_world) < 0.0 {
+    let flipped = material.is_two_sided() && n_g.dot(wo_world) < 0.0;
+    if flipped {
         n_g = -n_g;
         n_s = -n_s;
     }
-    // Anisotropic roughness is aligned with ∂p/∂u, as in Mitsuba; isotropic models do not
-    // depend on the tangent, and keep the cheaper basis of the normal.
-    let frame = if material.is_anisotropic() {
-        Frame::from_normal_tangent(n_s, it.surface.tangent())
-    } else {
-        Frame::from_normal(n_s)
+    let frame = match scene.normal_perturbation(it.material_id) {
+        Some(p) => ShadingFrame::perturbed(scene, it, p, flipped, wo_world),
+        // Anisotropic roughness is aligned with ∂p/∂u, as in Mitsuba; isotropic models do not
+        // depend on the tangent, and keep the cheaper basis of the normal.
+        None if material.is_anisotropic() => ShadingFrame::plain(Frame::from_normal_tangent(n_s, it.surface.tangent())),
+        None => ShadingFrame::plain(Frame::from_normal(n_s)),
     };
     let wo = frame.to_local(wo_world);
 
@@ -106,8 +108,8 @@ pub(crate) fn shade(
             sample_towards_lights(scene, material, &frame, p, wo, u.lobe, u.direction)
         }
         Strategy::Mixture if can_follow_lights => sample_mixture(scene, material, &frame, p, wo, u.lobe, u.direction),
-        _ => material.sample(wo, u.lobe, u.direction).map(|s| Scatter {
-            wi_world: frame.to_world(s.wi),
+        _ => frame.sample(material, wo, u.lobe, u.direction).map(|(s, wi_world)| Scatter {
+            wi_world,
             weight: s.weight,
             pdf: s.pdf,
             specular: s.delta,
@@ -138,7 +140,7 @@ fn light_sample(
     scene: &Scene,
     strategy: Strategy,
     material: &Material,
-    frame: &Frame,
+    frame: &ShadingFrame,
     n_g: Vec3,
     p: Vec3,
     wo: Vec3,
@@ -147,8 +149,7 @@ fn light_sample(
     u: VertexNumbers,
 ) -> Option<ShadowRay> {
     let ls = scene.lights.sample(p, u.select, u.light)?;
-    let wi = frame.to_local(ls.wi);
-    let f = material.eval(wo, wi);
+    let f = frame.eval(material, wo, ls.wi);
     if ls.radiance.is_black() || f.is_black() || !same_side(n_g, wo_world, ls.wi) {
         return None;
     }
@@ -162,7 +163,7 @@ fn light_sample(
         (to_light / dist, dist * (1.0 - SHADOW_EPSILON))
     };
     // A point light cannot be found by material sampling: its sample counts in full.
-    let w = if ls.delta { 1.0 } else { strategy.mis_weight(ls.pdf, material.pdf(wo, wi)) };
+    let w = if ls.delta { 1.0 } else { strategy.mis_weight(ls.pdf, frame.pdf(material, wo, ls.wi)) };
     Some(ShadowRay { origin, dir, t_max, contribution: beta * f * ls.radiance * (w / ls.pdf) })
 }
 
@@ -184,7 +185,7 @@ fn same_side(n: Vec3, a: Vec3, b: Vec3) -> bool {
 fn sample_towards_lights(
     scene: &Scene,
     material: &Material,
-    frame: &Frame,
+    frame: &ShadingFrame,
     p: Vec3,
     wo: Vec3,
     u_select: f32,
@@ -192,7 +193,7 @@ fn sample_towards_lights(
 ) -> Option<Scatter> {
     let ls = scene.lights.sample_continuous(p, u_select, u)?;
     let pdf = scene.lights.pdf_direction(p, ls.wi);
-    let f = material.eval(wo, frame.to_local(ls.wi));
+    let f = frame.eval(material, wo, ls.wi);
     (pdf > 0.0).then(|| Scatter { wi_world: ls.wi, weight: f * (1.0 / pdf), pdf, specular: false, eta: 1.0 })
 }
 
@@ -201,7 +202,7 @@ fn sample_towards_lights(
 fn sample_mixture(
     scene: &Scene,
     material: &Material,
-    frame: &Frame,
+    frame: &ShadingFrame,
     p: Vec3,
     wo: Vec3,
     u_choice: f32,
@@ -211,17 +212,15 @@ fn sample_mixture(
     let wi_world = if u_choice < 0.5 {
         scene.lights.sample_continuous(p, u_choice * 2.0, u)?.wi
     } else {
-        let s = material.sample(wo, u_choice * 2.0 - 1.0, u)?;
+        let (s, wi_world) = frame.sample(material, wo, u_choice * 2.0 - 1.0, u)?;
         if s.delta {
             // Only the material's half of the mixture produces a Dirac lobe's direction: its
             // probability is 0.5·p_lobe, so the weight is f/(0.5·p_lobe) = 2·(f/p_lobe).
-            let wi_world = frame.to_world(s.wi);
             return Some(Scatter { wi_world, weight: s.weight * 2.0, pdf: s.pdf, specular: true, eta: s.eta });
         }
-        frame.to_world(s.wi)
+        wi_world
     };
-    let wi = frame.to_local(wi_world);
-    let pdf = 0.5 * scene.lights.pdf_direction(p, wi_world) + 0.5 * material.pdf(wo, wi);
-    let f = material.eval(wo, wi);
+    let pdf = 0.5 * scene.lights.pdf_direction(p, wi_world) + 0.5 * frame.pdf(material, wo, wi_world);
+    let f = frame.eval(material, wo, wi_world);
     (pdf > 0.0).then(|| Scatter { wi_world, weight: f * (1.0 / pdf), pdf, specular: false, eta: 1.0 })
 }

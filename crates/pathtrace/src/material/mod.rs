@@ -145,6 +145,9 @@ impl Material {
     pub fn with_colour(&self, slot: ColourSlot, c: Rgb) -> Material {
         let mut m = *self;
         let base = slot == ColourSlot::Base;
+        // A roughness texture's value (its luminance, as Mitsuba's `eval_1`) is an isotropic α.
+        let rough =
+            || Microfacet::isotropic(MicrofacetKind::Beckmann, c.luminance().clamp(0.0, crate::scene::MAX_ALPHA));
         // One arm per model, no catch-all: a new model does not compile until it says which of
         // its colours a texture replaces.
         match &mut m {
@@ -156,8 +159,14 @@ impl Material {
             Material::Dielectric(d) if base => d.tint = c,
             Material::ThinDielectric(d) if base => d.tint = c,
             Material::RoughDielectric(d) if base => d.tint = c,
+            Material::RoughDielectric(d) if slot == ColourSlot::Roughness => {
+                d.distribution = Microfacet { kind: d.distribution.kind, ..rough() }
+            }
             Material::Conductor(k) if base => k.reflectance = c,
             Material::RoughConductor(k) if base => k.reflectance = c,
+            Material::RoughConductor(k) if slot == ColourSlot::Roughness => {
+                k.distribution = Microfacet { kind: k.distribution.kind, ..rough() }
+            }
             Material::Diffuse(_)
             | Material::Lambertian(_)
             | Material::Glossy(_)
@@ -170,10 +179,13 @@ impl Material {
             Material::Plastic(p) => match slot {
                 ColourSlot::Base => *p = p.with_albedo(c),
                 ColourSlot::Specular => p.specular = c,
+                ColourSlot::Roughness => {}
             },
+            // Its coating tables depend on α (and Mitsuba's `roughplastic` takes no texture).
             Material::RoughPlastic(p) => match slot {
                 ColourSlot::Base => *p = p.with_albedo(c),
                 ColourSlot::Specular => p.specular = c,
+                ColourSlot::Roughness => {}
             },
         }
         m
@@ -184,6 +196,7 @@ impl Material {
         match slot {
             ColourSlot::Base => !matches!(self, Material::Black),
             ColourSlot::Specular => matches!(self, Material::Plastic(_) | Material::RoughPlastic(_)),
+            ColourSlot::Roughness => matches!(self, Material::RoughConductor(_) | Material::RoughDielectric(_)),
         }
     }
 

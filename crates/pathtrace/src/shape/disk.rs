@@ -80,6 +80,8 @@ impl Disk {
             n_shading: n,
             uv: Vec2::new(r.min(1.0), phi * INV_2PI),
             dpdu,
+            // v is the angle over 2π: ∂p/∂v = 2π·r·(−sin φ·u + cos φ·v).
+            dpdv: (a * self.v - b * self.u) * (2.0 * PI),
         }
     }
 

@@ -48,6 +48,9 @@ pub struct SurfacePoint {
     /// takes Mitsuba's fallback, the `coordinate_system` tangent of the geometric normal
     /// ([`SurfacePoint::tangent`]).
     pub dpdu: Vec3,
+    /// ∂p/∂v, the direction of increasing `v` (not normalised): with `dpdu` it spans the
+    /// tangent plane that bump maps tilt (Mitsuba 3's `dp_dv`); zero where `dpdu` is.
+    pub dpdv: Vec3,
 }
 
 impl SurfacePoint {

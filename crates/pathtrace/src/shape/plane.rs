@@ -37,6 +37,7 @@ impl Plane {
             n_shading: self.normal,
             uv: Vec2::new(d.dot(f.s), d.dot(f.t)),
             dpdu: f.s,
+            dpdv: f.t,
         }
     }
 

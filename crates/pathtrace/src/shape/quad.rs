@@ -68,6 +68,7 @@ impl Quad {
             n_shading: n,
             uv: Vec2::new(a, b),
             dpdu: self.u,
+            dpdv: self.v,
         }
     }
 

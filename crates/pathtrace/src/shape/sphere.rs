@@ -57,7 +57,15 @@ impl Sphere {
         let n = n.normalize_or(Vec3::Z);
         // Re-project onto the surface to cut the error of the intersection point.
         let p = self.center + n * self.radius;
-        SurfacePoint { p, n_geometric: n, n_shading: n, uv: sphere_uv(n), dpdu: sphere_dpdu(n) * self.radius }
+        let (dpdu, dpdv) = sphere_dp_duv(n);
+        SurfacePoint {
+            p,
+            n_geometric: n,
+            n_shading: n,
+            uv: sphere_uv(n),
+            dpdu: dpdu * self.radius,
+            dpdv: dpdv * self.radius,
+        }
     }
 
     pub fn bounds(&self) -> Aabb {
@@ -90,12 +98,19 @@ fn sphere_uv(n: Vec3) -> Vec2 {
     Vec2::new(phi / (2.0 * PI), theta / PI)
 }
 
-/// ∂n/∂u of [`sphere_uv`]'s parameterisation (up to the factor 2π): with φ = atan2(−n.z, n.x),
-/// n = (ρ cos φ, n.y, −ρ sin φ), so ∂n/∂φ = (n.z, 0, −n.x), the direction of increasing u around
-/// the +y axis; zero at the poles, where the shading frame falls back to the normal's own basis.
-/// Keep it in step with `sphere_uv`.
-fn sphere_dpdu(n: Vec3) -> Vec3 {
-    Vec3::new(n.z, 0.0, -n.x)
+/// ∂n/∂u and ∂n/∂v of [`sphere_uv`]'s parameterisation: with φ = atan2(−n.z, n.x), θ = acos(−n.y)
+/// and ρ = sin θ, n = (ρ cos φ, −cos θ, −ρ sin φ), so ∂n/∂φ = (n.z, 0, −n.x) (u = φ/2π: times 2π)
+/// and ∂n/∂θ = (n.x·cos θ/ρ, ρ, n.z·cos θ/ρ) (v = θ/π: times π); both zero at the poles, where
+/// the shading frame falls back to the normal's own basis. Keep it in step with `sphere_uv`.
+fn sphere_dp_duv(n: Vec3) -> (Vec3, Vec3) {
+    let rho = (n.x * n.x + n.z * n.z).sqrt();
+    let dpdu = Vec3::new(n.z, 0.0, -n.x) * (2.0 * PI);
+    if rho == 0.0 {
+        return (dpdu, Vec3::ZERO);
+    }
+    let cos_theta = -n.y;
+    let dpdv = Vec3::new(n.x * cos_theta / rho, rho, n.z * cos_theta / rho) * PI;
+    (dpdu, dpdv)
 }
 
 /// A unit sphere at the origin placed by an arbitrary affine transform (boxed: it is rare, and
@@ -127,6 +142,7 @@ impl Ellipsoid {
             n_shading: n,
             uv: local.uv,
             dpdu: self.to_world.vector(local.dpdu),
+            dpdv: self.to_world.vector(local.dpdv),
         }
     }
 

@@ -92,7 +92,8 @@ impl Triangle {
             Some([t0, t1, t2]) => (1.0 - b1 - b2) * t0 + b1 * t1 + b2 * t2,
             None => Vec2::new(b1, b2),
         };
-        SurfacePoint { p, n_geometric: n, n_shading, uv, dpdu: dp_du(self.e1, self.e2, uvs) }
+        let (dpdu, dpdv) = dp_duv(self.e1, self.e2, uvs);
+        SurfacePoint { p, n_geometric: n, n_shading, uv, dpdu, dpdv }
     }
 
     pub fn bounds(&self) -> Aabb {
@@ -104,23 +105,24 @@ impl Triangle {
     }
 }
 
-/// ∂p/∂u of a triangle with edges `e1 = p1 − p0`, `e2 = p2 − p0`: solving
-/// e1 = Δu₁ ∂p/∂u + Δv₁ ∂p/∂v, e2 = Δu₂ ∂p/∂u + Δv₂ ∂p/∂v for ∂p/∂u (Cramer's rule, as Mitsuba 3's
+/// ∂p/∂u and ∂p/∂v of a triangle with edges `e1 = p1 − p0`, `e2 = p2 − p0`: solving
+/// e1 = Δu₁ ∂p/∂u + Δv₁ ∂p/∂v, e2 = Δu₂ ∂p/∂u + Δv₂ ∂p/∂v (Cramer's rule, as Mitsuba 3's
 /// mesh does). Without texture coordinates, or with degenerate ones, zero: the shading frame
 /// then takes Mitsuba's fallback, the basis of the geometric normal (built only when needed).
 #[inline(always)]
-fn dp_du(e1: Vec3, e2: Vec3, uvs: Option<[Vec2; 3]>) -> Vec3 {
+fn dp_duv(e1: Vec3, e2: Vec3, uvs: Option<[Vec2; 3]>) -> (Vec3, Vec3) {
     if let Some([t0, t1, t2]) = uvs {
         let (d1, d2) = (t1 - t0, t2 - t0);
         let det = d1.x * d2.y - d1.y * d2.x;
         if det != 0.0 && det.is_finite() {
             let dpdu = (d2.y * e1 - d1.y * e2) / det;
-            if dpdu.is_finite() {
-                return dpdu;
+            let dpdv = (d1.x * e2 - d2.x * e1) / det;
+            if dpdu.is_finite() && dpdv.is_finite() {
+                return (dpdu, dpdv);
             }
         }
     }
-    Vec3::ZERO
+    (Vec3::ZERO, Vec3::ZERO)
 }
 
 #[cfg(test)]

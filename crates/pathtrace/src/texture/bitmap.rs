@@ -127,6 +127,36 @@ impl Bitmap {
             }
         }
     }
+
+    /// The gradient (∂f/∂u, ∂f/∂v) of the filtered luminance at `uv`, for bump maps: the exact
+    /// derivative of the bilinear blend of [`Bitmap::eval`] (Mitsuba 3's `eval_1_grad`: the
+    /// blend's partials in texel units times the resolution, then through the uv transform by the
+    /// chain rule), zero for nearest lookups (constant almost everywhere, as in Mitsuba).
+    /// Mitsuba scales by the resolution after the transform, which differs from the chain rule
+    /// only for a non-square image under a rotating `to_uv`.
+    #[inline]
+    pub fn luminance_gradient(&self, uv: Vec2) -> Vec2 {
+        let t = self.to_uv.apply(uv);
+        if !t.is_finite() || self.filter == FilterType::Nearest {
+            return Vec2::ZERO;
+        }
+        let t = match self.wrap {
+            WrapMode::Repeat => t - t.floor(),
+            WrapMode::Clamp => t.clamp(Vec2::splat(-1.0), Vec2::splat(2.0)),
+        };
+        let (w, h) = (self.width as f32, self.height as f32);
+        let (x, y) = (t.x * w - 0.5, t.y * h - 0.5);
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let f = |dx, dy| self.texel(x0 + dx, y0 + dy).luminance();
+        let (f00, f10, f01, f11) = (f(0, 0), f(1, 0), f(0, 1), f(1, 1));
+        // Partials of the blend in texel units, then per unit of the transformed uv.
+        let df_dx = ((1.0 - fy) * (f10 - f00) + fy * (f11 - f01)) * w;
+        let df_dy = ((1.0 - fx) * (f01 - f00) + fx * (f11 - f10)) * h;
+        let [r0, r1] = self.to_uv.rows();
+        Vec2::new(r0[0] * df_dx + r1[0] * df_dy, r0[1] * df_dx + r1[1] * df_dy)
+    }
 }
 
 #[cfg(test)]
@@ -158,6 +188,22 @@ mod tests {
         assert!((q.r - 0.75).abs() < 1e-6 && (q.g - 0.25).abs() < 1e-6 && q.b == 0.0, "{q:?}");
         // Repeat: whole periods away give the same colour.
         assert_eq!(at(2.25, -0.75), at(0.25, 0.25));
+    }
+
+    #[test]
+    fn luminance_gradient_is_the_derivative_of_the_lookup() {
+        let mut bm = probe();
+        bm.to_uv = UvTransform::from_rows([[2.0, 0.5, 0.1], [-0.3, 1.5, 0.0]]);
+        let lum = |u: f32, v: f32| bm.eval(Vec2::new(u, v)).luminance();
+        for (u, v) in [(0.3, 0.2), (0.61, 0.47), (0.12, 0.9)] {
+            let g = bm.luminance_gradient(Vec2::new(u, v));
+            let h = 1e-3;
+            let du = (lum(u + h, v) - lum(u - h, v)) / (2.0 * h);
+            let dv = (lum(u, v + h) - lum(u, v - h)) / (2.0 * h);
+            assert!((g.x - du).abs() < 2e-2 && (g.y - dv).abs() < 2e-2, "{g:?} vs ({du}, {dv}) at ({u}, {v})");
+        }
+        bm.filter = FilterType::Nearest;
+        assert_eq!(bm.luminance_gradient(Vec2::new(0.3, 0.2)), Vec2::ZERO);
     }
 
     #[test]

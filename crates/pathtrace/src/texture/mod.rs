@@ -15,10 +15,14 @@
 
 mod bitmap;
 mod checkerboard;
+mod normal_perturbation;
+mod opacity;
 mod uv_transform;
 
 pub use bitmap::{Bitmap, FilterType, WrapMode};
 pub use checkerboard::Checkerboard;
+pub use normal_perturbation::{shadow_terminator, NormalPerturbation, PerturbationKind};
+pub use opacity::Opacity;
 pub use uv_transform::UvTransform;
 
 use crate::math::{Rgb, Vec2};
@@ -40,6 +44,16 @@ impl Texture {
             Texture::Constant(c) => *c,
             Texture::Checkerboard(c) => c.eval(uv),
             Texture::Bitmap(b) => b.eval(uv),
+        }
+    }
+
+    /// The gradient (∂f/∂u, ∂f/∂v) of the luminance at `uv`, for bump maps: zero for a constant
+    /// and (almost everywhere) for a checkerboard.
+    #[inline]
+    pub fn luminance_gradient(&self, uv: Vec2) -> Vec2 {
+        match self {
+            Texture::Constant(_) | Texture::Checkerboard(_) => Vec2::ZERO,
+            Texture::Bitmap(b) => b.luminance_gradient(uv),
         }
     }
 
@@ -70,6 +84,9 @@ pub enum ColourSlot {
     Base,
     /// A plastic's coating `specular` reflectance.
     Specular,
+    /// The isotropic microfacet α of a rough conductor or rough dielectric (the texture's
+    /// luminance; Mitsuba's textured `alpha`).
+    Roughness,
 }
 
 /// Index of a texture in the scene.
@@ -77,19 +94,29 @@ pub enum ColourSlot {
 pub struct TextureId(pub u32);
 
 /// The textures bound to one material's colour slots (none for most materials).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct TextureBindings {
     /// Texture of [`ColourSlot::Base`], if any.
     pub base: Option<TextureId>,
     /// Texture of [`ColourSlot::Specular`], if any.
     pub specular: Option<TextureId>,
+    /// Texture of [`ColourSlot::Roughness`], if any.
+    pub roughness: Option<TextureId>,
+    /// A normal or bump map tilting the shading normal, if any.
+    pub normal: Option<NormalPerturbation>,
+    /// An opacity mask, if any.
+    pub opacity: Option<Opacity>,
 }
 
 impl TextureBindings {
     /// True if no slot is textured.
     #[inline(always)]
     pub fn is_empty(&self) -> bool {
-        self.base.is_none() && self.specular.is_none()
+        self.base.is_none()
+            && self.specular.is_none()
+            && self.roughness.is_none()
+            && self.normal.is_none()
+            && self.opacity.is_none()
     }
 
     /// Binds `slot` to `texture`.
@@ -97,6 +124,7 @@ impl TextureBindings {
         match slot {
             ColourSlot::Base => self.base = Some(texture),
             ColourSlot::Specular => self.specular = Some(texture),
+            ColourSlot::Roughness => self.roughness = Some(texture),
         }
     }
 }

@@ -120,8 +120,10 @@ impl WideScene {
             .iter()
             .enumerate()
             .map(|(id, m)| {
+                // A normal or bump map moves the frame off the shading normal: such surfaces are
+                // shaded lane by lane (`integrator::shading_frame`).
                 let simd = match m {
-                    Material::Lambertian(l) => Some(l.albedo),
+                    Material::Lambertian(l) if scene.normal_perturbation(id as u32).is_none() => Some(l.albedo),
                     _ => None,
                 };
                 MaterialClass {
@@ -135,6 +137,7 @@ impl WideScene {
             .collect();
         // The brute-force intersector reports normals, material and light, not uv or ∂p/∂u:
         // it serves scenes whose shading needs neither (no textures, no anisotropic frames).
+        // Opacity masks are textures: scenes with cut-outs take the BVH, which passes them.
         let needs_uv = scene.has_textures() || scene.materials().iter().any(Material::is_anisotropic);
         let geometry = if needs_uv || scene.has_unbounded() || scene.has_instances() {
             None

@@ -74,9 +74,10 @@ impl<'a> Conv<'a, '_> {
                 self.src.error(at, msg)
             })?,
         };
-        let alpha = self.roughness_value(e, "alpha")?;
+        // An `alpha` texture (rough conductors and dielectrics) is read by `alpha_texture`.
+        let alpha = self.roughness_value(e, "alpha", anisotropic)?;
         let (u, v) = if anisotropic {
-            (self.roughness_value(e, "alpha_u")?, self.roughness_value(e, "alpha_v")?)
+            (self.roughness_value(e, "alpha_u", false)?, self.roughness_value(e, "alpha_v", false)?)
         } else {
             (None, None)
         };
@@ -84,17 +85,23 @@ impl<'a> Conv<'a, '_> {
         Ok(RoughnessDef { distribution, alpha_u: num(u.unwrap_or(a)), alpha_v: num(v.unwrap_or(a)) })
     }
 
-    /// A non-negative roughness; a texture is replaced by its mean 0.1 with a warning.
-    fn roughness_value(&mut self, e: &'a Element, name: &str) -> R<Option<f64>> {
+    /// A non-negative roughness. A texture is read by [`Conv::alpha_texture`] when
+    /// `texture_ok` (the constant is then only a placeholder); otherwise it is replaced by 0.1 with
+    /// a warning.
+    fn roughness_value(&mut self, e: &'a Element, name: &str, texture_ok: bool) -> R<Option<f64>> {
         let Some(p) = self.prop(e, name) else {
             if e.children.iter().any(|c| c.tag == "ref" && c.attr("name") == Some(name)) {
-                self.warn(e, &format!("`{name}` is a texture: textures are not supported, using 0.1"));
+                if !texture_ok {
+                    self.warn(e, &format!("`{name}` is a texture: not supported here, using 0.1"));
+                }
                 return Ok(Some(0.1));
             }
             return Ok(None);
         };
         if p.tag == "texture" {
-            self.warn(p, &format!("`{name}` is a texture: textures are not supported, using 0.1"));
+            if !texture_ok {
+                self.warn(p, &format!("`{name}` is a texture: not supported here, using 0.1"));
+            }
             return Ok(Some(0.1));
         }
         let x = self.float(e, name)?.unwrap_or(0.1);
@@ -102,6 +109,15 @@ impl<'a> Conv<'a, '_> {
             return Err(self.src.error(p.offset_of("value"), format!("`{name}` must be ≥ 0")));
         }
         Ok(Some(x))
+    }
+
+    /// The `alpha` texture of a `roughconductor` or `roughdielectric` (Mitsuba evaluates it per
+    /// hit as an isotropic α), if it is one.
+    pub(super) fn alpha_texture(&mut self, e: &'a Element, ty: &str) -> R<Option<Colour>> {
+        if ty != "roughconductor" && ty != "roughdielectric" {
+            return Ok(None);
+        }
+        Ok(self.colour(e, "alpha")?.filter(|c| matches!(c, Colour::Texture(_))))
     }
 
     /// `int_ior / ext_ior` (each a number or a name; exterior air by default).

@@ -43,7 +43,7 @@ impl<'a> Conv<'a, '_> {
         }
     }
 
-    fn texture(&mut self, t: &'a Element) -> R<TextureDef> {
+    pub(super) fn texture(&mut self, t: &'a Element) -> R<TextureDef> {
         let ty = self.req_attr(t, "type")?;
         let known = match ty {
             "checkerboard" => CHECKERBOARD,
@@ -97,7 +97,7 @@ impl<'a> Conv<'a, '_> {
                 self.warn(t, &format!("bitmap format `{f}` is not supported, using full precision"));
             }
         }
-        Ok(TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv })
+        Ok(TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha: false })
     }
 
     /// The uv rows of a `to_uv` transform.
