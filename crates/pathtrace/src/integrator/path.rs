@@ -18,6 +18,7 @@
 
 use super::features::record_features;
 use super::lanes::{Output, Paths, Surfaces};
+use super::media::{leaving_medium, medium_vertex, shadow_transmittance, travel};
 use super::regenerate::LaneJob;
 use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
 use super::Strategy;
@@ -149,12 +150,22 @@ pub(crate) fn vertex<const N: usize>(
     let materials = scene.materials();
 
     // ---- Closest hits ----------------------------------------------------------------
-    let s = intersect(job, paths);
+    let mut s = intersect(job, paths);
     let wo = paths.dir.neg();
+
+    // ---- Media and null surfaces (volumetric scenes only) ------------------------------
+    // Lanes in a medium may scatter before their hit (`scatter`: medium vertices at `s.p`);
+    // null surfaces are crossed. Scenes without media never enter this branch.
+    let volumetric = scene.is_volumetric();
+    let scatter = if volumetric { travel(job, paths, samplers, &mut s) } else { Ms::NONE };
 
     // ---- Feature samples (AOVs), only for renders that record them -----------------------
     if paths.feature_pending.any() {
+        // A medium interaction is not a surface: its lanes keep waiting for one.
+        let waiting = paths.feature_pending & scatter;
+        paths.feature_pending = paths.feature_pending & !scatter;
         record_features(job, paths, &s, &wo);
+        paths.feature_pending = paths.feature_pending | waiting;
     }
 
     // ---- Escape: the environment (if any) is seen, then the path ends ------------------
@@ -196,7 +207,7 @@ pub(crate) fn vertex<const N: usize>(
     let mut nee = Ms::<N>::NONE;
     let mut simd = Ms::<N>::NONE;
     let mut albedo = [F32s::<N>::ZERO; 3];
-    for i in alive.lanes() {
+    for i in (alive & !scatter).lanes() {
         let class = &lanes.classes[s.material[i] as usize];
         if paths.segments[i] >= max_segments || class.black {
             paths.finish(i, out);
@@ -212,6 +223,17 @@ pub(crate) fn vertex<const N: usize>(
             [albedo[0].0[i], albedo[1].0[i], albedo[2].0[i]] = a.to_array();
         }
     }
+    // Medium interactions: a vertex like any other (the depth limit, then light sampling).
+    if scatter.any() {
+        for i in (alive & scatter).lanes() {
+            if paths.segments[i] >= max_segments {
+                paths.finish(i, out);
+                alive.0[i] = 0;
+            } else if can_sample_lights {
+                nee.0[i] = u32::MAX;
+            }
+        }
+    }
     if !alive.any() {
         return;
     }
@@ -224,12 +246,12 @@ pub(crate) fn vertex<const N: usize>(
     let (ud1, ud2) = samplers.next_2d(alive);
 
     let mut sc = Scattered::none();
-    let lambert_light = if simd.any() {
+    let mut lambert_light = if simd.any() {
         lambertian_lanes(job, &s, &wo, simd, nee, [&u_select, &ul1, &ul2, &ud1, &ud2], &mut sc)
     } else {
         LambertLight::none()
     };
-    for i in (alive & !simd).lanes() {
+    for i in (alive & !simd & !scatter).lanes() {
         let it = Interaction {
             surface: s.surface(i),
             material: &materials[s.material[i] as usize],
@@ -250,12 +272,48 @@ pub(crate) fn vertex<const N: usize>(
             sc.set_next(i, next);
         }
     }
+    if scatter.any() {
+        for i in (alive & scatter).lanes() {
+            let u = VertexNumbers {
+                select: u_select.0[i],
+                light: Vec2::new(ul1.0[i], ul2.0[i]),
+                lobe: u_lobe.0[i],
+                direction: Vec2::new(ud1.0[i], ud2.0[i]),
+            };
+            let (p, wo) = (s.p.lane(i), wo.lane(i));
+            let shading = medium_vertex(scene, strategy, p, wo, paths.medium[i], paths.beta(i), u, nee.lane(i));
+            if let Some(shadow) = &shading.shadow {
+                sc.set_shadow(i, shadow);
+            }
+            if let Some(next) = &shading.next {
+                sc.set_next(i, next);
+            }
+        }
+    }
 
     // ---- Shadow rays: unoccluded light samples add their contribution -------------------
     if sc.shadow.any() {
-        let blocked = occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, sc.shadow_t_max);
         out.stats.shadow_rays += sc.shadow.bitmask().count_ones() as u64;
-        let seen = sc.shadow & !blocked;
+        let seen = if volumetric {
+            // Through null surfaces and media: what reaches the light is scaled by the
+            // transmittance, folded into the lanes' light terms.
+            let mut seen = Ms::NONE;
+            for i in sc.shadow.lanes() {
+                let dir = sc.shadow_dir.lane(i);
+                let medium = leaving_medium(scene, paths, &s, scatter, i, dir);
+                let tr = shadow_transmittance(scene, sc.shadow_origin.lane(i), dir, sc.shadow_t_max.0[i], medium);
+                if !tr.is_black() {
+                    seen.0[i] = u32::MAX;
+                    for (c, t) in tr.to_array().into_iter().enumerate() {
+                        sc.contribution[c].0[i] *= t;
+                        lambert_light.radiance[c].0[i] *= t;
+                    }
+                }
+            }
+            seen
+        } else {
+            sc.shadow & !occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, sc.shadow_t_max)
+        };
         // The Lambertian lanes' contributions are formed only now: their inputs were gathered
         // lane by lane, and reading them back as vectors right away stalls on store forwarding.
         let seen_lambert = seen & lambert_light.lit;
@@ -298,6 +356,14 @@ pub(crate) fn vertex<const N: usize>(
     }
 
     // ---- Next segment ------------------------------------------------------------------
+    // A surface that bounds media puts the path in the medium on the side it leaves by.
+    if volumetric {
+        for i in (alive & !scatter).lanes() {
+            if let Some(b) = scene.boundary(s.material[i]) {
+                paths.medium[i] = b.target(s.n_geometric.lane(i).dot(sc.dir.lane(i)));
+            }
+        }
+    }
     paths.prev_p = Vec3s::select(alive, &s.p, &paths.prev_p);
     paths.prev_pdf = F32s::select(alive, sc.pdf, paths.prev_pdf);
     paths.prev_specular = (sc.specular & alive) | (paths.prev_specular & !alive);
