@@ -120,7 +120,12 @@ fn media_mistakes_are_located() {
         ("medium = \"haze\"", "medium = \"fog\"", "unknown medium `fog`", 4),
         ("type = \"hg\"", "type = \"rayleigh\"", "unknown variant `rayleigh`", 25),
         ("sigma_t = 0.05", "sigma_t = 0.05\ndensity = 2", "unknown field `density`", 19),
-        ("type = \"null\"", "type = \"null\"\nalbedo = 1", "not a parameter of a null material (it takes no parameters)", 6),
+        (
+            "type = \"null\"",
+            "type = \"null\"\nalbedo = 1",
+            "not a parameter of a null material (it takes no parameters)",
+            6,
+        ),
     ];
     for (from, to, says, line) in cases {
         let text = SCENE.replace(from, to);

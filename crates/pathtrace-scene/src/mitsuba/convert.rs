@@ -4,9 +4,9 @@
 use super::parse::{Element, XmlSource};
 use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
-    CameraSection, Colour, EmissionDef, MediumDef, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, LookAtDef, MaterialDef,
-    MaterialKind, MeshNormals, Num, Num3, ObjectDef, ProjectionName, RenderSection, SamplerName, SceneFile, ShapeDef,
-    TransformStep, Triple,
+    CameraSection, Colour, EmissionDef, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, LookAtDef, MaterialDef,
+    MaterialKind, MediumDef, MeshNormals, Num, Num3, ObjectDef, ProjectionName, RenderSection, SamplerName, SceneFile,
+    ShapeDef, TransformStep, Triple,
 };
 use crate::native::{ItemPath, SceneError};
 use pathtrace::math::{Transform, Vec3};

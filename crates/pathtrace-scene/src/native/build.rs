@@ -4,13 +4,13 @@
 
 use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
+use super::medium::build_medium;
 use super::model::{
     CameraSection, Colour, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind,
     MeshNormals, MetalDef, Num, ObjectDef, ProjectionName, RenderSection, RoughnessDef, SceneFile, ShapeDef,
     TextureDef, UvRows,
 };
 use super::transform::compose;
-use super::medium::build_medium;
 use super::values::vec3;
 use crate::{LoadedScene, RenderDefaults};
 use pathtrace::film::{GaussianFilter, PixelFilter};
@@ -20,11 +20,11 @@ use pathtrace::material::{
     RoughDielectric, RoughPlastic, ThinDielectric,
 };
 use pathtrace::math::{Rgb, Transform, Vec3};
+use pathtrace::medium::MediumId;
 use pathtrace::scene::{validate_material, BuildError};
 use pathtrace::shape::TriangleMesh;
 use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
 use pathtrace::texture::{Bitmap, Checkerboard, ColourSlot, FilterType, Texture, UvTransform, WrapMode};
-use pathtrace::medium::MediumId;
 use pathtrace::{Camera, CameraDesc, GroupId, Lens, MaterialId, SceneBuilder, ShapeGroup};
 use std::collections::BTreeMap;
 
@@ -46,13 +46,16 @@ pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneEr
     let root = ItemPath::root();
     for (name, def) in &file.media {
         let at = root.field("media").field(name);
-        let medium = build_medium(def).map_err(|(field, e)| src.error_at(&at.field(field), format!("medium `{name}`: {e}")))?;
+        let medium =
+            build_medium(def).map_err(|(field, e)| src.error_at(&at.field(field), format!("medium `{name}`: {e}")))?;
         let id = ctx.b.medium(medium).map_err(|e| src.error_at(&at, e.to_string()))?;
         ctx.media.insert(name.clone(), id);
     }
     if let Some(name) = &file.camera.medium {
         let id = ctx.medium_id(name, &root.field("camera").field("medium"))?;
-        ctx.b.camera_medium(Some(id)).map_err(|e| src.error_at(&root.field("camera").field("medium"), e.to_string()))?;
+        ctx.b
+            .camera_medium(Some(id))
+            .map_err(|e| src.error_at(&root.field("camera").field("medium"), e.to_string()))?;
     }
     for (i, o) in file.objects.iter().enumerate() {
         ctx.add_object(o, &Transform::IDENTITY, &root.field("objects").index(i))?;
@@ -496,7 +499,8 @@ impl<L: Locate> Ctx<'_, L> {
     fn medium_id(&self, name: &str, at: &ItemPath) -> Result<MediumId, SceneError> {
         self.media.get(name).copied().ok_or_else(|| {
             let known: Vec<&str> = self.media.keys().map(String::as_str).collect();
-            let known = if known.is_empty() { "none are defined: add a [media.NAME]".to_string() } else { known.join(", ") };
+            let known =
+                if known.is_empty() { "none are defined: add a [media.NAME]".to_string() } else { known.join(", ") };
             self.src.error_at(at, format!("unknown medium `{name}` (media: {known})"))
         })
     }

@@ -104,7 +104,10 @@ pub(super) fn build_medium(def: &MediumDef) -> Result<HomogeneousMedium, (&'stat
         let sigma_t = coefficient(def.sigma_t, MediumDef::DEFAULT_SIGMA_T, "sigma_t")?;
         let albedo = coefficient(def.albedo, MediumDef::DEFAULT_ALBEDO, "albedo")?;
         if albedo.max_component() > 1.0 {
-            return Err(("albedo", format!("`albedo` must be in [0, 1] in every channel, not {:?}", albedo.to_array())));
+            return Err((
+                "albedo",
+                format!("`albedo` must be in [0, 1] in every channel, not {:?}", albedo.to_array()),
+            ));
         }
         HomogeneousMedium::from_extinction(sigma_t, albedo, scale, phase)
     } else {

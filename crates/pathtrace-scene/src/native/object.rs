@@ -198,7 +198,9 @@ impl TryFrom<RawObject> for ObjectDef {
         let wanted = fields_of(t);
         if let Some(extra) = r.present().into_iter().find(|f| !wanted.contains(f)) {
             let ok = wanted.iter().map(|f| format!("`{f}`")).collect::<Vec<_>>().join(", ");
-            return Err(format!("`{extra}` is not a field of a {name} (it takes {ok}, `material`, `transform`, `interior`, `exterior`)"));
+            return Err(format!(
+                "`{extra}` is not a field of a {name} (it takes {ok}, `material`, `transform`, `interior`, `exterior`)"
+            ));
         }
         let missing = |f: &str| format!("a {name} needs `{f}`");
         let need = |v: Option<Num3>, f: &str| v.ok_or_else(|| missing(f));
