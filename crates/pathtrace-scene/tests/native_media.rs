@@ -207,3 +207,16 @@ fn mitsuba_media_mistakes_are_warned_or_located() {
     let unknown = scene("", r#"<ref name="interior" id="nowhere"/>"#);
     assert!(load(&unknown).unwrap_err().contains("unknown ref id `nowhere`"));
 }
+
+#[test]
+fn the_documented_media_example_builds() {
+    let doc =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-format.md")).unwrap();
+    let section = doc.split("## `[media.NAME]`").nth(1).expect("the media section");
+    let example = section.split("```toml\n").nth(1).and_then(|s| s.split("```").next()).expect("its example");
+    let scene = load(example).unwrap_or_else(|e| panic!("{e}\n{example}")).scene;
+    assert_eq!(scene.media().len(), 2);
+    assert_eq!(scene.camera_medium(), 0);
+    let bounds: Vec<_> = (0..scene.materials().len() as u32).filter_map(|m| scene.boundary(m)).collect();
+    assert!(bounds.iter().any(|b| (b.interior, b.exterior) == (1, 0)), "{bounds:?}");
+}
