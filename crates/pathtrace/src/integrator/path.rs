@@ -246,7 +246,7 @@ pub(crate) fn vertex<const N: usize>(
     let (ud1, ud2) = samplers.next_2d(alive);
 
     let mut sc = Scattered::none();
-    let mut lambert_light = if simd.any() {
+    let lambert_light = if simd.any() {
         lambertian_lanes(job, &s, &wo, simd, nee, [&u_select, &ul1, &ul2, &ud1, &ud2], &mut sc)
     } else {
         LambertLight::none()
@@ -294,35 +294,29 @@ pub(crate) fn vertex<const N: usize>(
     // ---- Shadow rays: unoccluded light samples add their contribution -------------------
     if sc.shadow.any() {
         out.stats.shadow_rays += sc.shadow.bitmask().count_ones() as u64;
-        let seen = if volumetric {
-            // Through null surfaces and media: what reaches the light is scaled by the
-            // transmittance, folded into the lanes' light terms.
-            let mut seen = Ms::NONE;
-            for i in sc.shadow.lanes() {
-                let dir = sc.shadow_dir.lane(i);
-                let medium = leaving_medium(scene, paths, &s, scatter, i, dir);
-                let tr = shadow_transmittance(scene, sc.shadow_origin.lane(i), dir, sc.shadow_t_max.0[i], medium);
-                if !tr.is_black() {
-                    seen.0[i] = u32::MAX;
-                    for (c, t) in tr.to_array().into_iter().enumerate() {
-                        sc.contribution[c].0[i] *= t;
-                        lambert_light.radiance[c].0[i] *= t;
-                    }
-                }
-            }
-            seen
+        if volumetric {
+            // Through null surfaces and media, lane by lane (kept out of line, and given copies
+            // of the light terms, so the surface-only path below keeps them in registers).
+            let queued = ShadowQueue {
+                lanes: sc.shadow,
+                origin: sc.shadow_origin,
+                dir: sc.shadow_dir,
+                t_max: sc.shadow_t_max,
+                contribution: sc.contribution,
+            };
+            add_transmitted_light(scene, paths, &s, scatter, queued, LambertLight { ..lambert_light }, albedo);
         } else {
-            sc.shadow & !occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, sc.shadow_t_max)
-        };
-        // The Lambertian lanes' contributions are formed only now: their inputs were gathered
-        // lane by lane, and reading them back as vectors right away stalls on store forwarding.
-        let seen_lambert = seen & lambert_light.lit;
-        let seen_other = seen & !lambert_light.lit;
-        for c in 0..3 {
-            let lambert = paths.beta[c] * albedo[c] * lambert_light.radiance[c] * lambert_light.factor;
-            paths.radiance[c] = paths.radiance[c]
-                + F32s::select(seen_other, sc.contribution[c], F32s::ZERO)
-                + F32s::select(seen_lambert, lambert, F32s::ZERO);
+            let seen = sc.shadow & !occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, sc.shadow_t_max);
+            // The Lambertian lanes' contributions are formed only now: their inputs were gathered
+            // lane by lane, and reading them back as vectors right away stalls on store forwarding.
+            let seen_lambert = seen & lambert_light.lit;
+            let seen_other = seen & !lambert_light.lit;
+            for c in 0..3 {
+                let lambert = paths.beta[c] * albedo[c] * lambert_light.radiance[c] * lambert_light.factor;
+                paths.radiance[c] = paths.radiance[c]
+                    + F32s::select(seen_other, sc.contribution[c], F32s::ZERO)
+                    + F32s::select(seen_lambert, lambert, F32s::ZERO);
+            }
         }
     }
 
@@ -358,11 +352,7 @@ pub(crate) fn vertex<const N: usize>(
     // ---- Next segment ------------------------------------------------------------------
     // A surface that bounds media puts the path in the medium on the side it leaves by.
     if volumetric {
-        for i in (alive & !scatter).lanes() {
-            if let Some(b) = scene.boundary(s.material[i]) {
-                paths.medium[i] = b.target(s.n_geometric.lane(i).dot(sc.dir.lane(i)));
-            }
-        }
+        enter_media(scene, paths, &s, alive & !scatter, sc.dir);
     }
     paths.prev_p = Vec3s::select(alive, &s.p, &paths.prev_p);
     paths.prev_pdf = F32s::select(alive, sc.pdf, paths.prev_pdf);
@@ -373,6 +363,57 @@ pub(crate) fn vertex<const N: usize>(
         paths.segments[i] += alive.0[i] & 1;
     }
     out.stats.extension_rays += alive.bitmask().count_ones() as u64;
+}
+
+/// Copies of the queued shadow rays of a vertex (`Scattered`'s), for the media route.
+struct ShadowQueue<const N: usize> {
+    lanes: Ms<N>,
+    origin: Vec3s<N>,
+    dir: Vec3s<N>,
+    t_max: F32s<N>,
+    contribution: [F32s<N>; 3],
+}
+
+/// The shadow rays of a volumetric scene: each lane's light term, scaled by the transmittance
+/// along its shadow ray through null surfaces and media (`integrator::media`), is added to its
+/// estimate. The Lambertian lanes' terms are formed as on the surface-only path, then scaled.
+#[inline(never)]
+fn add_transmitted_light<const N: usize>(
+    scene: &Scene,
+    paths: &mut Paths<N>,
+    s: &Surfaces<N>,
+    scatter: Ms<N>,
+    sc: ShadowQueue<N>,
+    lambert_light: LambertLight<N>,
+    albedo: [F32s<N>; 3],
+) {
+    for i in sc.lanes.lanes() {
+        let dir = sc.dir.lane(i);
+        let medium = leaving_medium(scene, paths, s, scatter, i, dir);
+        let tr = shadow_transmittance(scene, sc.origin.lane(i), dir, sc.t_max.0[i], medium);
+        if tr.is_black() {
+            continue;
+        }
+        for (c, t) in tr.to_array().into_iter().enumerate() {
+            let term = if lambert_light.lit.lane(i) {
+                paths.beta[c].0[i] * albedo[c].0[i] * lambert_light.radiance[c].0[i] * lambert_light.factor.0[i]
+            } else {
+                sc.contribution[c].0[i]
+            };
+            paths.radiance[c].0[i] += term * t;
+        }
+    }
+}
+
+/// The lanes of `lanes` whose surface bounds media enter the medium on the side their next
+/// direction `dir` leaves by.
+#[inline(never)]
+fn enter_media<const N: usize>(scene: &Scene, paths: &mut Paths<N>, s: &Surfaces<N>, lanes: Ms<N>, dir: Vec3s<N>) {
+    for i in lanes.lanes() {
+        if let Some(b) = scene.boundary(s.material[i]) {
+            paths.medium[i] = b.target(s.n_geometric.lane(i).dot(dir.lane(i)));
+        }
+    }
 }
 
 /// The albedo of lane `i`'s textured Lambertian surface at its hit.
