@@ -20,6 +20,7 @@ to both renderers alike.)
     bash benches/peers/setup.sh --llvm
     .venv-peers/bin/python benches/peers/suite_mitsuba.py --pathtrace target/release/pathtrace
 
+The media scenes (`--only media`) are the repository's own (crates/pathtrace-scene/tests/data/media).
 The 1M-triangle scene is generated (a displaced grid of 1,000,000 triangles, PLY, under a quad
 light) into target/bench-scenes/. See docs/benchmarks.md for the measured table.
 """
@@ -57,6 +58,9 @@ SCENES = (
     ("bunny", "bunny/docs/scenes/shape_ply_bunny.xml", {}, 4),
     ("teapot-simple", "teapot-simple/simple.xml", {}, 64),
     ("mesh-1m", "mesh-1m", {}, 16),
+    # Participating media (issue #19): the repository's own test scenes (64 x 64 films).
+    ("media-fog-shafts", "repo:crates/pathtrace-scene/tests/data/media/fog_shafts.xml", {}, 256),
+    ("media-jelly-sphere", "repo:crates/pathtrace-scene/tests/data/media/jelly_sphere.xml", {}, 128),
 )
 
 
@@ -111,6 +115,8 @@ def mesh_1m_scene(folder):
 def scene_path(rel, args):
     if rel == "mesh-1m":
         return mesh_1m_scene(os.path.join(REPO, "target", "bench-scenes"))
+    if rel.startswith("repo:"):
+        return os.path.join(REPO, rel[len("repo:"):])
     return os.path.join(args.scenes, rel)
 
 

@@ -5,7 +5,8 @@
 //!
 //! This checks the lane machinery — masks, per-lane state, path regeneration, the split
 //! between SIMD-shaded and lane-by-lane-shaded lanes — on scenes that use every material,
-//! light, texture, strategy and sampler the repository's scenes hold, and every camera.
+//! light, texture, strategy and sampler the repository's scenes hold, every camera, and
+//! participating media.
 
 use pathtrace::film::Image;
 use pathtrace::integrator::Strategy;
@@ -88,14 +89,18 @@ fn lanes_and_one_lane_give_every_sample_the_same_value() {
     let mut all: Vec<(String, Arc<Scene>)> = scenes.iter().map(|rel| (rel.to_string(), repo_scene(rel))).collect();
     all.extend(shared_scenes());
     // The thin-lens camera draws a second 2D point per camera sample; the orthographic one none.
-    // The normal- and bump-mapped surfaces (shaded lane by lane in a perturbed frame) and the
-    // opacity masks (rays passing cut-outs).
+    // The normal- and bump-mapped surfaces (shaded lane by lane in a perturbed frame), the
+    // opacity masks (rays passing cut-outs), and media: a camera inside null-bounded fog under
+    // a directional light, and a glass sphere filled with a scattering medium (free flights,
+    // medium vertices, null crossings).
     for rel in [
         "tests/data/thinlens_box.xml",
         "tests/data/orthographic_box.xml",
         "tests/data/maps/normal_bump.xml",
         "tests/data/maps/mask.xml",
         "tests/data/maps/roughness.xml",
+        "tests/data/media/fog_shafts.xml",
+        "tests/data/media/jelly_sphere.xml",
     ] {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel);
         let (loaded, _) = load_mitsuba(&path, &[]).unwrap_or_else(|e| panic!("{rel}: {e}"));

@@ -9,6 +9,7 @@ use crate::light::{
 };
 use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
+use crate::medium::{HomogeneousMedium, MediumBoundary, MediumId};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
 use crate::shape::{MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
 use crate::texture::{ColourSlot, NormalPerturbation, Opacity, PerturbationKind, Texture, TextureBindings, TextureId};
@@ -89,6 +90,8 @@ pub enum BuildError {
     Light(String),
     #[error("invalid instance: {0}")]
     Instance(String),
+    #[error("invalid medium: {0}")]
+    Medium(String),
 }
 
 /// A scene ready to render.
@@ -107,6 +110,14 @@ pub struct Scene {
     cutouts: bool,
     pub lights: LightSet,
     pub camera: CameraDesc,
+    /// The participating media, indexed by medium id.
+    media: Vec<HomogeneousMedium>,
+    /// Per material id: the media its surfaces separate (empty when the scene has no media).
+    boundaries: Vec<Option<MediumBoundary>>,
+    /// The medium the camera sits in ([`MediumId::NONE`]: vacuum).
+    camera_medium: u32,
+    /// The scene has media or `null` surfaces: the estimator's media route is needed.
+    volumetric: bool,
 }
 
 impl Scene {
@@ -215,6 +226,36 @@ impl Scene {
     /// The materials, indexed by material id.
     pub fn materials(&self) -> &[Material] {
         &self.materials
+    }
+
+    /// True if the scene has participating media or index-matched (`null`) surfaces: paths
+    /// then take the estimator's media route (`integrator::media`); other scenes never do.
+    #[inline(always)]
+    pub fn is_volumetric(&self) -> bool {
+        self.volumetric
+    }
+
+    /// The medium `id` (a lane's current medium, never [`MediumId::NONE`]).
+    #[inline(always)]
+    pub fn medium(&self, id: u32) -> &HomogeneousMedium {
+        &self.media[id as usize]
+    }
+
+    /// The media, indexed by medium id.
+    pub fn media(&self) -> &[HomogeneousMedium] {
+        &self.media
+    }
+
+    /// The media the surfaces of material `id` separate, if they bound any.
+    #[inline(always)]
+    pub fn boundary(&self, material: u32) -> Option<MediumBoundary> {
+        self.boundaries.get(material as usize).copied().flatten()
+    }
+
+    /// The medium the camera's rays start in ([`MediumId::NONE`]: vacuum).
+    #[inline(always)]
+    pub fn camera_medium(&self) -> u32 {
+        self.camera_medium
     }
 
     /// True if the scene has infinite planes (kept outside the BVH).
@@ -381,6 +422,12 @@ pub struct SceneBuilder {
     groups: Vec<ShapeGroup>,
     /// (group, transform, material override or [`Instance::OWN_MATERIALS`]).
     instances: Vec<(u32, Transform, u32)>,
+    media: Vec<HomogeneousMedium>,
+    /// Per material id: its medium boundary (materials made by [`SceneBuilder::bounded_material`]).
+    boundaries: Vec<Option<MediumBoundary>>,
+    /// Bounded copies already made: (material, boundary) → the copy's id.
+    bounded: Vec<(u32, MediumBoundary, u32)>,
+    camera_medium: Option<MediumId>,
 }
 
 impl SceneBuilder {
@@ -483,6 +530,67 @@ impl SceneBuilder {
     pub fn camera(&mut self, c: CameraDesc) -> &mut Self {
         self.camera = c;
         self
+    }
+
+    /// Adds a participating medium; its coefficients must be finite and ≥ 0 and a
+    /// Henyey–Greenstein g inside (−1, 1).
+    pub fn medium(&mut self, m: HomogeneousMedium) -> Result<MediumId, BuildError> {
+        m.check().map_err(BuildError::Medium)?;
+        self.media.push(m);
+        Ok(MediumId(self.media.len() as u32 - 1))
+    }
+
+    /// The medium the camera sits in (`None`: vacuum, the default).
+    pub fn camera_medium(&mut self, m: Option<MediumId>) -> Result<(), BuildError> {
+        if let Some(m) = m {
+            self.check_medium(m)?;
+        }
+        self.camera_medium = m;
+        Ok(())
+    }
+
+    fn check_medium(&self, m: MediumId) -> Result<(), BuildError> {
+        if (m.0 as usize) < self.media.len() {
+            Ok(())
+        } else {
+            Err(BuildError::Medium(format!("medium id {} does not exist", m.0)))
+        }
+    }
+
+    /// A material id for shapes of `material` that separate `interior` (behind their normals)
+    /// from `exterior` (in front): the same scattering, emission and textures, with the
+    /// boundary attached. Media belong to shapes, as in Mitsuba; the estimator reads them per
+    /// hit through the material id it already has, so primitives stay as they are. Asking
+    /// twice for the same pair gives the same id.
+    pub fn bounded_material(
+        &mut self,
+        material: MaterialId,
+        interior: Option<MediumId>,
+        exterior: Option<MediumId>,
+    ) -> Result<MaterialId, BuildError> {
+        self.check_material(material)?;
+        for m in [interior, exterior].into_iter().flatten() {
+            self.check_medium(m)?;
+        }
+        if interior.is_none() && exterior.is_none() {
+            return Ok(material);
+        }
+        let id = |m: Option<MediumId>| m.map_or(MediumId::NONE, |m| m.0);
+        let boundary = MediumBoundary { interior: id(interior), exterior: id(exterior) };
+        if let Some(&(_, _, copy)) = self.bounded.iter().find(|(m, b, _)| *m == material.0 && *b == boundary) {
+            return Ok(MaterialId(copy));
+        }
+        let copy = self.materials[material.0 as usize];
+        self.materials.push(copy);
+        let new = self.materials.len() as u32 - 1;
+        if let Some(b) = self.bindings.get(material.0 as usize).cloned() {
+            self.bindings.resize(new as usize + 1, TextureBindings::default());
+            self.bindings[new as usize] = b;
+        }
+        self.boundaries.resize(new as usize + 1, None);
+        self.boundaries[new as usize] = Some(boundary);
+        self.bounded.push((material.0, boundary, new));
+        Ok(MaterialId(new))
     }
 
     /// Adds a point light; its position and intensity must be finite, the intensity ≥ 0.
@@ -726,6 +834,13 @@ impl SceneBuilder {
         let mut bindings = self.bindings;
         bindings.resize(self.materials.len(), TextureBindings::default());
         let cutouts = bindings.iter().any(|b| b.opacity.is_some());
+        let mut boundaries = self.boundaries;
+        if !self.media.is_empty() {
+            boundaries.resize(self.materials.len(), None);
+        } else {
+            boundaries.clear();
+        }
+        let volumetric = !self.media.is_empty() || self.materials.iter().any(|(m, _)| m.is_null());
         Ok(Scene {
             prims,
             unbounded,
@@ -737,6 +852,10 @@ impl SceneBuilder {
             cutouts,
             lights,
             camera: self.camera,
+            media: self.media,
+            boundaries,
+            camera_medium: self.camera_medium.map_or(MediumId::NONE, |m| m.0),
+            volumetric,
         })
     }
 }
@@ -784,7 +903,7 @@ fn alpha_message(kind: &str, m: &crate::material::Microfacet) -> String {
 pub fn validate_material(m: &Material) -> Result<(), BuildError> {
     // One arm per model, no catch-all: a new model does not compile until it says what it checks.
     match m {
-        Material::Black => Ok(()),
+        Material::Black | Material::Null => Ok(()),
         Material::Diffuse(d) => check_unit_colour("diffuse albedo", d.albedo),
         Material::Lambertian(d) => check_unit_colour("lambertian albedo", d.albedo),
         Material::Mirror(d) => check_unit_colour("mirror reflectance", d.reflectance),

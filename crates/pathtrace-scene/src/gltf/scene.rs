@@ -31,6 +31,7 @@ pub fn convert(o: &Opened, file_name: &str, camera_name: Option<&str>) -> Result
         render: Default::default(),
         camera,
         materials: Default::default(),
+        media: Default::default(),
         objects: Vec::new(),
         groups: Vec::new(),
         shape_groups: Default::default(),
@@ -133,7 +134,13 @@ impl Converter<'_> {
                 if prim.get(&gltf::Semantic::Normals).is_some() { MeshNormals::File } else { MeshNormals::Face };
             let part = (self.first[mesh.index()] + prim.index()) as u32;
             let shape = ShapeDef::Mesh { file: self.file_name.to_string(), part: Some(part), flip_v: false, normals };
-            self.file.objects.push(ObjectDef { shape, material, transform: vec![matrix_step(world)] });
+            self.file.objects.push(ObjectDef {
+                shape,
+                material,
+                transform: vec![matrix_step(world)],
+                interior: None,
+                exterior: None,
+            });
         }
     }
 

@@ -5,8 +5,8 @@ use super::parse::{Element, XmlSource};
 use super::spectrum::{check_samples, constant_to_rgb, parse_spd, spectrum_to_rgb, SpectrumUse};
 use crate::native::model::{
     CameraSection, Colour, EmissionDef, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, LookAtDef, MaterialDef,
-    MaterialKind, MeshNormals, Num, Num3, ObjectDef, ProjectionName, RenderSection, SamplerName, SceneFile, ShapeDef,
-    TransformStep, Triple,
+    MaterialKind, MediumDef, MeshNormals, Num, Num3, ObjectDef, ProjectionName, RenderSection, SamplerName, SceneFile,
+    ShapeDef, TransformStep, Triple,
 };
 use crate::native::{ItemPath, SceneError};
 use pathtrace::math::{Transform, Vec3};
@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 
 mod bsdf;
 mod instance;
+mod medium;
 mod wrappers;
 
 use wrappers::Wrappers;
@@ -46,6 +47,8 @@ pub fn convert_located(src: &XmlSource, root: &Element, warnings: &mut Vec<Strin
         shape_groups: BTreeMap::new(),
         instances: Vec::new(),
         lights: Vec::new(),
+        media: BTreeMap::new(),
+        medium_names: BTreeMap::new(),
         origins: vec![(ItemPath::root(), root.offset)],
     };
     collect_ids(root, &mut c.ids);
@@ -73,12 +76,14 @@ pub fn convert_located(src: &XmlSource, root: &Element, warnings: &mut Vec<Strin
                 if camera.is_some() {
                     c.warn(e, "only the first <sensor> is used");
                 } else {
-                    camera = Some(c.sensor(e, &mut render)?);
+                    let mut sensor = c.sensor(e, &mut render)?;
+                    sensor.medium = c.sensor_medium(e)?;
+                    camera = Some(sensor);
                     c.origins.push((ItemPath::root().field("camera"), e.offset));
                     c.origins.push((ItemPath::root().field("render"), e.offset));
                 }
             }
-            "bsdf" | "texture" | "spectrum" | "rgb" => {} // used through <ref>
+            "bsdf" | "texture" | "spectrum" | "rgb" | "medium" => {} // used through <ref>
             "shape" => c.shape(e)?,
             "emitter" => c.top_emitter(e)?,
             other => c.warn(e, &format!("<{other}> is not supported and is skipped")),
@@ -94,6 +99,7 @@ pub fn convert_located(src: &XmlSource, root: &Element, warnings: &mut Vec<Strin
         render,
         camera,
         materials: c.materials,
+        media: c.media,
         objects: c.objects,
         groups: Vec::new(),
         shape_groups: c.shape_groups,
@@ -130,6 +136,9 @@ struct Conv<'a, 'w> {
     instances: Vec<InstanceDef>,
     /// Point lights and the environment.
     lights: Vec<LightDef>,
+    /// Participating media, and the names made for `<medium>` elements (by offset).
+    media: BTreeMap<String, MediumDef>,
+    medium_names: BTreeMap<usize, String>,
     origins: Origins,
 }
 
@@ -436,7 +445,9 @@ impl<'a> Conv<'a, '_> {
         // -1 is unlimited.
         let depth = self.integer_in(e, "max_depth", -1..=i64::from(i32::MAX))?.map(|d| d as i32);
         render.max_depth = Some(match ty {
-            "path" => depth.unwrap_or(-1),
+            // Media are rendered whichever of Mitsuba's path tracers is named (`path` ignores
+            // them in Mitsuba; `volpath` and `volpathmis` agree in the mean).
+            "path" | "volpath" | "volpathmis" => depth.unwrap_or(-1),
             "direct" => 2,
             other => {
                 self.warn(e, &format!("integrator `{other}` is not supported: using a path tracer"));
@@ -657,6 +668,7 @@ impl<'a> Conv<'a, '_> {
                     None => MaterialKind::Lambertian { albedo: Colour::grey(0.5) },
                 }
             }
+            "null" => MaterialKind::Null,
             "dielectric" => {
                 let int = self.ior(e, "int_ior", 1.5046)?;
                 let ext = self.ior(e, "ext_ior", 1.000277)?;
@@ -837,7 +849,8 @@ impl<'a> Conv<'a, '_> {
                 self.origins.push((item.field("transform").index(i), step.offset));
             }
         }
-        self.objects.push(ObjectDef { shape, material, transform });
+        let (interior, exterior) = self.shape_media(e)?;
+        self.objects.push(ObjectDef { shape, material, transform, interior, exterior });
         Ok(())
     }
 

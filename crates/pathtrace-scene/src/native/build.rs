@@ -4,6 +4,7 @@
 
 use super::error::SceneError;
 use super::locate::{ItemPath, Locate};
+use super::medium::build_medium;
 use super::model::{
     CameraSection, Colour, FilterDef, FilterName, GroupDef, InstanceDef, LightDef, MaterialDef, MaterialKind,
     MeshNormals, MetalDef, NormalDef, NormalPerturbationDef, Num, ObjectDef, ProjectionName, RenderSection,
@@ -19,6 +20,7 @@ use pathtrace::material::{
     RoughDielectric, RoughPlastic, ThinDielectric,
 };
 use pathtrace::math::{Rgb, Transform, Vec3};
+use pathtrace::medium::MediumId;
 use pathtrace::scene::{validate_material, BuildError};
 use pathtrace::shape::TriangleMesh;
 use pathtrace::shape::{Disk, Plane, Quad, Shape, Sphere, Triangle};
@@ -32,12 +34,32 @@ use std::collections::BTreeMap;
 /// Builds the scene a file describes; `src` locates errors and resolves relative mesh paths.
 pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneError> {
     let defaults = render_defaults(&file.render, &file.camera, src)?;
-    let mut ctx = Ctx { src, b: SceneBuilder::new(), ids: BTreeMap::new(), materials: &file.materials, group: None };
+    let mut ctx = Ctx {
+        src,
+        b: SceneBuilder::new(),
+        ids: BTreeMap::new(),
+        media: BTreeMap::new(),
+        materials: &file.materials,
+        group: None,
+    };
     for (name, def) in &file.materials {
         let id = ctx.add_material(name, def)?;
         ctx.ids.insert(name.clone(), id);
     }
     let root = ItemPath::root();
+    for (name, def) in &file.media {
+        let at = root.field("media").field(name);
+        let medium =
+            build_medium(def).map_err(|(field, e)| src.error_at(&at.field(field), format!("medium `{name}`: {e}")))?;
+        let id = ctx.b.medium(medium).map_err(|e| src.error_at(&at, e.to_string()))?;
+        ctx.media.insert(name.clone(), id);
+    }
+    if let Some(name) = &file.camera.medium {
+        let id = ctx.medium_id(name, &root.field("camera").field("medium"))?;
+        ctx.b
+            .camera_medium(Some(id))
+            .map_err(|e| src.error_at(&root.field("camera").field("medium"), e.to_string()))?;
+    }
     for (i, o) in file.objects.iter().enumerate() {
         ctx.add_object(o, &Transform::IDENTITY, &root.field("objects").index(i))?;
     }
@@ -213,6 +235,8 @@ struct Ctx<'a, L: Locate> {
     src: &'a L,
     b: SceneBuilder,
     ids: BTreeMap<String, MaterialId>,
+    /// Media by name.
+    media: BTreeMap<String, MediumId>,
     materials: &'a BTreeMap<String, MaterialDef>,
     /// The shape group being filled, while one is read: objects go there, not into the scene.
     group: Option<ShapeGroup>,
@@ -254,6 +278,7 @@ impl<L: Locate> Ctx<'_, L> {
                 Material::ThinDielectric(ThinDielectric { ior: ior.f32(), tint: col(tint, base, "tint")? })
             }
             MaterialKind::Emissive => Material::Black,
+            MaterialKind::Null => Material::Null,
             MaterialKind::Conductor { metal, reflectance } => {
                 let (eta, k) = metal_optics(*metal);
                 Material::Conductor(Conductor { eta, k, reflectance: col(reflectance, base, "reflectance")? })
@@ -541,9 +566,36 @@ impl<L: Locate> Ctx<'_, L> {
         compose(steps).map_err(|(i, e)| self.src.error_at(&at.field("transform").index(i), e))
     }
 
+    fn medium_id(&self, name: &str, at: &ItemPath) -> Result<MediumId, SceneError> {
+        self.media.get(name).copied().ok_or_else(|| {
+            let known: Vec<&str> = self.media.keys().map(String::as_str).collect();
+            let known =
+                if known.is_empty() { "none are defined: add a [media.NAME]".to_string() } else { known.join(", ") };
+            self.src.error_at(at, format!("unknown medium `{name}` (media: {known})"))
+        })
+    }
+
+    /// The material id for an object: its material, with the media it bounds attached.
+    fn object_material(&mut self, o: &ObjectDef, at: &ItemPath) -> Result<MaterialId, SceneError> {
+        let id = self.material_id(&o.material, &at.field("material"))?;
+        if o.interior.is_none() && o.exterior.is_none() {
+            return Ok(id);
+        }
+        let side = if o.interior.is_some() { "interior" } else { "exterior" };
+        if self.group.is_some() {
+            let msg = "objects of a shape group cannot bound media (place the object outside the group)";
+            return Err(self.src.error_at(&at.field(side), msg));
+        }
+        let lookup = |name: &Option<String>, field: &str| {
+            name.as_deref().map(|n| self.medium_id(n, &at.field(field))).transpose()
+        };
+        let (interior, exterior) = (lookup(&o.interior, "interior")?, lookup(&o.exterior, "exterior")?);
+        self.b.bounded_material(id, interior, exterior).map_err(|e| self.src.error_at(&at.field(side), e.to_string()))
+    }
+
     fn add_object(&mut self, o: &ObjectDef, outer: &Transform, at: &ItemPath) -> Result<(), SceneError> {
         let t = self.transform(&o.transform, at)?.then(outer);
-        let id = self.material_id(&o.material, &at.field("material"))?;
+        let id = self.object_material(o, at)?;
         let emits = self.emits(&o.material);
         if emits && self.group.is_some() {
             let msg = format!("material `{}` emits: objects of a shape group cannot be lights", o.material);

@@ -27,6 +27,8 @@ pub enum MaterialType {
     RoughDielectric,
     Plastic,
     RoughPlastic,
+    /// An index-matched boundary of a medium (Mitsuba's `null`).
+    Null,
 }
 
 /// A material's scattering model and parameters. Colour parameters may be textures.
@@ -57,6 +59,9 @@ pub enum MaterialKind {
     Plastic { albedo: Colour, specular: Colour, ior: Num, nonlinear: bool },
     /// Diffuse base under a rough coating (Mitsuba's `roughplastic`; isotropic roughness).
     RoughPlastic { albedo: Colour, specular: Colour, ior: Num, nonlinear: bool, roughness: RoughnessDef },
+    /// An index-matched boundary (Mitsuba's `null`): light passes straight through; it marks
+    /// where the media of its objects' `interior` and `exterior` begin and end.
+    Null,
 }
 
 impl MaterialKind {
@@ -77,7 +82,7 @@ impl MaterialKind {
             MaterialKind::Plastic { albedo, specular, .. } | MaterialKind::RoughPlastic { albedo, specular, .. } => {
                 vec![albedo, specular]
             }
-            MaterialKind::Emissive => Vec::new(),
+            MaterialKind::Emissive | MaterialKind::Null => Vec::new(),
         }
     }
 }
@@ -229,6 +234,7 @@ fn allowed(t: MaterialType) -> &'static [&'static str] {
         MaterialType::Glossy => &["albedo", "exponent"],
         MaterialType::Dielectric | MaterialType::ThinDielectric => &["ior", "tint"],
         MaterialType::Emissive => &["radiance"],
+        MaterialType::Null => &[],
         MaterialType::Conductor => &["metal", "eta", "k", "reflectance"],
         MaterialType::RoughConductor => {
             &["metal", "eta", "k", "reflectance", "distribution", "alpha", "alpha_u", "alpha_v", "alpha_texture"]
@@ -314,11 +320,12 @@ impl TryFrom<RawMaterial> for MaterialDef {
     fn try_from(r: RawMaterial) -> Result<Self, String> {
         let t = r.kind.ok_or(
             "a material needs a `type` (diffuse, lambertian, mirror, glossy, dielectric, thindielectric, emissive, \
-             conductor, rough_conductor, rough_dielectric, plastic, rough_plastic)",
+             conductor, rough_conductor, rough_dielectric, plastic, rough_plastic, null)",
         )?;
         let name = serde_json::to_value(t).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
         if let Some(extra) = r.present().into_iter().find(|f| !allowed(t).contains(f)) {
             let ok = allowed(t).iter().map(|f| format!("`{f}`")).collect::<Vec<_>>().join(", ");
+            let ok = if ok.is_empty() { "no parameters".to_string() } else { ok };
             return Err(format!("`{extra}` is not a parameter of a {name} material (it takes {ok})"));
         }
         let normal = r.normal_def()?;
@@ -345,6 +352,7 @@ impl TryFrom<RawMaterial> for MaterialDef {
                 tint: r.tint.unwrap_or(one.clone()),
             },
             MaterialType::Emissive => MaterialKind::Emissive,
+            MaterialType::Null => MaterialKind::Null,
             MaterialType::Conductor => {
                 MaterialKind::Conductor { metal: r.metal_def()?, reflectance: r.reflectance.unwrap_or(one.clone()) }
             }
@@ -458,6 +466,7 @@ impl From<MaterialDef> for RawMaterial {
                 (r.kind, r.ior, r.tint) = (Some(MaterialType::ThinDielectric), Some(Ior(ior)), Some(tint))
             }
             MaterialKind::Emissive => r.kind = Some(MaterialType::Emissive),
+            MaterialKind::Null => r.kind = Some(MaterialType::Null),
             MaterialKind::Conductor { metal, reflectance } => {
                 (r.kind, r.reflectance) = (Some(MaterialType::Conductor), Some(reflectance));
                 r.set_metal(metal);

@@ -26,6 +26,7 @@ mod build;
 mod error;
 mod locate;
 mod material;
+mod medium;
 pub mod model;
 mod object;
 mod optics;

@@ -5,6 +5,7 @@
 pub use super::material::{
     EmissionDef, MaterialDef, MaterialKind, MaterialType, NormalDef, NormalPerturbationDef, OpacityDef,
 };
+pub use super::medium::{MediumDef, MediumType, PhaseDef};
 pub use super::object::{GroupDef, MeshNormals, ObjectDef, ShapeDef, ShapeType};
 pub use super::optics::{DistributionName, Ior, MetalDef, MetalName, RoughnessDef};
 pub use super::texture::{identity_uv, Colour, TextureDef, UvRows};
@@ -25,6 +26,10 @@ pub struct SceneFile {
     /// Materials by name.
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDef>,
+    /// Participating media by name, placed by objects' `interior`/`exterior` and the camera's
+    /// `medium`.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub media: BTreeMap<String, MediumDef>,
     /// Top-level objects.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub objects: Vec<ObjectDef>,
@@ -176,7 +181,7 @@ pub enum ProjectionName {
 }
 
 /// `[camera]`: a pinhole, thin-lens or orthographic camera.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSection {
     /// `perspective` (default), `thinlens` or `orthographic`.
@@ -209,6 +214,9 @@ pub struct CameraSection {
     /// image's aspect.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub height: Option<Num>,
+    /// The `[media.NAME]` the camera sits in (default: none, vacuum).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub medium: Option<String>,
 }
 
 impl CameraSection {
@@ -225,6 +233,7 @@ impl CameraSection {
             aperture_radius: None,
             focus_distance: None,
             height: None,
+            medium: None,
         }
     }
 

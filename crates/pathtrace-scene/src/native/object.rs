@@ -71,6 +71,10 @@ pub struct ObjectDef {
     pub material: String,
     /// Steps applied in order (empty: identity).
     pub transform: Vec<TransformStep>,
+    /// The `[media.NAME]` inside the object (behind its surface normals), if any.
+    pub interior: Option<String>,
+    /// The `[media.NAME]` outside the object (in front of its normals), if any.
+    pub exterior: Option<String>,
 }
 
 /// A group: its transform list applies to everything inside it, after their own transforms.
@@ -97,6 +101,10 @@ pub struct RawObject {
     material: Option<String>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     transform: Vec<TransformStep>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    interior: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    exterior: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     center: Option<Num3>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -190,7 +198,9 @@ impl TryFrom<RawObject> for ObjectDef {
         let wanted = fields_of(t);
         if let Some(extra) = r.present().into_iter().find(|f| !wanted.contains(f)) {
             let ok = wanted.iter().map(|f| format!("`{f}`")).collect::<Vec<_>>().join(", ");
-            return Err(format!("`{extra}` is not a field of a {name} (it takes {ok}, `material`, `transform`)"));
+            return Err(format!(
+                "`{extra}` is not a field of a {name} (it takes {ok}, `material`, `transform`, `interior`, `exterior`)"
+            ));
         }
         let missing = |f: &str| format!("a {name} needs `{f}`");
         let need = |v: Option<Num3>, f: &str| v.ok_or_else(|| missing(f));
@@ -217,13 +227,19 @@ impl TryFrom<RawObject> for ObjectDef {
         };
         let material =
             r.material.ok_or_else(|| format!("a {name} needs a `material` (the name of a [materials.NAME])"))?;
-        Ok(ObjectDef { shape, material, transform: r.transform })
+        Ok(ObjectDef { shape, material, transform: r.transform, interior: r.interior, exterior: r.exterior })
     }
 }
 
 impl From<ObjectDef> for RawObject {
     fn from(o: ObjectDef) -> Self {
-        let mut r = RawObject { material: Some(o.material), transform: o.transform, ..Default::default() };
+        let mut r = RawObject {
+            material: Some(o.material),
+            transform: o.transform,
+            interior: o.interior,
+            exterior: o.exterior,
+            ..Default::default()
+        };
         r.kind = Some(match o.shape {
             ShapeDef::Sphere { center, radius } => {
                 (r.center, r.radius) = (Some(center), Some(radius));

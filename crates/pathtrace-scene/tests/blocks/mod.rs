@@ -62,7 +62,15 @@ pub fn render_blocks(scene: &str, loaded: LoadedScene, spp: u32, mean: &[[f64; 3
             for k in 0..3 {
                 let var = est.variance_of_mean[k] + se[i][k] * se[i][k];
                 if var == 0.0 {
-                    assert_eq!(est.mean[k], mean[i][k], "{scene} block {i} channel {k}");
+                    // A block of constant colour (the sky alone): equal up to Mitsuba's storage of
+                    // RGB constants (llvm_ad_rgb returns a sky of 0.4 as 0.3999961).
+                    let tolerance = 2e-5 * mean[i][k].abs();
+                    assert!(
+                        (est.mean[k] - mean[i][k]).abs() <= tolerance,
+                        "{scene} block {i} channel {k}: {} vs {}",
+                        est.mean[k],
+                        mean[i][k]
+                    );
                     continue;
                 }
                 let z = (est.mean[k] - mean[i][k]) / var.sqrt();

@@ -7,6 +7,7 @@
 use crate::film::{FeaturePixel, FeatureSample, PixelStats};
 use crate::integrator::PathStats;
 use crate::math::{Ray, Rgb, Vec2, Vec3};
+use crate::medium::MediumId;
 use crate::scene::Primitive;
 use crate::shape::SurfacePoint;
 use crate::wide::simd::{F32s, Ms, Vec3s};
@@ -29,6 +30,16 @@ pub(crate) struct Paths<const N: usize> {
     pub filter_weight: F32s<N>,
     /// Path segments so far (Mitsuba's depth convention).
     pub segments: [u32; N],
+    /// The medium each lane's ray travels in (`MediumId::NONE`: vacuum; always so in scenes
+    /// without media).
+    pub medium: [u32; N],
+    /// The colour channel whose free-flight density the lane's path follows (chosen at its first
+    /// medium event; [`Paths::NO_CHANNEL`] before).
+    pub hero: [u8; N],
+    /// Per channel, the density of the path's medium events had that channel been followed,
+    /// relative to the followed one's (pbrt-v4's r_u); `beta` already holds the throughput
+    /// divided by their average (`integrator::media`).
+    pub channel_density: [Rgb; N],
     /// The pixel (index in the tile) each lane's sample belongs to.
     pub pixel: [u32; N],
     /// Lanes whose feature sample still waits for its first non-specular hit (never set when
@@ -50,6 +61,9 @@ pub(crate) struct Output {
 }
 
 impl<const N: usize> Paths<N> {
+    /// No channel chosen yet.
+    pub const NO_CHANNEL: u8 = u8::MAX;
+
     #[inline(always)]
     pub fn new() -> Self {
         Self {
@@ -64,6 +78,9 @@ impl<const N: usize> Paths<N> {
             prev_specular: Ms::default(),
             filter_weight: F32s::default(),
             segments: [0; N],
+            medium: [MediumId::NONE; N],
+            hero: [Self::NO_CHANNEL; N],
+            channel_density: [Rgb::splat(1.0); N],
             pixel: [0; N],
             feature_pending: Ms::default(),
             feature: [FeatureSample::default(); N],
@@ -71,10 +88,10 @@ impl<const N: usize> Paths<N> {
         }
     }
 
-    /// Starts a camera path in lane `i` for pixel `pixel` of the tile; `features`: the path
-    /// records a feature sample.
+    /// Starts a camera path in lane `i` for pixel `pixel` of the tile, its ray in `medium`;
+    /// `features`: the path records a feature sample.
     #[inline(always)]
-    pub fn start(&mut self, i: usize, pixel: u32, ray: Ray, filter_weight: f32, features: bool) {
+    pub fn start(&mut self, i: usize, pixel: u32, ray: Ray, medium: u32, filter_weight: f32, features: bool) {
         self.active.0[i] = u32::MAX;
         self.origin.set(i, ray.origin);
         self.dir.set(i, ray.dir);
@@ -88,6 +105,9 @@ impl<const N: usize> Paths<N> {
         self.prev_specular.0[i] = u32::MAX;
         self.filter_weight.0[i] = filter_weight;
         self.segments[i] = 1;
+        self.medium[i] = medium;
+        self.hero[i] = Self::NO_CHANNEL;
+        self.channel_density[i] = Rgb::splat(1.0);
         self.pixel[i] = pixel;
         if features {
             self.feature_pending.0[i] = u32::MAX;

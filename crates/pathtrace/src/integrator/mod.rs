@@ -2,6 +2,7 @@
 
 mod features;
 mod lanes;
+mod media;
 mod path;
 mod regenerate;
 mod shade;

@@ -18,6 +18,7 @@
 
 use super::features::record_features;
 use super::lanes::{Output, Paths, Surfaces};
+use super::media::{leaving_medium, medium_vertex, shadow_transmittance, travel};
 use super::regenerate::LaneJob;
 use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
 use super::Strategy;
@@ -149,12 +150,22 @@ pub(crate) fn vertex<const N: usize>(
     let materials = scene.materials();
 
     // ---- Closest hits ----------------------------------------------------------------
-    let s = intersect(job, paths);
+    let mut s = intersect(job, paths);
     let wo = paths.dir.neg();
+
+    // ---- Media and null surfaces (volumetric scenes only) ------------------------------
+    // Lanes in a medium may scatter before their hit (`scatter`: medium vertices at `s.p`);
+    // null surfaces are crossed. Scenes without media never enter this branch.
+    let volumetric = scene.is_volumetric();
+    let scatter = if volumetric { travel(job, paths, samplers, &mut s) } else { Ms::NONE };
 
     // ---- Feature samples (AOVs), only for renders that record them -----------------------
     if paths.feature_pending.any() {
+        // A medium interaction is not a surface: its lanes keep waiting for one.
+        let waiting = paths.feature_pending & scatter;
+        paths.feature_pending = paths.feature_pending & !scatter;
         record_features(job, paths, &s, &wo);
+        paths.feature_pending = paths.feature_pending | waiting;
     }
 
     // ---- Escape: the environment (if any) is seen, then the path ends ------------------
@@ -196,7 +207,7 @@ pub(crate) fn vertex<const N: usize>(
     let mut nee = Ms::<N>::NONE;
     let mut simd = Ms::<N>::NONE;
     let mut albedo = [F32s::<N>::ZERO; 3];
-    for i in alive.lanes() {
+    for i in (alive & !scatter).lanes() {
         let class = &lanes.classes[s.material[i] as usize];
         if paths.segments[i] >= max_segments || class.black {
             paths.finish(i, out);
@@ -210,6 +221,17 @@ pub(crate) fn vertex<const N: usize>(
             simd.0[i] = u32::MAX;
             let a = if class.textured { textured_albedo(scene, &s, i) } else { class.albedo };
             [albedo[0].0[i], albedo[1].0[i], albedo[2].0[i]] = a.to_array();
+        }
+    }
+    // Medium interactions: a vertex like any other (the depth limit, then light sampling).
+    if scatter.any() {
+        for i in (alive & scatter).lanes() {
+            if paths.segments[i] >= max_segments {
+                paths.finish(i, out);
+                alive.0[i] = 0;
+            } else if can_sample_lights {
+                nee.0[i] = u32::MAX;
+            }
         }
     }
     if !alive.any() {
@@ -229,7 +251,7 @@ pub(crate) fn vertex<const N: usize>(
     } else {
         LambertLight::none()
     };
-    for i in (alive & !simd).lanes() {
+    for i in (alive & !simd & !scatter).lanes() {
         let it = Interaction {
             surface: s.surface(i),
             material: &materials[s.material[i] as usize],
@@ -250,26 +272,58 @@ pub(crate) fn vertex<const N: usize>(
             sc.set_next(i, next);
         }
     }
+    if scatter.any() {
+        for i in (alive & scatter).lanes() {
+            let u = VertexNumbers {
+                select: u_select.0[i],
+                light: Vec2::new(ul1.0[i], ul2.0[i]),
+                lobe: u_lobe.0[i],
+                direction: Vec2::new(ud1.0[i], ud2.0[i]),
+            };
+            let (p, wo) = (s.p.lane(i), wo.lane(i));
+            let shading = medium_vertex(scene, strategy, p, wo, paths.medium[i], paths.beta(i), u, nee.lane(i));
+            if let Some(shadow) = &shading.shadow {
+                sc.set_shadow(i, shadow);
+            }
+            if let Some(next) = &shading.next {
+                sc.set_next(i, next);
+            }
+        }
+    }
 
     // ---- Shadow rays: unoccluded light samples add their contribution -------------------
     if sc.shadow.any() {
-        // Shadow rays from first hits (neighbouring points) go through the BVH together: rays
-        // to one light share most node visits, and rays to several share the upper levels (one
-        // group for the teapot's two point lights cost 6% less time than a group per light);
-        // where they scatter (an environment's samples), the traversal goes on ray by ray.
-        let first_hits = sc.shadow & Ms::from_fn(|i| paths.segments[i] == 1);
-        let blocked = occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, first_hits, sc.shadow_t_max);
         out.stats.shadow_rays += sc.shadow.bitmask().count_ones() as u64;
-        let seen = sc.shadow & !blocked;
-        // The Lambertian lanes' contributions are formed only now: their inputs were gathered
-        // lane by lane, and reading them back as vectors right away stalls on store forwarding.
-        let seen_lambert = seen & lambert_light.lit;
-        let seen_other = seen & !lambert_light.lit;
-        for c in 0..3 {
-            let lambert = paths.beta[c] * albedo[c] * lambert_light.radiance[c] * lambert_light.factor;
-            paths.radiance[c] = paths.radiance[c]
-                + F32s::select(seen_other, sc.contribution[c], F32s::ZERO)
-                + F32s::select(seen_lambert, lambert, F32s::ZERO);
+        if volumetric {
+            // Through null surfaces and media, lane by lane (kept out of line, and given copies
+            // of the light terms, so the surface-only path below keeps them in registers).
+            let queued = ShadowQueue {
+                lanes: sc.shadow,
+                origin: sc.shadow_origin,
+                dir: sc.shadow_dir,
+                t_max: sc.shadow_t_max,
+                contribution: sc.contribution,
+            };
+            add_transmitted_light(scene, paths, &s, scatter, queued, LambertLight { ..lambert_light }, albedo);
+        } else {
+            // Shadow rays from first hits (neighbouring points) go through the BVH together:
+            // rays to one light share most node visits, and rays to several share the upper
+            // levels (one group for the teapot's two point lights cost 6% less time than a group
+            // per light); where they scatter (an environment's samples), the traversal goes on
+            // ray by ray.
+            let first_hits = sc.shadow & Ms::from_fn(|i| paths.segments[i] == 1);
+            let blocked = occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, first_hits, sc.shadow_t_max);
+            let seen = sc.shadow & !blocked;
+            // The Lambertian lanes' contributions are formed only now: their inputs were gathered
+            // lane by lane, and reading them back as vectors right away stalls on store forwarding.
+            let seen_lambert = seen & lambert_light.lit;
+            let seen_other = seen & !lambert_light.lit;
+            for c in 0..3 {
+                let lambert = paths.beta[c] * albedo[c] * lambert_light.radiance[c] * lambert_light.factor;
+                paths.radiance[c] = paths.radiance[c]
+                    + F32s::select(seen_other, sc.contribution[c], F32s::ZERO)
+                    + F32s::select(seen_lambert, lambert, F32s::ZERO);
+            }
         }
     }
 
@@ -316,6 +370,10 @@ pub(crate) fn vertex<const N: usize>(
     }
 
     // ---- Next segment ------------------------------------------------------------------
+    // A surface that bounds media puts the path in the medium on the side it leaves by.
+    if volumetric {
+        enter_media(scene, paths, &s, alive & !scatter, sc.dir);
+    }
     paths.prev_p = Vec3s::select(alive, &s.p, &paths.prev_p);
     paths.prev_pdf = F32s::select(alive, sc.pdf, paths.prev_pdf);
     paths.prev_specular = (sc.specular & alive) | (paths.prev_specular & !alive);
@@ -325,6 +383,57 @@ pub(crate) fn vertex<const N: usize>(
         paths.segments[i] += alive.0[i] & 1;
     }
     out.stats.extension_rays += alive.bitmask().count_ones() as u64;
+}
+
+/// Copies of the queued shadow rays of a vertex (`Scattered`'s), for the media route.
+struct ShadowQueue<const N: usize> {
+    lanes: Ms<N>,
+    origin: Vec3s<N>,
+    dir: Vec3s<N>,
+    t_max: F32s<N>,
+    contribution: [F32s<N>; 3],
+}
+
+/// The shadow rays of a volumetric scene: each lane's light term, scaled by the transmittance
+/// along its shadow ray through null surfaces and media (`integrator::media`), is added to its
+/// estimate. The Lambertian lanes' terms are formed as on the surface-only path, then scaled.
+#[inline(never)]
+fn add_transmitted_light<const N: usize>(
+    scene: &Scene,
+    paths: &mut Paths<N>,
+    s: &Surfaces<N>,
+    scatter: Ms<N>,
+    sc: ShadowQueue<N>,
+    lambert_light: LambertLight<N>,
+    albedo: [F32s<N>; 3],
+) {
+    for i in sc.lanes.lanes() {
+        let dir = sc.dir.lane(i);
+        let medium = leaving_medium(scene, paths, s, scatter, i, dir);
+        let tr = shadow_transmittance(scene, sc.origin.lane(i), dir, sc.t_max.0[i], medium);
+        if tr.is_black() {
+            continue;
+        }
+        for (c, t) in tr.to_array().into_iter().enumerate() {
+            let term = if lambert_light.lit.lane(i) {
+                paths.beta[c].0[i] * albedo[c].0[i] * lambert_light.radiance[c].0[i] * lambert_light.factor.0[i]
+            } else {
+                sc.contribution[c].0[i]
+            };
+            paths.radiance[c].0[i] += term * t;
+        }
+    }
+}
+
+/// The lanes of `lanes` whose surface bounds media enter the medium on the side their next
+/// direction `dir` leaves by.
+#[inline(never)]
+fn enter_media<const N: usize>(scene: &Scene, paths: &mut Paths<N>, s: &Surfaces<N>, lanes: Ms<N>, dir: Vec3s<N>) {
+    for i in lanes.lanes() {
+        if let Some(b) = scene.boundary(s.material[i]) {
+            paths.medium[i] = b.target(s.n_geometric.lane(i).dot(dir.lane(i)));
+        }
+    }
 }
 
 /// The albedo of lane `i`'s textured Lambertian surface at its hit.

@@ -111,7 +111,7 @@ pub(crate) fn render_tile_lanes<const N: usize>(
             let fs = job.filter.sample(u_filter);
             let ray = job.camera.generate_ray(next.x, next.y, fs.jitter, u_aperture);
             out.stats.camera_rays += 1;
-            paths.start(i, next.pixel, ray, fs.weight, job.features);
+            paths.start(i, next.pixel, ray, job.scene.camera_medium(), fs.weight, job.features);
             if max_depth == 0 {
                 paths.finish(i, &mut out);
             }

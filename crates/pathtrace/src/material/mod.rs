@@ -68,6 +68,9 @@ pub struct BsdfSample {
 pub enum Material {
     /// Black: absorbs everything (the surface of a pure emitter).
     Black,
+    /// An index-matched boundary (Mitsuba's `null`): light passes straight through. It only
+    /// marks where a medium begins and ends; the estimator crosses it without counting a vertex.
+    Null,
     Diffuse(Diffuse),
     Lambertian(Lambertian),
     Mirror(Mirror),
@@ -87,6 +90,8 @@ impl Material {
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         match self {
             Material::Black => None,
+            // Straight on (wi = −wo, which crosses the surface) with weight 1.
+            Material::Null => Some(BsdfSample { wi: -wo, weight: Rgb::splat(1.0), pdf: 1.0, delta: true, eta: 1.0 }),
             Material::Diffuse(m) => m.sample(wo, u),
             Material::Lambertian(m) => m.sample(wo, u),
             Material::Mirror(m) => m.sample(wo),
@@ -113,6 +118,7 @@ impl Material {
             Material::Plastic(m) => m.eval(wo, wi),
             Material::RoughPlastic(m) => m.eval(wo, wi),
             Material::Black
+            | Material::Null
             | Material::Mirror(_)
             | Material::Dielectric(_)
             | Material::Conductor(_)
@@ -132,6 +138,7 @@ impl Material {
             Material::Plastic(m) => m.pdf(wo, wi),
             Material::RoughPlastic(m) => m.pdf(wo, wi),
             Material::Black
+            | Material::Null
             | Material::Mirror(_)
             | Material::Dielectric(_)
             | Material::Conductor(_)
@@ -151,7 +158,7 @@ impl Material {
         // One arm per model, no catch-all: a new model does not compile until it says which of
         // its colours a texture replaces.
         match &mut m {
-            Material::Black => {}
+            Material::Black | Material::Null => {}
             Material::Diffuse(d) if base => d.albedo = c,
             Material::Lambertian(d) if base => d.albedo = c,
             Material::Glossy(g) if base => g.albedo = c,
@@ -194,7 +201,7 @@ impl Material {
     /// The slots this model has, for front ends that bind textures.
     pub fn has_slot(&self, slot: ColourSlot) -> bool {
         match slot {
-            ColourSlot::Base => !matches!(self, Material::Black),
+            ColourSlot::Base => !matches!(self, Material::Black | Material::Null),
             ColourSlot::Specular => matches!(self, Material::Plastic(_) | Material::RoughPlastic(_)),
             ColourSlot::Roughness => matches!(self, Material::RoughConductor(_) | Material::RoughDielectric(_)),
         }
@@ -204,7 +211,11 @@ impl Material {
     pub fn is_delta(&self) -> bool {
         matches!(
             self,
-            Material::Mirror(_) | Material::Dielectric(_) | Material::Conductor(_) | Material::ThinDielectric(_)
+            Material::Null
+                | Material::Mirror(_)
+                | Material::Dielectric(_)
+                | Material::Conductor(_)
+                | Material::ThinDielectric(_)
         )
     }
 
@@ -223,6 +234,7 @@ impl Material {
             Material::RoughDielectric(m) => aniso(&m.distribution),
             Material::RoughPlastic(m) => aniso(&m.distribution),
             Material::Black
+            | Material::Null
             | Material::Diffuse(_)
             | Material::Lambertian(_)
             | Material::Mirror(_)
@@ -239,6 +251,11 @@ impl Material {
         !matches!(self, Material::Dielectric(_) | Material::RoughDielectric(_))
     }
 
+    /// True for the index-matched boundary `Null`.
+    pub fn is_null(&self) -> bool {
+        matches!(self, Material::Null)
+    }
+
     /// True if the model scatters no light at all.
     pub fn is_black(&self) -> bool {
         matches!(self, Material::Black)
@@ -248,6 +265,7 @@ impl Material {
     pub fn name(&self) -> &'static str {
         match self {
             Material::Black => "black",
+            Material::Null => "null",
             Material::Diffuse(_) => "diffuse",
             Material::Lambertian(_) => "lambertian",
             Material::Mirror(_) => "mirror",

@@ -29,6 +29,11 @@ pub struct FreeFlight {
     /// albedo-weighted transmittance over the channel-averaged density), T(t_max) / P(t ≥ t_max)
     /// when the segment is crossed.
     pub weight: Rgb,
+    /// What the event contributes per channel: T(t)·σs at an interaction, T(t_max) when crossed.
+    pub throughput: Rgb,
+    /// The event's density per channel, had that channel been followed: σt·T(t) at an
+    /// interaction, T(t_max) when crossed (the estimator's path-level channel MIS uses these).
+    pub density: Rgb,
 }
 
 impl HomogeneousMedium {
@@ -72,25 +77,24 @@ impl HomogeneousMedium {
     /// leaves the scene): channel `⌊3·u_channel⌋`, then t = −ln(1 − u)/σt,c.
     #[inline]
     pub fn sample_distance(&self, t_max: f32, u_channel: f32, u: f32) -> FreeFlight {
-        let sigma_t = self.sigma_t().to_array();
-        let c = ((u_channel * 3.0) as usize).min(2);
-        let t = if sigma_t[c] > 0.0 { -(1.0 - u).ln() / sigma_t[c] } else { f32::INFINITY };
+        self.sample_distance_in(t_max, ((u_channel * 3.0) as usize).min(2), u)
+    }
+
+    /// Samples a free-flight distance along a segment of length `t_max` following channel
+    /// `channel`'s density: t = −ln(1 − u)/σt,c.
+    #[inline]
+    pub fn sample_distance_in(&self, t_max: f32, channel: usize, u: f32) -> FreeFlight {
+        let sigma_t = self.sigma_t();
+        let s = sigma_t.to_array()[channel];
+        let t = if s > 0.0 { -(1.0 - u).ln() / s } else { f32::INFINITY };
         let scattered = t < t_max;
         let t_end = if scattered { t } else { t_max };
         let tr = self.transmittance(t_end);
-        // The density of the event under the channel mixture: σt,c·T_c(t) for an interaction at
-        // t, T_c(t_max) for crossing, averaged over the three equally likely channels.
-        let density =
-            if scattered { (0..3).map(|k| sigma_t[k] * tr.to_array()[k]).sum::<f32>() / 3.0 } else { tr.average() };
-        let weight = if density > 0.0 {
-            if scattered {
-                tr * self.sigma_s / density
-            } else {
-                tr / density
-            }
-        } else {
-            Rgb::BLACK
-        };
-        FreeFlight { t: t_end, scattered, weight }
+        // Each channel's density of the event: σt·T(t) for an interaction at t, T(t_max) for
+        // crossing. The weight divides by their average over the three equally likely channels.
+        let (throughput, density) = if scattered { (tr * self.sigma_s, sigma_t * tr) } else { (tr, tr) };
+        let mixture = density.average();
+        let weight = if mixture > 0.0 { throughput / mixture } else { Rgb::BLACK };
+        FreeFlight { t: t_end, scattered, weight, throughput, density }
     }
 }

@@ -1,12 +1,11 @@
-//! Participating media: phase functions and homogeneous media (transmittance and free-flight
-//! distance sampling). The maths is in docs/cameras-and-media.md.
-//!
-//! Not yet used by the estimator: volumetric path tracing (media attached to shapes and to the
-//! camera, Mitsuba's `volpath`) is the next step of issue #19; these are its building blocks,
-//! each tested on its own (tests/media.rs).
+//! Participating media: phase functions, homogeneous media (transmittance and free-flight
+//! distance sampling) and the boundaries surfaces put between them. The maths is in
+//! docs/cameras-and-media.md; the estimator's use of them is `integrator::media`.
 
+mod boundary;
 mod homogeneous;
 mod phase;
 
+pub use boundary::{MediumBoundary, MediumId};
 pub use homogeneous::{FreeFlight, HomogeneousMedium};
 pub use phase::{PhaseFunction, PhaseSample};
