@@ -8,7 +8,7 @@ use crate::film::{FeaturePixel, FeatureSample, PixelStats};
 use crate::integrator::PathStats;
 use crate::math::{Ray, Rgb, Vec2, Vec3};
 use crate::medium::MediumId;
-use crate::scene::Primitive;
+use crate::scene::{Interaction, Primitive};
 use crate::shape::SurfacePoint;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
@@ -187,6 +187,20 @@ impl<const N: usize> Surfaces<N> {
             material: [0; N],
             light: [Primitive::NO_LIGHT; N],
         }
+    }
+
+    /// Records lane `i`'s hit: the surface, material and light of `it`.
+    #[inline(always)]
+    pub fn set_hit(&mut self, i: usize, it: &Interaction) {
+        self.hit.0[i] = u32::MAX;
+        self.p.set(i, it.surface.p);
+        self.n_geometric.set(i, it.surface.n_geometric);
+        self.n_shading.set(i, it.surface.n_shading);
+        self.uv[i] = it.surface.uv;
+        self.dpdu[i] = it.surface.dpdu;
+        self.dpdv[i] = it.surface.dpdv;
+        self.material[i] = it.material_id;
+        self.light[i] = it.light;
     }
 
     /// Lane `i`'s hit as the shapes describe it.

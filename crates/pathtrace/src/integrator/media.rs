@@ -125,17 +125,7 @@ fn path_weight(r: &mut Rgb, f: Rgb, p: Rgb, hero: usize) -> [f32; 3] {
 #[inline(always)]
 fn set_closest_hit<const N: usize>(scene: &Scene, s: &mut Surfaces<N>, i: usize, ray: &Ray) {
     match scene.intersect(ray, f32::INFINITY) {
-        Some(hit) => {
-            let it = scene.interaction(ray, &hit);
-            s.hit.0[i] = u32::MAX;
-            s.p.set(i, it.surface.p);
-            s.n_geometric.set(i, it.surface.n_geometric);
-            s.n_shading.set(i, it.surface.n_shading);
-            s.uv[i] = it.surface.uv;
-            s.dpdu[i] = it.surface.dpdu;
-            s.material[i] = it.material_id;
-            s.light[i] = it.light;
-        }
+        Some(hit) => s.set_hit(i, &scene.interaction(ray, &hit)),
         None => s.hit.0[i] = 0,
     }
 }

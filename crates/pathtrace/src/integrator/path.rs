@@ -566,16 +566,7 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
         let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
         let found = if camera.lane(i) { hits[i].map(|hit| (ray, hit)) } else { job.scene.intersect_opaque(&ray) };
         if let Some((ray, hit)) = found {
-            let it = job.scene.interaction(&ray, &hit);
-            s.hit.0[i] = u32::MAX;
-            s.p.set(i, it.surface.p);
-            s.n_geometric.set(i, it.surface.n_geometric);
-            s.n_shading.set(i, it.surface.n_shading);
-            s.uv[i] = it.surface.uv;
-            s.dpdu[i] = it.surface.dpdu;
-            s.dpdv[i] = it.surface.dpdv;
-            s.material[i] = it.material_id;
-            s.light[i] = it.light;
+            s.set_hit(i, &job.scene.interaction(&ray, &hit));
         }
     }
     s
