@@ -177,6 +177,35 @@ NCAMERA = look_at([0.3, 2.5, -3.5], [0, 0, 0.3], [0, 1, 0])
 NLIGHT = look_at([-2.0, 2.0, -1.0], [0, 0, 0], [0, 1, 0])
 
 
+def rgb(c):
+    """Numbers as Mitsuba XML writes a colour or a point: comma separated, 9 significant digits."""
+    return ", ".join("%.9g" % x for x in c)
+
+
+def mitsuba_sensor(camera):
+    """The twins' sensor: glTF's camera (node matrix `camera`, looking along −z, +y up, YFOV)
+    as a 64 × 64 Mitsuba perspective sensor with a box filter and 64 independent samples."""
+    eye = [camera[i][3] for i in range(3)]
+    fwd = [-camera[i][2] for i in range(3)]
+    up = [camera[i][1] for i in range(3)]
+    return f"""    <sensor type="perspective">
+        <string name="fov_axis" value="y"/>
+        <float name="fov" value="{math.degrees(YFOV):.9g}"/>
+        <transform name="to_world">
+            <lookat origin="{rgb(eye)}" target="{rgb([eye[k] + fwd[k] for k in range(3)])}" up="{rgb(up)}"/>
+        </transform>
+        <sampler type="independent">
+            <integer name="sample_count" value="64"/>
+        </sampler>
+        <film type="hdrfilm">
+            <integer name="width" value="64"/>
+            <integer name="height" value="64"/>
+            <rfilter type="box"/>
+        </film>
+    </sensor>
+"""
+
+
 def write_normal_map_twin():
     data = b"".join(struct.pack("<3f", *p) for p in NFLOOR_P)
     data += b"".join(struct.pack("<3f", 0, 1, 0) for _ in NFLOOR_P)
@@ -224,11 +253,8 @@ def write_normal_map_twin():
             f.write("vt %.9g %.9g\n" % tuple(t))
         for i in range(0, 6, 3):
             f.write("f %d/%d %d/%d %d/%d\n" % tuple(x + 1 for j in NFLOOR_I[i:i + 3] for x in (j, j)))
-    eye = [NCAMERA[i][3] for i in range(3)]
-    fwd = [-NCAMERA[i][2] for i in range(3)]
-    up = [NCAMERA[i][1] for i in range(3)]
+    camera = NCAMERA
     direction = [-NLIGHT[i][2] for i in range(3)]
-    rgb = lambda c: ", ".join("%.9g" % x for x in c)
     xml = f"""<?xml version="1.0"?>
 <!-- The Mitsuba 3 twin of normal_map.gltf (same floor, uv, normal map, camera and light), written
      by benches/peers/make_gltf_assets.py. Used by crates/pathtrace-scene/tests/gltf.rs. -->
@@ -236,22 +262,7 @@ def write_normal_map_twin():
     <integrator type="path">
         <integer name="max_depth" value="4"/>
     </integrator>
-    <sensor type="perspective">
-        <string name="fov_axis" value="y"/>
-        <float name="fov" value="{math.degrees(YFOV):.9g}"/>
-        <transform name="to_world">
-            <lookat origin="{rgb(eye)}" target="{rgb([eye[k] + fwd[k] for k in range(3)])}" up="{rgb(up)}"/>
-        </transform>
-        <sampler type="independent">
-            <integer name="sample_count" value="64"/>
-        </sampler>
-        <film type="hdrfilm">
-            <integer name="width" value="64"/>
-            <integer name="height" value="64"/>
-            <rfilter type="box"/>
-        </film>
-    </sensor>
-    <shape type="obj">
+{mitsuba_sensor(camera)}    <shape type="obj">
         <string name="filename" value="normal_floor.obj"/>
         <boolean name="face_normals" value="true"/>
         <boolean name="flip_tex_coords" value="false"/>
@@ -338,11 +349,8 @@ def write_cutout_twin():
             f.write("vt %.9g %.9g\n" % tuple(t))
         for i in range(0, 6, 3):
             f.write("f %d/%d %d/%d %d/%d\n" % tuple(x + 1 for j in CARD_I[i:i + 3] for x in (j, j)))
-    eye = [CCAMERA[i][3] for i in range(3)]
-    fwd = [-CCAMERA[i][2] for i in range(3)]
-    up = [CCAMERA[i][1] for i in range(3)]
+    camera = CCAMERA
     direction = [-CLIGHT[i][2] for i in range(3)]
-    rgb = lambda c: ", ".join("%.9g" % x for x in c)
     card = [srgb_decode(c / 255) for c in CARD_SRGB]
     xml = f"""<?xml version="1.0"?>
 <!-- The Mitsuba 3 twin of cutout.gltf (same floor, card, uv, cut-out, camera and light), written
@@ -353,22 +361,7 @@ def write_cutout_twin():
     <integrator type="$integrator">
         <integer name="max_depth" value="-1"/>
     </integrator>
-    <sensor type="perspective">
-        <string name="fov_axis" value="y"/>
-        <float name="fov" value="{math.degrees(YFOV):.9g}"/>
-        <transform name="to_world">
-            <lookat origin="{rgb(eye)}" target="{rgb([eye[k] + fwd[k] for k in range(3)])}" up="{rgb(up)}"/>
-        </transform>
-        <sampler type="independent">
-            <integer name="sample_count" value="64"/>
-        </sampler>
-        <film type="hdrfilm">
-            <integer name="width" value="64"/>
-            <integer name="height" value="64"/>
-            <rfilter type="box"/>
-        </film>
-    </sensor>
-    <shape type="obj">
+{mitsuba_sensor(camera)}    <shape type="obj">
         <string name="filename" value="cutout_floor.obj"/>
         <boolean name="face_normals" value="true"/>
         <bsdf type="diffuse"><rgb name="reflectance" value="{rgb(FLOOR_COLOUR)}"/></bsdf>
@@ -416,11 +409,8 @@ def main():
         f.write(glb)
     write_obj(os.path.join(OUT, "floor.obj"), FLOOR_P, FLOOR_I)
     write_obj(os.path.join(OUT, "cube.obj"), [apply(CUBE_WORLD, p) for p in CUBE_P], CUBE_I)
-    eye = [CAMERA[i][3] for i in range(3)]
-    fwd = [-CAMERA[i][2] for i in range(3)]
-    up = [CAMERA[i][1] for i in range(3)]
+    camera = CAMERA
     direction = [-LIGHT[i][2] for i in range(3)]
-    rgb = lambda c: ", ".join("%.9g" % x for x in c)
     xml = f"""<?xml version="1.0"?>
 <!-- The Mitsuba 3 twin of scene.gltf (same triangles, colours, camera and light), written by
      benches/peers/make_gltf_assets.py. Used by crates/pathtrace-scene/tests/gltf.rs. -->
@@ -428,22 +418,7 @@ def main():
     <integrator type="path">
         <integer name="max_depth" value="4"/>
     </integrator>
-    <sensor type="perspective">
-        <string name="fov_axis" value="y"/>
-        <float name="fov" value="{math.degrees(YFOV):.9g}"/>
-        <transform name="to_world">
-            <lookat origin="{rgb(eye)}" target="{rgb([eye[k] + fwd[k] for k in range(3)])}" up="{rgb(up)}"/>
-        </transform>
-        <sampler type="independent">
-            <integer name="sample_count" value="64"/>
-        </sampler>
-        <film type="hdrfilm">
-            <integer name="width" value="64"/>
-            <integer name="height" value="64"/>
-            <rfilter type="box"/>
-        </film>
-    </sensor>
-    <shape type="obj">
+{mitsuba_sensor(camera)}    <shape type="obj">
         <string name="filename" value="floor.obj"/>
         <boolean name="face_normals" value="true"/>
         <bsdf type="diffuse"><rgb name="reflectance" value="{rgb(FLOOR_COLOUR)}"/></bsdf>
