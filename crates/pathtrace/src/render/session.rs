@@ -83,6 +83,9 @@ pub struct RenderOutcome {
     pub progress: Progress,
 }
 
+/// How often the error estimate shown while rendering is refreshed, at most.
+const DISPLAY_ESTIMATE_INTERVAL: Duration = Duration::from_millis(500);
+
 struct Shared {
     film: Mutex<Film>,
     /// Kept apart from the film (and locked after it) so the film stays as it is.
@@ -97,6 +100,8 @@ struct Shared {
     dropped: AtomicU64,
     /// `f64` bits of the last error estimate; NaN for none.
     error_estimate: AtomicU64,
+    /// When the error estimate was last computed (see [`Shared::refresh_error_estimate`]).
+    estimated_at: Mutex<Option<Instant>>,
     start: Instant,
     end: Mutex<Option<Instant>>,
     /// Notified (with `end` set) when the render ends, so waiters wake at once rather than
@@ -137,7 +142,22 @@ impl Shared {
     fn update_error_estimate(&self) -> Option<f64> {
         let e = self.lock_film().relative_rms_error_estimate();
         self.error_estimate.store(e.unwrap_or(f64::NAN).to_bits(), Ordering::Relaxed);
+        *self.estimated_at.lock().unwrap_or_else(|e| e.into_inner()) = Some(Instant::now());
         e
+    }
+
+    /// Updates the error estimate, for display only, unless it was computed less than
+    /// [`DISPLAY_ESTIMATE_INTERVAL`] ago. The estimate is a pass over every pixel that runs
+    /// between waves, while the render threads wait: after each of a fast render's many waves it
+    /// took 4% of a teapot render's time. Renders that stop on it (adaptive) update every wave.
+    /// Returns whether it did.
+    fn refresh_error_estimate(&self) -> bool {
+        let last = *self.estimated_at.lock().unwrap_or_else(|e| e.into_inner());
+        let due = last.is_none_or(|t| t.elapsed() >= DISPLAY_ESTIMATE_INTERVAL);
+        if due {
+            self.update_error_estimate();
+        }
+        due
     }
 }
 
@@ -202,6 +222,7 @@ impl RenderSession {
             shadow_rays: AtomicU64::new(0),
             dropped: AtomicU64::new(0),
             error_estimate: AtomicU64::new(f64::NAN.to_bits()),
+            estimated_at: Mutex::new(None),
             start: Instant::now(),
             end: Mutex::new(None),
             ended: Condvar::new(),
@@ -374,7 +395,9 @@ fn run_uniform(scene: &Scene, prep: &Prepared, settings: &RenderSettings, shared
     let deadline = settings.time_limit.map(|t| shared.start + t);
     let start = settings.samples().start;
     let mut first = start;
+    let mut estimated = false;
     for count in settings.waves() {
+        estimated = false;
         if shared.stop_requested(deadline) {
             break;
         }
@@ -384,6 +407,10 @@ fn run_uniform(scene: &Scene, prep: &Prepared, settings: &RenderSettings, shared
         }
         first = first.saturating_add(count);
         shared.spp_done.store(first - start, Ordering::Relaxed);
+        estimated = shared.refresh_error_estimate();
+    }
+    // The render's outcome reports the estimate of the film it returns.
+    if !estimated {
         shared.update_error_estimate();
     }
 }
