@@ -18,7 +18,7 @@
 //! visible slopes by Jakob's numerical inversion (2014, "An Improved Visible Normal Sampling
 //! Routine for the Beckmann Distribution"), here bracketed and iterated to convergence.
 
-use crate::math::special::{erf_fast, erfinv_fast};
+use crate::math::special::{erf_fast, erfinv_fast, exp_flushed, exp_flushed_f32};
 use crate::math::{Vec2, Vec3, PI};
 
 /// Which normal distribution.
@@ -63,7 +63,7 @@ impl Microfacet {
         let d = match self.kind {
             MicrofacetKind::Beckmann => {
                 let e = ((m.x / ax) * (m.x / ax) + (m.y / ay) * (m.y / ay)) / cos2;
-                (-e).exp() / (PI * ax * ay * cos2 * cos2)
+                exp_flushed_f32(-e) / (PI * ax * ay * cos2 * cos2)
             }
             MicrofacetKind::Ggx => {
                 let t = (m.x / ax) * (m.x / ax) + (m.y / ay) * (m.y / ay) + cos2;
@@ -94,7 +94,7 @@ impl Microfacet {
             MicrofacetKind::Beckmann => {
                 let a = 1.0 / f64::from(a2t2).sqrt();
                 // erf to single precision: Λ is returned as f32 anyway.
-                let l = 0.5 * (erf_fast(a) - 1.0) + (-a * a).exp() / (2.0 * a * std::f64::consts::PI.sqrt());
+                let l = 0.5 * (erf_fast(a) - 1.0) + exp_flushed(-a * a) / (2.0 * a * std::f64::consts::PI.sqrt());
                 l as f32
             }
         }
@@ -182,7 +182,7 @@ fn beckmann_visible_slopes_11(cos_theta: f64, u1: f64, u2: f64) -> (f64, f64) {
     let cot_theta = cos_theta / sin_theta;
     let inv_sqrt_pi = 1.0 / std::f64::consts::PI.sqrt();
     let (mut lo, mut hi) = (-1.0, erf_fast(cot_theta));
-    let target = u1 * (1.0 + hi + inv_sqrt_pi * tan_theta * (-cot_theta * cot_theta).exp());
+    let target = u1 * (1.0 + hi + inv_sqrt_pi * tan_theta * exp_flushed(-cot_theta * cot_theta));
     // Initial guess: the exact solution at grazing incidence (Jakob 2014).
     let mut b = hi - (hi + 1.0) * erf_fast((-u1.ln()).sqrt());
     for _ in 0..64 {
@@ -190,7 +190,7 @@ fn beckmann_visible_slopes_11(cos_theta: f64, u1: f64, u2: f64) -> (f64, f64) {
             b = 0.5 * (lo + hi);
         }
         let x = erfinv_fast(b);
-        let value = 1.0 + b + inv_sqrt_pi * tan_theta * (-x * x).exp() - target;
+        let value = 1.0 + b + inv_sqrt_pi * tan_theta * exp_flushed(-x * x) - target;
         if value.abs() < 1e-7 {
             break;
         }
