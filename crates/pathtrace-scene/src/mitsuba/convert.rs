@@ -752,7 +752,9 @@ impl<'a> Conv<'a, '_> {
         }
         let (kind, maps) = match bsdf {
             Some(b) => self.bsdf_kind(b)?,
-            // Mitsuba's default BSDF: a one-sided diffuse of reflectance 0.5.
+            // Mitsuba's default BSDF (src/render/shape.cpp): a one-sided diffuse of reflectance
+            // 0.5, or of reflectance 0 on an emitting shape.
+            None if emission.is_some() => (MaterialKind::Emissive, Wrappers::default()),
             None => {
                 let grey = MaterialKind::Lambertian { albedo: Colour::grey(0.5) };
                 (MaterialKind::OneSided(Box::new(grey)), Wrappers::default())
