@@ -656,6 +656,22 @@ mod tests {
     }
 
     #[test]
+    fn one_sided_parses_checks_and_round_trips() {
+        let m = parse("type = \"lambertian\"\nalbedo = 0.5\none_sided = true").unwrap();
+        assert_eq!(m.kind.sides(), (&MaterialKind::Lambertian { albedo: Colour::grey(0.5) }, true));
+        let text = toml::to_string(&m).unwrap();
+        assert!(text.contains("one_sided = true"), "{text}");
+        let back: MaterialDef = toml::from_str(&text).unwrap();
+        assert_eq!(m, back);
+        // The default, and `false`, shade both faces.
+        for t in ["", "\none_sided = false"] {
+            assert_eq!(parse(&format!("type = \"lambertian\"\nalbedo = 0.5{t}")).unwrap().kind.sides().1, false);
+        }
+        assert!(parse("type = \"dielectric\"\none_sided = true").unwrap_err().contains("light crosses it"));
+        assert!(parse("type = \"emissive\"\nradiance = 1\none_sided = true").unwrap_err().contains("two_sided"));
+    }
+
+    #[test]
     fn alpha_textures_parse_check_and_round_trip() {
         let text =
             "type = \"rough_conductor\"\nalpha_texture = { type = \"bitmap\", filename = \"r.png\", raw = true }";
