@@ -96,6 +96,7 @@ fn lanes_and_one_lane_give_every_sample_the_same_value() {
     for rel in [
         "tests/data/thinlens_box.xml",
         "tests/data/orthographic_box.xml",
+        "tests/data/v06/scene.xml",
         "tests/data/maps/normal_bump.xml",
         "tests/data/maps/mask.xml",
         "tests/data/maps/roughness.xml",

@@ -68,9 +68,10 @@ fn refs_share_a_material_and_twosided_unwraps() {
     assert_eq!(f.objects[1].material, "red");
     let red = &f.materials["red"];
     assert!(matches!(red.kind, MaterialKind::Lambertian { albedo: Colour::Constant(Triple::Each(_)) }));
-    // No BSDF: Mitsuba's default diffuse 0.5.
+    // No BSDF: Mitsuba's default diffuse 0.5, one-sided as every Mitsuba `diffuse` outside
+    // `twosided`.
     let default = &f.materials[&f.objects[2].material];
-    assert_eq!(default.kind, MaterialKind::Lambertian { albedo: Colour::grey(0.5) });
+    assert_eq!(default.kind, MaterialKind::OneSided(Box::new(MaterialKind::Lambertian { albedo: Colour::grey(0.5) })));
     let lamp = &f.materials[&f.objects[3].material];
     assert!(lamp.emission.is_some());
     assert!(matches!(f.objects[0].shape, ShapeDef::Quad { .. }));
@@ -174,12 +175,12 @@ fn spectra_are_converted_like_mitsuba() {
     let (f, w) = conv(&xml, &[]);
     assert!(w.is_empty(), "{w:?}");
     let m = f.materials.values().next().unwrap();
-    let MaterialKind::Lambertian { albedo: Colour::Constant(albedo) } = m.kind else { panic!("{m:?}") };
+    let MaterialKind::Lambertian { albedo: Colour::Constant(albedo) } = m.kind.sides().0 else { panic!("{m:?}") };
     let close = |t: Triple, e: [f32; 3]| {
         let v = t.vec3();
         (v - Vec3::from(e)).abs().max_element() < 1e-4
     };
-    assert!(close(albedo, [0.726577, 0.424956, 0.17397]), "{albedo:?}");
+    assert!(close(*albedo, [0.726577, 0.424956, 0.17397]), "{albedo:?}");
     assert!(close(m.emission.unwrap().radiance, [0.849361, 0.405349, 0.15115]), "{m:?}");
 }
 
@@ -287,7 +288,8 @@ fn cornell_xml() -> String {
   </sensor>
   <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.65, 0.05, 0.05"/></bsdf>
   <bsdf type="twosided" id="white"><bsdf type="diffuse"><rgb name="reflectance" value="0.73, 0.73, 0.73"/></bsdf></bsdf>
-  <bsdf type="diffuse" id="green"><rgb name="reflectance" value="0.12, 0.45, 0.15"/></bsdf>
+  <!-- The green wall faces out of the box: twosided, or Mitsuba would show its black back. -->
+  <bsdf type="twosided" id="green"><bsdf type="diffuse"><rgb name="reflectance" value="0.12, 0.45, 0.15"/></bsdf></bsdf>
   <bsdf type="diffuse" id="black"><rgb name="reflectance" value="0, 0, 0"/></bsdf>
 "#,
     );

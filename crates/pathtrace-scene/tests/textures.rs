@@ -187,7 +187,7 @@ fn mitsuba_textures_nested_and_by_reference() {
     let (file, warnings) = pathtrace_scene::mitsuba::convert_file(&path, &[]).unwrap();
     assert!(warnings.is_empty(), "{warnings:?}");
     let MaterialKind::Lambertian { albedo: Colour::Texture(TextureDef::Checkerboard { color0, color1, to_uv }) } =
-        &file.materials["floor"].kind
+        file.materials["floor"].kind.sides().0
     else {
         panic!("{:?}", file.materials["floor"])
     };

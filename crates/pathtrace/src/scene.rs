@@ -108,6 +108,9 @@ pub struct Scene {
     textures: Vec<Texture>,
     /// Some material has an opacity mask (rays then pass cut-outs: `crate::cutout`).
     cutouts: bool,
+    /// Per material id: it scatters from its front only (black from behind, as Mitsuba's BSDFs
+    /// outside `twosided`); opaque materials are otherwise shaded on both faces.
+    one_sided: Vec<bool>,
     pub lights: LightSet,
     pub camera: CameraDesc,
     /// The participating media, indexed by medium id.
@@ -319,6 +322,13 @@ impl Scene {
         self.bindings.get(id as usize).and_then(|b| b.normal.as_ref())
     }
 
+    /// True if material `id` scatters from its front only: seen from behind (the shading
+    /// normal facing away from the viewer) it is black.
+    #[inline(always)]
+    pub fn is_one_sided(&self, id: u32) -> bool {
+        self.one_sided.get(id as usize).copied().unwrap_or(false)
+    }
+
     /// True if some material has an opacity mask.
     #[inline(always)]
     pub fn has_cutouts(&self) -> bool {
@@ -412,6 +422,8 @@ enum Entry {
 pub struct SceneBuilder {
     materials: Vec<(Material, Option<Emission>)>,
     bindings: Vec<TextureBindings>,
+    /// Per material id: front-only scattering (see [`Scene::is_one_sided`]).
+    one_sided: Vec<bool>,
     textures: Vec<Texture>,
     entries: Vec<Entry>,
     camera: CameraDesc,
@@ -483,6 +495,24 @@ impl SceneBuilder {
             self.bindings.resize(material.0 as usize + 1, TextureBindings::default());
         }
         self.bindings[material.0 as usize].normal = Some(p);
+        Ok(())
+    }
+
+    /// Makes `material` scatter from its front only (black from behind), as Mitsuba's BSDFs do
+    /// unless wrapped in `twosided`. Dielectrics, which have an inside, are refused.
+    pub fn set_one_sided(&mut self, material: MaterialId) -> Result<(), BuildError> {
+        self.check_material(material)?;
+        let m = &self.materials[material.0 as usize].0;
+        if !m.is_two_sided() || m.is_null() {
+            return Err(BuildError::Material(format!(
+                "a {} material cannot be one-sided: it has an inside (light crosses it)",
+                m.name()
+            )));
+        }
+        if self.one_sided.len() <= material.0 as usize {
+            self.one_sided.resize(material.0 as usize + 1, false);
+        }
+        self.one_sided[material.0 as usize] = true;
         Ok(())
     }
 
@@ -586,6 +616,10 @@ impl SceneBuilder {
         if let Some(b) = self.bindings.get(material.0 as usize).cloned() {
             self.bindings.resize(new as usize + 1, TextureBindings::default());
             self.bindings[new as usize] = b;
+        }
+        if self.one_sided.get(material.0 as usize).copied().unwrap_or(false) {
+            self.one_sided.resize(new as usize + 1, false);
+            self.one_sided[new as usize] = true;
         }
         self.boundaries.resize(new as usize + 1, None);
         self.boundaries[new as usize] = Some(boundary);
@@ -834,6 +868,8 @@ impl SceneBuilder {
         let mut bindings = self.bindings;
         bindings.resize(self.materials.len(), TextureBindings::default());
         let cutouts = bindings.iter().any(|b| b.opacity.is_some());
+        let mut one_sided = self.one_sided;
+        one_sided.resize(self.materials.len(), false);
         let mut boundaries = self.boundaries;
         if !self.media.is_empty() {
             boundaries.resize(self.materials.len(), None);
@@ -850,6 +886,7 @@ impl SceneBuilder {
             bindings,
             textures: self.textures,
             cutouts,
+            one_sided,
             lights,
             camera: self.camera,
             media: self.media,

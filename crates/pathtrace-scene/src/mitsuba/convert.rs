@@ -625,9 +625,15 @@ impl<'a> Conv<'a, '_> {
 
     /// The scattering part of a `<bsdf>` (after `<ref>`), unwrapping `twosided`, its normal or
     /// bump map, unwrapping `normalmap` and `bumpmap`, and its opacity, unwrapping `mask`.
+    /// Mitsuba's `diffuse` reflects from its front only (both cosines > 0 in its shading frame)
+    /// unless wrapped in `twosided`: outside one it becomes one-sided.
     fn bsdf_kind(&mut self, e: &'a Element) -> R<(MaterialKind, Wrappers)> {
         let mut maps = Wrappers::default();
         let kind = self.bsdf_kind_at(e, 0, &mut maps)?;
+        let kind = match kind {
+            MaterialKind::Lambertian { .. } if !maps.two_sided => MaterialKind::OneSided(Box::new(kind)),
+            k => k,
+        };
         Ok((kind, maps))
     }
 
@@ -659,6 +665,7 @@ impl<'a> Conv<'a, '_> {
                 MaterialKind::Lambertian { albedo }
             }
             "twosided" => {
+                maps.two_sided = true;
                 let inner = e.children.iter().find(|c| c.tag == "bsdf" || c.tag == "ref");
                 match inner {
                     Some(i) => {
@@ -745,7 +752,13 @@ impl<'a> Conv<'a, '_> {
         }
         let (kind, maps) = match bsdf {
             Some(b) => self.bsdf_kind(b)?,
-            None => (MaterialKind::Lambertian { albedo: Colour::grey(0.5) }, Wrappers::default()),
+            // Mitsuba's default BSDF (src/render/shape.cpp): a one-sided diffuse of reflectance
+            // 0.5, or of reflectance 0 on an emitting shape.
+            None if emission.is_some() => (MaterialKind::Emissive, Wrappers::default()),
+            None => {
+                let grey = MaterialKind::Lambertian { albedo: Colour::grey(0.5) };
+                (MaterialKind::OneSided(Box::new(grey)), Wrappers::default())
+            }
         };
         if maps.opacity.is_some() && emission.is_some() {
             return Err(self.src.error(shape.offset, "an emitting shape cannot have a `mask` BSDF (not supported)"));

@@ -180,9 +180,6 @@ pub fn parse(src: &mut XmlSource, defines: &[(&str, &str)], warnings: &mut Vec<S
         ));
     }
     expand_includes(src, &mut root, 0)?;
-    if super::upgrade::is_v1(&root) {
-        super::upgrade::upgrade(&mut root);
-    }
     let mut params: BTreeMap<String, String> = BTreeMap::new();
     for d in root.children.iter().filter(|c| c.tag == "default") {
         let (Some(name), Some(value)) = (d.attr("name"), d.attr("value")) else {
@@ -197,6 +194,10 @@ pub fn parse(src: &mut XmlSource, defines: &[(&str, &str)], warnings: &mut Vec<S
         params.insert(name.to_string(), value.to_string());
     }
     substitute(&mut root, &params);
+    // After substitution, as Mitsuba upgrades the parsed properties (`$name` may be a colour).
+    if super::upgrade::is_v1(&root) {
+        super::upgrade::upgrade(&mut root, src, warnings)?;
+    }
     Ok(root)
 }
 

@@ -260,7 +260,8 @@ impl<L: Locate> Ctx<'_, L> {
             }
         };
         let (base, spec) = (ColourSlot::Base, ColourSlot::Specular);
-        let m = match &def.kind {
+        let (kind, one_sided) = def.kind.sides();
+        let m = match kind {
             MaterialKind::Diffuse { albedo } => Material::Diffuse(Diffuse { albedo: col(albedo, base, "albedo")? }),
             MaterialKind::Lambertian { albedo } => {
                 Material::Lambertian(Lambertian { albedo: col(albedo, base, "albedo")? })
@@ -307,6 +308,9 @@ impl<L: Locate> Ctx<'_, L> {
                 let distribution = microfacet(*roughness);
                 Material::RoughPlastic(RoughPlastic::new(distribution, albedo, specular, ior.f32(), *nonlinear))
             }
+            MaterialKind::OneSided(_) => {
+                return Err(self.src.error_at(&at, format!("material `{name}`: `one_sided` is given twice")));
+            }
         };
         validate_material(&m).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
         let id = match def.emission {
@@ -319,6 +323,9 @@ impl<L: Locate> Ctx<'_, L> {
                 self.b.material_with_emission(m, Emission { radiance, two_sided: e.two_sided })
             }
         };
+        if one_sided {
+            self.b.set_one_sided(id).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
+        }
         for (slot, tex) in bound {
             let t = self.b.texture(tex);
             self.b.bind_texture(id, slot, t).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;

@@ -62,9 +62,20 @@ pub enum MaterialKind {
     /// An index-matched boundary (Mitsuba's `null`): light passes straight through; it marks
     /// where the media of its objects' `interior` and `exterior` begin and end.
     Null,
+    /// The inner model scattering from its front only (`one_sided = true`): black seen from
+    /// behind, as Mitsuba's BSDFs outside `twosided`. Without it, opaque models shade both faces.
+    OneSided(Box<MaterialKind>),
 }
 
 impl MaterialKind {
+    /// The scattering model without its [`MaterialKind::OneSided`] wrapper, and whether it had one.
+    pub fn sides(&self) -> (&MaterialKind, bool) {
+        match self {
+            MaterialKind::OneSided(inner) => (inner, true),
+            k => (k, false),
+        }
+    }
+
     /// The colour parameters, for edits that apply to every texture (e.g. rebasing file paths).
     pub fn colours_mut(&mut self) -> Vec<&mut Colour> {
         match self {
@@ -83,6 +94,7 @@ impl MaterialKind {
                 vec![albedo, specular]
             }
             MaterialKind::Emissive | MaterialKind::Null => Vec::new(),
+            MaterialKind::OneSided(inner) => inner.colours_mut(),
         }
     }
 }
@@ -190,6 +202,8 @@ pub struct RawMaterial {
     emission: Option<Triple>,
     #[serde(skip_serializing_if = "Option::is_none")]
     two_sided: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    one_sided: Option<bool>,
     #[serde(skip_serializing_if = "Option::is_none")]
     metal: Option<MetalName>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -406,6 +420,16 @@ impl TryFrom<RawMaterial> for MaterialDef {
         if r.alpha_texture.is_some() && (r.alpha_u.is_some() || r.alpha_v.is_some()) {
             return Err("`alpha_texture` is an isotropic α: give it without `alpha_u` and `alpha_v`".into());
         }
+        let kind = match (r.one_sided, t) {
+            (Some(true), MaterialType::Dielectric | MaterialType::RoughDielectric | MaterialType::Null) => {
+                return Err(format!("a {name} material cannot be `one_sided`: light crosses it"));
+            }
+            (Some(true), MaterialType::Emissive) => {
+                return Err("an emissive material cannot be `one_sided` (it does not scatter; see `two_sided`)".into());
+            }
+            (Some(true), _) => MaterialKind::OneSided(Box::new(kind)),
+            _ => kind,
+        };
         Ok(MaterialDef { kind, emission, normal, opacity, roughness: r.alpha_texture })
     }
 }
@@ -450,7 +474,12 @@ impl From<MaterialDef> for RawMaterial {
     fn from(m: MaterialDef) -> Self {
         let mut r = RawMaterial::default();
         let emissive = m.kind == MaterialKind::Emissive;
-        match m.kind {
+        let mut kind = m.kind;
+        while let MaterialKind::OneSided(inner) = kind {
+            r.one_sided = Some(true);
+            kind = *inner;
+        }
+        match kind {
             MaterialKind::Diffuse { albedo } => (r.kind, r.albedo) = (Some(MaterialType::Diffuse), Some(albedo)),
             MaterialKind::Lambertian { albedo } => (r.kind, r.albedo) = (Some(MaterialType::Lambertian), Some(albedo)),
             MaterialKind::Mirror { reflectance } => {
@@ -491,6 +520,8 @@ impl From<MaterialDef> for RawMaterial {
                     (Some(albedo), Some(specular), Some(Ior(ior)), Some(nonlinear));
                 r.set_roughness(roughness);
             }
+            // Unwrapped above.
+            MaterialKind::OneSided(_) => {}
         }
         if let Some(e) = m.emission {
             if emissive {
@@ -622,6 +653,22 @@ mod tests {
             .unwrap_err()
             .contains("needs an `opacity`"));
         assert!(parse("type = \"emissive\"\nradiance = 1\nopacity = 0.5").unwrap_err().contains("cannot take"));
+    }
+
+    #[test]
+    fn one_sided_parses_checks_and_round_trips() {
+        let m = parse("type = \"lambertian\"\nalbedo = 0.5\none_sided = true").unwrap();
+        assert_eq!(m.kind.sides(), (&MaterialKind::Lambertian { albedo: Colour::grey(0.5) }, true));
+        let text = toml::to_string(&m).unwrap();
+        assert!(text.contains("one_sided = true"), "{text}");
+        let back: MaterialDef = toml::from_str(&text).unwrap();
+        assert_eq!(m, back);
+        // The default, and `false`, shade both faces.
+        for t in ["", "\none_sided = false"] {
+            assert!(!parse(&format!("type = \"lambertian\"\nalbedo = 0.5{t}")).unwrap().kind.sides().1);
+        }
+        assert!(parse("type = \"dielectric\"\none_sided = true").unwrap_err().contains("light crosses it"));
+        assert!(parse("type = \"emissive\"\nradiance = 1\none_sided = true").unwrap_err().contains("two_sided"));
     }
 
     #[test]

@@ -209,7 +209,10 @@ pub(crate) fn vertex<const N: usize>(
     let mut albedo = [F32s::<N>::ZERO; 3];
     for i in (alive & !scatter).lanes() {
         let class = &lanes.classes[s.material[i] as usize];
-        if paths.segments[i] >= max_segments || class.black {
+        // A one-sided material seen from behind (the shading normal facing away, Mitsuba's
+        // cos θ_o ≤ 0 in the shading frame) scatters nothing, like a black one.
+        let from_behind = class.one_sided && s.n_shading.lane(i).dot(wo.lane(i)) <= 0.0;
+        if paths.segments[i] >= max_segments || class.black || from_behind {
             paths.finish(i, out);
             alive.0[i] = 0;
             continue;

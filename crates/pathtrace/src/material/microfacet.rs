@@ -215,6 +215,15 @@ pub fn reflect_about(v: Vec3, m: Vec3) -> Vec3 {
     2.0 * v.dot(m) * m - v
 }
 
+/// Refraction of `v` (with cos θ = `cos_vm` > 0 to `m`) through the microfacet normal `m`, for
+/// a crossing of relative index `eta` whose refracted cosine is `cos_t` (from
+/// [`super::dielectric::fresnel_dielectric`]). Snell about m: −v/η + (cos θv/η − cos θt) m (the
+/// tangential part shrinks by 1/η).
+#[inline]
+pub fn refract_about(v: Vec3, m: Vec3, cos_vm: f32, cos_t: f32, eta: f32) -> Vec3 {
+    (-v / eta + (cos_vm / eta - cos_t) * m).normalize()
+}
+
 impl MicrofacetKind {
     /// The name in scene files (as Mitsuba's `distribution`).
     pub fn name(self) -> &'static str {

@@ -12,7 +12,7 @@
 //! As `dielectric`, it sees both sides: z > 0 is outside (index 1), z < 0 inside (index `ior`).
 
 use super::dielectric::fresnel_dielectric;
-use super::microfacet::{reflect_about, Microfacet};
+use super::microfacet::{reflect_about, refract_about, Microfacet};
 use super::BsdfSample;
 use crate::math::{Rgb, Vec2, Vec3};
 
@@ -63,8 +63,7 @@ impl RoughDielectric {
             let weight = self.tint * self.distribution.g1(wi, m);
             return (pdf > 0.0).then_some(BsdfSample { wi: wi * o.sign, weight, pdf, delta: false, eta: 1.0 });
         }
-        // Snell about m: wi = −wo/η + (cos θo/η − cos θt) m (the tangential part shrinks by 1/η).
-        let wi = (-o.wo / eta + (cos_om / eta - cos_t) * m).normalize();
+        let wi = refract_about(o.wo, m, cos_om, cos_t, eta);
         if wi.z >= 0.0 {
             return None;
         }

@@ -3,19 +3,21 @@
 //!
 //! - Coating: microfacet reflection F(wo·m) D G / (4 cos θo cos θi) (Walter et al. 2007), times
 //!   `specular`.
-//! - Base: f = ρ' t(cos θo) t(cos θi) / (π η²), where t(μ) = 1 − R(μ) is the fraction of light
-//!   the rough coating lets through at cos θ = μ, R(μ) being the coating's directional albedo
-//!   ∫ F G1 over the visible normals (Mitsuba: `eval_reflectance`), tabulated at 64 values
-//!   μ = i/63 and interpolated linearly; ρ' = ρ / (1 − R_int) (or ρ / (1 − ρ R_int) with
-//!   `nonlinear`), R_int = 2·mean over those μ of μ·R(μ) seen from inside (relative index 1/η).
-//!   Tables and constants follow Mitsuba's definitions; the integrals use Gauss–Legendre rules
-//!   over the visible-normal sample square (32² points from outside, 64² from inside).
+//! - Base: f = ρ' t(cos θo) t(cos θi) / (π η²), where t(μ) is the fraction of light the rough
+//!   coating transmits at cos θ = μ: ∫ (1 − F(wo·m)) G1(wt, m) over the visible normals m of wo,
+//!   wt being wo refracted through m (Mitsuba: `eval_transmittance`; light masked on its way
+//!   through, or reflected, does not reach the base), tabulated at 64 values μ = i/63 and
+//!   interpolated linearly; ρ' = ρ / (1 − R_int) (or ρ / (1 − ρ R_int) with `nonlinear`), R_int =
+//!   2·mean over those μ of μ·R(μ), R(μ) = ∫ F G1(wr, m) the coating's directional albedo seen
+//!   from inside (relative index 1/η; Mitsuba: `eval_reflectance`). Tables and constants follow
+//!   Mitsuba's definitions; the integrals use Gauss–Legendre rules over the visible-normal sample
+//!   square (32² points from outside, 128² from inside, as Mitsuba).
 //! - Sampling: the coating (visible normals) with probability (1 − t(cos θo))·s, the base
 //!   (cosine) with t(cos θo)(1 − s), normalised; s = Mitsuba's specular sampling weight. The
 //!   weight is f·cos/pdf with the pdf of the whole mixture.
 
 use super::dielectric::fresnel_dielectric;
-use super::microfacet::{reflect_about, Microfacet};
+use super::microfacet::{reflect_about, refract_about, Microfacet};
 use super::plastic::{base_albedo, specular_sampling_weight};
 use super::BsdfSample;
 use crate::math::special::gauss_legendre;
@@ -65,14 +67,39 @@ fn coating_reflectance(distribution: &Microfacet, mu: f32, eta: f32, n: usize) -
     sum as f32
 }
 
+/// Directional transmittance of the same interface: ∫ (1 − F(wo·m)) G1(wt, m) over the visible
+/// normals of wo, wt = wo refracted through m (counted only if it crosses the surface).
+fn coating_transmittance(distribution: &Microfacet, mu: f32, eta: f32, n: usize) -> f32 {
+    let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
+    let rule = gauss_legendre(n);
+    let mut sum = 0.0f64;
+    for (x, wx) in &rule {
+        for (y, wy) in &rule {
+            let u = Vec2::new((0.5 * x + 0.5) as f32, (0.5 * y + 0.5) as f32);
+            let m = distribution.sample_visible(wo, u);
+            let cos_om = wo.dot(m);
+            let (f, cos_t, eta_t) = fresnel_dielectric(cos_om, eta);
+            if cos_om <= 0.0 || cos_t == 0.0 {
+                continue;
+            }
+            let wt = refract_about(wo, m, cos_om, cos_t, eta_t);
+            if wt.z >= 0.0 {
+                continue;
+            }
+            sum += 0.25 * wx * wy * f64::from((1.0 - f) * distribution.g1(wt, m));
+        }
+    }
+    sum as f32
+}
+
 impl RoughPlastic {
     pub fn new(distribution: Microfacet, albedo: Rgb, specular: Rgb, ior: f32, nonlinear: bool) -> Self {
         let mus = (0..TABLE_SIZE).map(|i| (i as f32 / (TABLE_SIZE - 1) as f32).max(1e-6));
         let mut transmittance = [0.0; TABLE_SIZE];
         let mut internal = 0.0f32;
         for (i, mu) in mus.enumerate() {
-            transmittance[i] = 1.0 - coating_reflectance(&distribution, mu, ior, 32);
-            internal += coating_reflectance(&distribution, mu, 1.0 / ior, 64) * mu;
+            transmittance[i] = coating_transmittance(&distribution, mu, ior, 32);
+            internal += coating_reflectance(&distribution, mu, 1.0 / ior, 128) * mu;
         }
         internal *= 2.0 / TABLE_SIZE as f32;
         let base = base_albedo(albedo, internal, nonlinear) * (INV_PI / (ior * ior));
@@ -140,5 +167,38 @@ impl RoughPlastic {
         let cos_om = wo.dot(m);
         let coat = if cos_om > 0.0 { self.distribution.pdf_visible(wo, m) / (4.0 * cos_om) } else { 0.0 };
         p_coat * coat + (1.0 - p_coat) * warp::cosine_hemisphere_pdf(wi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::MicrofacetKind;
+
+    fn dir(theta: f32, phi: f32) -> Vec3 {
+        Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())
+    }
+
+    #[test]
+    fn values_and_densities_match_mitsuba() {
+        // Mitsuba 3.9.1 scalar_rgb `roughplastic` (ggx, alpha 0.15, int_ior 1.5, ext_ior 1,
+        // diffuse_reflectance 0.5): bsdf.eval and bsdf.pdf with si.wi = dir(θo, 0) and
+        // wo = dir(θi, φ) (Mitsuba's eval includes cos θi, as ours).
+        let d = Microfacet::new(MicrofacetKind::Ggx, 0.15, 0.15);
+        let m = RoughPlastic::new(d, Rgb::splat(0.5), Rgb::WHITE, 1.5, false);
+        for (to, ti, phi, value, pdf) in [
+            (0.3, 0.5, 2.0, 0.131_170_96, 0.282_154_4),
+            (1.2, 0.4, 1.0, 0.111_359_15, 0.221_844_58),
+            (0.6, 1.3, 3.0, 0.036_425_32, 0.086_840_35),
+            (0.2, 0.25, 3.0, 0.265_285_37, 0.551_587_4),
+        ] {
+            let (wo, wi) = (dir(to, 0.0), dir(ti, phi));
+            let (f, p) = (m.eval(wo, wi).r, m.pdf(wo, wi));
+            assert!((f / value - 1.0).abs() < 2e-3, "θo {to} θi {ti}: {f} vs Mitsuba {value}");
+            // The coating's pick probability is ∝ 1 − t(cos θo), which near normal incidence is
+            // ~0.04: the tables' ~1e-4 quadrature differences show there as 0.3% (seen: 0.31%
+            // at θo = 0.2 next to the mirror direction; the other cases agree within 0.02%).
+            assert!((p / pdf - 1.0).abs() < 5e-3, "θo {to} θi {ti}: pdf {p} vs Mitsuba {pdf}");
+        }
     }
 }

@@ -95,6 +95,8 @@ pub(crate) struct MaterialClass {
     pub delta: bool,
     /// Reflects nothing (pure emitters): the path ends there.
     pub black: bool,
+    /// Scatters from its front only: seen from behind, the path ends there.
+    pub one_sided: bool,
 }
 
 /// What a scene offers the lane-parallel forms, prepared once per render.
@@ -132,6 +134,7 @@ impl WideScene {
                     textured: scene.is_material_textured(id as u32),
                     delta: m.is_delta(),
                     black: m.is_black(),
+                    one_sided: scene.is_one_sided(id as u32),
                 }
             })
             .collect();

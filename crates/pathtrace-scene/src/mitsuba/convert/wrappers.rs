@@ -22,6 +22,8 @@ pub(super) struct Wrappers {
     pub opacity: Option<OpacityDef>,
     /// A rough conductor's or dielectric's `alpha` texture.
     pub roughness: Option<Colour>,
+    /// A `twosided` wrapper was met: the material shades both faces.
+    pub two_sided: bool,
 }
 
 impl<'a> Conv<'a, '_> {

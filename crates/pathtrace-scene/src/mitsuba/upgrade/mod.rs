@@ -3,9 +3,16 @@
 //! every property name from camelCase to underscore_case (`intIOR` → `int_ior`), a `diffuse`
 //! BSDF's `diffuse_reflectance` → `reflectance`, and `uoffset`/`voffset`/`uscale`/`vscale` → a
 //! `to_uv` transform (scale · translate). Also accepted: the `<lookAt>` spelling of `<lookat>`.
-//! Plugins renamed since 0.6 are not renamed here (neither does Mitsuba 3.9.1).
+//!
+//! Beyond what Mitsuba 3.9.1 does (it rejects these): `<srgb>` and `<blackbody>` colours become
+//! `<rgb>` ([`colours`]), and 0.6 plugins Mitsuba 3 lacks become the nearest supported ones with
+//! a warning ([`plugins`]); a tag or plugin neither version knows is a located error.
 
-use super::parse::{Attr, Element};
+mod colours;
+mod plugins;
+
+use super::parse::{Attr, Element, XmlSource};
+use crate::native::SceneError;
 
 /// True when the `version` attribute names a version below 2.0.
 pub fn is_v1(root: &Element) -> bool {
@@ -34,12 +41,14 @@ fn underscore_case(name: &str) -> String {
     out
 }
 
-/// Upgrades `e` and everything under it in place.
-pub fn upgrade(e: &mut Element) {
+/// Upgrades `e` and everything under it in place; substitutions are named in `warnings`.
+pub fn upgrade(e: &mut Element, src: &XmlSource, warnings: &mut Vec<String>) -> Result<(), SceneError> {
     if e.tag == "lookAt" {
         e.tag = "lookat".into();
     }
+    plugins::check_known(e, src)?;
     let is_diffuse = e.tag == "bsdf" && e.attr("type") == Some("diffuse");
+    let parent_tag = e.tag.clone();
     for c in &mut e.children {
         if c.tag == "default" {
             continue;
@@ -50,9 +59,13 @@ pub fn upgrade(e: &mut Element) {
                 a.value = "reflectance".into();
             }
         }
+        colours::upgrade_colour(&parent_tag, c, src, warnings)?;
     }
     uv_transform(e);
-    e.children.iter_mut().for_each(upgrade);
+    for c in &mut e.children {
+        upgrade(c, src, warnings)?;
+    }
+    plugins::upgrade_plugin(e, src, warnings)
 }
 
 /// `uoffset`, `voffset`, `uscale`, `vscale` children become `<transform name="to_uv">` with a
