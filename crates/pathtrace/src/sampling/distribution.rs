@@ -56,7 +56,7 @@ impl Distribution1D {
 
     /// Picks an item for `u ∈ [0,1)`; returns (index, probability). Items of zero weight are
     /// never returned.
-    #[inline]
+    #[inline(always)]
     pub fn sample(&self, u: f32) -> (usize, f32) {
         // The first item whose cdf exceeds u.
         let i = self.guide.find(self.items.len(), |i| self.items[i].cdf, u);
