@@ -165,7 +165,12 @@ fn the_light_set_samples_the_map_with_its_own_density() {
         let env = set.environment().unwrap();
         assert!((s.pdf - set.pdf_direction(p, s.wi)).abs() <= 2e-3 * s.pdf);
         assert!((s.pdf - set.pdf_environment(s.wi)).abs() <= 2e-3 * s.pdf);
-        assert_eq!(s.radiance, env.radiance(s.wi));
+        // Looked up at the sampled image coordinates rather than at the direction mapped back
+        // to the image: equal up to the rounding of that round trip (well under 0.1% even beside
+        // the steep sun).
+        let looked_up = env.radiance(s.wi);
+        let error = (s.radiance - looked_up).to_array().into_iter().fold(0.0f32, |m, c| m.max(c.abs()));
+        assert!(error <= 1e-3 * looked_up.max_component() + 1e-6, "{:?} vs {looked_up:?}", s.radiance);
         assert!(s.dist.is_infinite());
     }
 }

@@ -171,14 +171,17 @@ pub(crate) fn vertex<const N: usize>(
     // ---- Escape: the environment (if any) is seen, then the path ends ------------------
     let escaped = paths.active & !s.hit;
     if let Some(env) = scene_lights.environment() {
+        let pick = scene_lights.environment_pmf();
         for i in escaped.lanes() {
             let dir = paths.dir.lane(i);
-            let weight = if strategy.is_mis() && !paths.prev_specular.lane(i) {
-                strategy.mis_weight(paths.prev_pdf.0[i], scene_lights.pdf_environment(dir))
+            let seen = if strategy.is_mis() && !paths.prev_specular.lane(i) {
+                // One lookup of the map for both (LightSet::pdf_environment's product).
+                let (radiance, pdf) = env.radiance_and_pdf(dir);
+                radiance * strategy.mis_weight(paths.prev_pdf.0[i], pick * pdf)
             } else {
-                1.0
+                env.radiance(dir)
             };
-            paths.add_weighted(i, env.radiance(dir) * weight);
+            paths.add_weighted(i, seen);
         }
     }
     paths.finish_all(escaped, out);

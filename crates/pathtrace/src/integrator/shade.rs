@@ -149,7 +149,10 @@ fn light_sample(
     u: VertexNumbers,
 ) -> Option<ShadowRay> {
     let ls = scene.lights.sample(p, u.select, u.light)?;
-    let f = frame.eval(material, wo, ls.wi);
+    // The material's value and, for MIS against a light with a density, its own density of the
+    // light's direction, in one evaluation.
+    let (f, pdf_material) =
+        if ls.delta { (frame.eval(material, wo, ls.wi), 0.0) } else { frame.eval_pdf(material, wo, ls.wi) };
     if ls.radiance.is_black() || f.is_black() || !same_side(n_g, wo_world, ls.wi) {
         return None;
     }
@@ -163,7 +166,7 @@ fn light_sample(
         (to_light / dist, dist * (1.0 - SHADOW_EPSILON))
     };
     // A point light cannot be found by material sampling: its sample counts in full.
-    let w = if ls.delta { 1.0 } else { strategy.mis_weight(ls.pdf, frame.pdf(material, wo, ls.wi)) };
+    let w = if ls.delta { 1.0 } else { strategy.mis_weight(ls.pdf, pdf_material) };
     Some(ShadowRay { origin, dir, t_max, contribution: beta * f * ls.radiance * (w / ls.pdf) })
 }
 
@@ -220,7 +223,7 @@ fn sample_mixture(
         }
         wi_world
     };
-    let pdf = 0.5 * scene.lights.pdf_direction(p, wi_world) + 0.5 * frame.pdf(material, wo, wi_world);
-    let f = frame.eval(material, wo, wi_world);
+    let (f, pdf_material) = frame.eval_pdf(material, wo, wi_world);
+    let pdf = 0.5 * scene.lights.pdf_direction(p, wi_world) + 0.5 * pdf_material;
     (pdf > 0.0).then(|| Scatter { wi_world, weight: f * (1.0 / pdf), pdf, specular: false, eta: 1.0 })
 }

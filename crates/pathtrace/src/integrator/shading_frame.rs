@@ -95,6 +95,16 @@ impl ShadingFrame {
         }
     }
 
+    /// [`ShadingFrame::eval`] and [`ShadingFrame::pdf`] of one direction (see
+    /// [`Material::eval_pdf`]).
+    #[inline(always)]
+    pub fn eval_pdf(&self, material: &Material, wo: Vec3, wi_world: Vec3) -> (Rgb, f32) {
+        match &self.perturbed {
+            None => material.eval_pdf(wo, self.frame.to_local(wi_world)),
+            Some(_) => (self.eval(material, wo, wi_world), self.pdf(material, wo, wi_world)),
+        }
+    }
+
     /// A direction sampled by the material, seen along local `wo`, with its direction in world
     /// space; `None` where the material has none or it crosses the base surface the wrong way.
     #[inline(always)]

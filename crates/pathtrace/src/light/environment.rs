@@ -52,11 +52,23 @@ impl EnvironmentLight {
         }
     }
 
-    /// A direction towards the environment and its solid-angle density (0: discard the sample).
-    pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
+    /// [`EnvironmentLight::radiance`] and [`EnvironmentLight::pdf`] of one direction, which a map
+    /// looks up once.
+    #[inline(always)]
+    pub fn radiance_and_pdf(&self, dir: Vec3) -> (Rgb, f32) {
         match &self.map {
-            None => (warp::square_to_uniform_sphere(u), INV_4PI),
-            Some(map) => map.sample(u),
+            None => (self.radiance, INV_4PI),
+            Some(map) => map.radiance_and_pdf(dir),
+        }
+    }
+
+    /// A direction towards the environment, its solid-angle density (0: discard the sample) and
+    /// the radiance arriving along it.
+    #[inline]
+    pub fn sample(&self, u: Vec2) -> (Vec3, f32, Rgb) {
+        match &self.map {
+            None => (warp::square_to_uniform_sphere(u), INV_4PI, self.radiance),
+            Some(map) => map.sample_with_radiance(u),
         }
     }
 

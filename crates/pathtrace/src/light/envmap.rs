@@ -84,16 +84,42 @@ impl EnvMap {
     }
 
     /// Radiance seen looking along the unit world direction `dir` (bilinear between texels).
+    #[inline]
     pub fn radiance(&self, dir: Vec3) -> Rgb {
         let uv = direction_to_uv(self.to_local(dir));
+        self.radiance_at(self.cell_u(uv.x), uv.y)
+    }
+
+    /// [`EnvMap::radiance`] and [`EnvMap::pdf`] of one direction (an escaped path weighs what it
+    /// sees by MIS), mapping the direction to the image once.
+    #[inline]
+    pub fn radiance_and_pdf(&self, dir: Vec3) -> (Rgb, f32) {
+        let local = self.to_local(dir);
+        let uv = direction_to_uv(local);
+        let cell_u = self.cell_u(uv.x);
+        (self.radiance_at(cell_u, uv.y), self.pdf_at(cell_u, uv.y, local))
+    }
+
+    /// u measured from the first texel column's centre (texel i at u = (i + ½)/W), wrapped to
+    /// [0, 1): the cells of the sampling distribution and of the bilinear lookup start there.
+    #[inline(always)]
+    fn cell_u(&self, u: f32) -> f32 {
+        wrap01(u - 0.5 / self.width as f32)
+    }
+
+    /// Bilinear radiance at `cell_u` (see [`EnvMap::cell_u`]) and v.
+    #[inline(always)]
+    fn radiance_at(&self, cell_u: f32, v: f32) -> Rgb {
         let (w, h) = (self.width, self.height);
-        // Texel i at u = (i + ½)/W: shift by half a texel, wrap, then scale to texel units.
-        let x = wrap01(uv.x - 0.5 / w as f32) * w as f32;
-        let y = uv.y * (h - 1) as f32;
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let (i0, j0) = ((x0 as usize).min(w - 1), (y0 as usize).min(h - 1));
-        let (i1, j1) = ((i0 + 1) % w, (j0 + 1).min(h - 1));
+        // Both are ≥ 0 (or NaN), so truncation is the floor (and needs no library call).
+        let x = cell_u * w as f32;
+        let y = v * (h - 1) as f32;
+        let (x0, y0) = (x as usize, y as usize);
+        let (fx, fy) = (x - x0 as f32, y - y0 as f32);
+        let (i0, j0) = (x0.min(w - 1), y0.min(h - 1));
+        // The column after the last wraps to the first (no integer division on this path).
+        let i1 = if i0 + 1 == w { 0 } else { i0 + 1 };
+        let j1 = (j0 + 1).min(h - 1);
         let p = |i: usize, j: usize| self.pixels[j * w + i];
         (p(i0, j0) * (1.0 - fx) + p(i1, j0) * fx) * (1.0 - fy) + (p(i0, j1) * (1.0 - fx) + p(i1, j1) * fx) * fy
     }
@@ -101,22 +127,37 @@ impl EnvMap {
     /// A world direction drawn in proportion to luminance × sin θ, and its solid-angle density
     /// (0 when the sample hits a pole, where the density is undefined).
     pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
+        let (dir, pdf, _) = self.sample_with_radiance(u);
+        (dir, pdf)
+    }
+
+    /// [`EnvMap::sample`] and the radiance along the sampled direction, looked up at the sampled
+    /// image coordinates (as Mitsuba's `envmap` does), so the direction is not mapped back to
+    /// the image; equal to `radiance(dir)` up to the rounding of that round trip.
+    #[inline]
+    pub fn sample_with_radiance(&self, u: Vec2) -> (Vec3, f32, Rgb) {
         let (cell_uv, pdf_uv) = self.distribution.sample(u);
         let uv = Vec2::new(wrap01(cell_uv.x + 0.5 / self.width as f32), cell_uv.y);
         let (sin_theta, cos_theta) = (PI * uv.y).sin_cos();
         let (sin_phi, cos_phi) = (2.0 * PI * uv.x).sin_cos();
         let local = Vec3::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi);
         let dir = self.to_world.vector(local).normalize();
-        (dir, solid_angle_pdf(pdf_uv, sin_theta))
+        (dir, solid_angle_pdf(pdf_uv, sin_theta), self.radiance_at(cell_uv.x, cell_uv.y))
     }
 
     /// Solid-angle density of [`EnvMap::sample`] for the unit world direction `dir`.
+    #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
         let local = self.to_local(dir);
         let uv = direction_to_uv(local);
-        let cell_uv = Vec2::new(wrap01(uv.x - 0.5 / self.width as f32), uv.y);
+        self.pdf_at(self.cell_u(uv.x), uv.y, local)
+    }
+
+    /// The density at `cell_u` and v of the local direction `local`.
+    #[inline(always)]
+    fn pdf_at(&self, cell_u: f32, v: f32, local: Vec3) -> f32 {
         let sin_theta = (1.0 - local.y * local.y).max(0.0).sqrt();
-        solid_angle_pdf(self.distribution.pdf(cell_uv), sin_theta)
+        solid_angle_pdf(self.distribution.pdf(Vec2::new(cell_u, v)), sin_theta)
     }
 
     /// ∫ luminance dω over the whole sphere.
@@ -124,6 +165,7 @@ impl EnvMap {
         self.luminance_integral
     }
 
+    #[inline(always)]
     fn to_local(&self, dir: Vec3) -> Vec3 {
         self.to_world.inverse.transform_vector3(dir).normalize()
     }
@@ -134,8 +176,19 @@ fn cell_rows(height: usize) -> usize {
     (height - 1).max(1)
 }
 
+/// x − ⌊x⌋ in [0, 1), for x in [−1, 2) (every caller's range: a u in [0, 1) shifted by half a
+/// texel, or atan2/2π in [−½, ½]); the same operations as with `floor`, without its library
+/// call on targets without SSE4.1.
+#[inline(always)]
 fn wrap01(x: f32) -> f32 {
-    let f = x - x.floor();
+    let f = if x < 0.0 {
+        x + 1.0
+    } else if x >= 1.0 {
+        x - 1.0
+    } else {
+        x
+    };
+    // x + 1 rounds to 1 for tiny negative x.
     if f >= 1.0 {
         0.0
     } else {
@@ -144,6 +197,7 @@ fn wrap01(x: f32) -> f32 {
 }
 
 /// Mitsuba's lat-long coordinates of a local unit direction (see the module comment).
+#[inline(always)]
 fn direction_to_uv(d: Vec3) -> Vec2 {
     let u = d.x.atan2(-d.z) / (2.0 * PI);
     let v = d.y.clamp(-1.0, 1.0).acos() / PI;

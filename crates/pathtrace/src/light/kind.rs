@@ -76,7 +76,7 @@ impl Light {
                 Some(LightSample { point, normal: -wi, wi, dist, pdf: 1.0, radiance, delta: true })
             }
             Light::Environment(env) => {
-                let (wi, pdf) = env.sample(u);
+                let (wi, pdf, radiance) = env.sample(u);
                 if pdf <= 0.0 {
                     return None;
                 }
@@ -86,7 +86,7 @@ impl Light {
                     wi,
                     dist: f32::INFINITY,
                     pdf,
-                    radiance: env.radiance(wi),
+                    radiance,
                     delta: false,
                 })
             }

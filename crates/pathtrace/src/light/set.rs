@@ -246,11 +246,21 @@ impl LightSet {
     }
 
     /// Density with which next-event estimation picks the environment along `dir` (selection
-    /// included), for weighting a path that escaped along `dir`.
+    /// included), for weighting a path that escaped along `dir`: `environment_pmf()` times the
+    /// environment's own density.
     #[inline(always)]
     pub fn pdf_environment(&self, dir: Vec3) -> f32 {
-        match (self.environment, self.environment(), &self.selection) {
-            (Some(index), Some(env), Some(sel)) => sel.pmf(index) * env.pdf(dir),
+        match self.environment() {
+            Some(env) => self.environment_pmf() * env.pdf(dir),
+            None => 0.0,
+        }
+    }
+
+    /// Probability that next-event estimation picks the environment (0 without one).
+    #[inline(always)]
+    pub fn environment_pmf(&self) -> f32 {
+        match (self.environment, &self.selection) {
+            (Some(index), Some(sel)) => sel.pmf(index),
             _ => 0.0,
         }
     }

@@ -119,7 +119,7 @@ impl Microfacet {
         if v.z <= 0.0 {
             return 0.0;
         }
-        self.g1(v, m) * v.dot(m).max(0.0) * self.d(m) / v.z
+        visible_density(self.g1(v, m), v.dot(m), self.d(m), v.z)
     }
 
     /// Draws a microfacet normal visible from `v` (which must have `v.z > 0`).
@@ -207,6 +207,13 @@ fn beckmann_visible_slopes_11(cos_theta: f64, u1: f64, u2: f64) -> (f64, f64) {
         }
     }
     (erfinv_fast(b.clamp(-1.0 + 1e-16, 1.0 - 1e-16)), sy)
+}
+
+/// D_v(m) = G1(v, m) max(0, v·m) D(m) / cos θv from its parts (Heitz & d'Eon 2014 eq. 2), for
+/// callers that already hold G1 and D (a model's value and density at one pair of directions).
+#[inline(always)]
+pub(crate) fn visible_density(g1_v: f32, v_dot_m: f32, d: f32, cos_theta_v: f32) -> f32 {
+    g1_v * v_dot_m.max(0.0) * d / cos_theta_v
 }
 
 /// Mirror reflection of `v` about the microfacet normal `m`: 2(v·m)m − v.

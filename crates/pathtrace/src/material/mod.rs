@@ -146,6 +146,28 @@ impl Material {
         }
     }
 
+    /// [`Material::eval`] and [`Material::pdf`] of one pair of directions: models whose two
+    /// share work (the half vector, D and G1 of a microfacet model, a Fresnel term) compute it
+    /// once; the values are those of the two calls.
+    #[inline(always)]
+    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
+        match self {
+            Material::RoughConductor(m) => m.eval_pdf(wo, wi),
+            Material::Plastic(m) => m.eval_pdf(wo, wi),
+            Material::Black
+            | Material::Null
+            | Material::Diffuse(_)
+            | Material::Lambertian(_)
+            | Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::RoughDielectric(_)
+            | Material::RoughPlastic(_)
+            | Material::ThinDielectric(_) => (self.eval(wo, wi), self.pdf(wo, wi)),
+        }
+    }
+
     /// The model with its `slot` colour replaced by `c` (a texture's value at a hit). Slots a
     /// model does not have leave it unchanged.
     #[inline]

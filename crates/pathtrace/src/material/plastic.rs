@@ -107,20 +107,23 @@ impl Plastic {
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return Rgb::BLACK;
-        }
-        let f_o = fresnel_dielectric(wo.z, self.ior).0;
-        let f_i = fresnel_dielectric(wi.z, self.ior).0;
-        self.base * ((1.0 - f_o) * (1.0 - f_i) * wi.z)
+        self.eval_pdf(wo, wi).0
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_pdf(wo, wi).1
+    }
+
+    /// `eval` and `pdf` together, sharing F(cos θo).
+    #[inline]
+    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
         if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
+            return (Rgb::BLACK, 0.0);
         }
-        let p_coat = self.coating_probability(fresnel_dielectric(wo.z, self.ior).0);
-        (1.0 - p_coat) * warp::cosine_hemisphere_pdf(wi)
+        let f_o = fresnel_dielectric(wo.z, self.ior).0;
+        let f_i = fresnel_dielectric(wi.z, self.ior).0;
+        let f = self.base * ((1.0 - f_o) * (1.0 - f_i) * wi.z);
+        (f, (1.0 - self.coating_probability(f_o)) * warp::cosine_hemisphere_pdf(wi))
     }
 }
 

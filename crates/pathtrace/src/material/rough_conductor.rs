@@ -7,7 +7,7 @@
 //! microfacets: e.g. for GGX α = 1 at normal incidence its albedo is ≈ 0.77 (tests/microfacet_bsdfs.rs).
 
 use super::fresnel::fresnel_conductor_rgb;
-use super::microfacet::{reflect_about, Microfacet};
+use super::microfacet::{reflect_about, visible_density, Microfacet};
 use super::BsdfSample;
 use crate::math::{Rgb, Vec2, Vec3};
 
@@ -44,28 +44,33 @@ impl RoughConductor {
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return Rgb::BLACK;
-        }
-        let m = (wo + wi).normalize();
-        let dg = self.distribution.d(m) * self.distribution.g(wo, wi, m);
-        if dg <= 0.0 {
-            return Rgb::BLACK;
-        }
-        // f·cos θi: the cos θi of the denominator cancels.
-        self.reflectance * fresnel_conductor_rgb(wo.dot(m), self.eta, self.k) * (dg / (4.0 * wo.z))
+        self.eval_pdf(wo, wi).0
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_pdf(wo, wi).1
+    }
+
+    /// `eval` and `pdf` together: the half vector, D(m) and G1(wo, m) (Beckmann's is an erf and
+    /// an exp) are computed once when MIS needs both.
+    #[inline]
+    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
         if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
+            return (Rgb::BLACK, 0.0);
         }
         let m = (wo + wi).normalize();
         let cos_om = wo.dot(m);
-        if cos_om <= 0.0 {
-            return 0.0;
-        }
+        let d = self.distribution.d(m);
+        let g1_o = self.distribution.g1(wo, m);
+        let dg = d * (g1_o * self.distribution.g1(wi, m));
+        // f·cos θi: the cos θi of the denominator cancels.
+        let f = if dg <= 0.0 {
+            Rgb::BLACK
+        } else {
+            self.reflectance * fresnel_conductor_rgb(cos_om, self.eta, self.k) * (dg / (4.0 * wo.z))
+        };
         // Jacobian of the reflection map dωm/dωi = 1/(4 wo·m) (Walter 2007 eq. 14).
-        self.distribution.pdf_visible(wo, m) / (4.0 * cos_om)
+        let pdf = if cos_om <= 0.0 { 0.0 } else { visible_density(g1_o, cos_om, d, wo.z) / (4.0 * cos_om) };
+        (f, pdf)
     }
 }

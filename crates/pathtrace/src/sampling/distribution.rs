@@ -1,11 +1,22 @@
 //! A discrete distribution over `n` items proportional to non-negative weights (used to pick a
-//! light by power), sampled by inverting its cumulative distribution.
+//! light by power, and a row or column of an environment map), sampled by inverting its
+//! cumulative distribution through a guide table (expected O(1) steps; see guide.rs).
+
+use super::guide::CdfGuide;
 
 /// Piecewise-constant discrete distribution.
 #[derive(Clone, Debug, Default)]
 pub struct Distribution1D {
-    cdf: Vec<f32>,
-    pmf: Vec<f32>,
+    /// Each item's cdf beside its pmf: a search ends by reading both, from one cache line.
+    items: Vec<Item>,
+    guide: CdfGuide,
+}
+
+#[derive(Clone, Copy, Debug, Default)]
+struct Item {
+    /// Probability of this item and the ones before it (1 for the last).
+    cdf: f32,
+    pmf: f32,
 }
 
 impl Distribution1D {
@@ -24,36 +35,41 @@ impl Distribution1D {
         if let Some(last) = cdf.last_mut() {
             *last = 1.0;
         }
-        let pmf = weights.iter().map(|&w| (w.max(0.0) as f64 / total) as f32).collect();
-        Some(Self { cdf, pmf })
+        let items: Vec<Item> =
+            cdf.iter().zip(weights).map(|(&cdf, &w)| Item { cdf, pmf: (w.max(0.0) as f64 / total) as f32 }).collect();
+        let guide = CdfGuide::new(items.len(), |i| items[i].cdf);
+        Some(Self { items, guide })
     }
 
     pub fn len(&self) -> usize {
-        self.pmf.len()
+        self.items.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.pmf.is_empty()
+        self.items.is_empty()
     }
 
     /// Probability of item `i`.
     pub fn pmf(&self, i: usize) -> f32 {
-        self.pmf.get(i).copied().unwrap_or(0.0)
+        self.items.get(i).map_or(0.0, |item| item.pmf)
     }
 
     /// Picks an item for `u ∈ [0,1)`; returns (index, probability). Items of zero weight are
     /// never returned.
+    #[inline(always)]
     pub fn sample(&self, u: f32) -> (usize, f32) {
-        let i = self.cdf.partition_point(|&c| c <= u).min(self.cdf.len() - 1);
-        (i, self.pmf[i])
+        // The first item whose cdf exceeds u.
+        let i = self.guide.find(self.items.len(), |i| self.items[i].cdf, u);
+        (i, self.items[i].pmf)
     }
 
     /// Like [`Distribution1D::sample`], also returning `u` rescaled to `[0,1)` within the picked
     /// item's cdf interval, so one random number can place a continuous sample inside the bin
     /// (pbrt-v4 §A.4.2 `PiecewiseConstant1D::Sample`).
+    #[inline]
     pub fn sample_remapped(&self, u: f32) -> (usize, f32, f32) {
         let (i, p) = self.sample(u);
-        let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] };
+        let lo = if i == 0 { 0.0 } else { self.items[i - 1].cdf };
         let t = if p > 0.0 { ((u - lo) / p).clamp(0.0, ONE_BELOW) } else { 0.5 };
         (i, p, t)
     }

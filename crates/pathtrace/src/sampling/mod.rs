@@ -3,6 +3,7 @@
 
 mod distribution;
 mod distribution2d;
+mod guide;
 pub mod hash;
 mod mis;
 pub(crate) mod pcg;
