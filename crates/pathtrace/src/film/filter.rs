@@ -16,6 +16,7 @@
 //!   and E[weight] = ∫f/∫f = 1, so the pixel mean stays unbiased.
 
 use crate::math::Vec2;
+use crate::sampling::guide::CdfGuide;
 
 /// Bins of the tabulated gaussian per axis. pbrt-v4 uses 32 per pixel of radius; 1024 over the
 /// default support of ±2 pixels keep f/pdf within 1% of 1 for |offset| < 1 pixel (the relative
@@ -149,20 +150,15 @@ pub struct GaussianFilter {
     stddev: f32,
     /// Cumulative probability at the bin edges (`GAUSSIAN_BINS + 1` values from 0 to 1).
     cdf: Vec<f64>,
-    /// Guide table (the cutpoint method, Devroye 1986, §III.2.4): entry k is the first edge
-    /// whose cumulative probability exceeds k / `GAUSSIAN_GUIDES`, where the search for any u in
-    /// [k, k + 1) / `GAUSSIAN_GUIDES` may start. A binary search over the 1025 edges was 11% of
-    /// a veach-mis render.
-    guide: Vec<u32>,
+    /// A guide table over the bins' cumulative probabilities (`cdf[1..]`): a binary search over
+    /// the 1025 edges was 11% of a veach-mis render.
+    guide: CdfGuide,
     /// −1/2σ² and exp(−r²/2σ²), the constants of f₁.
     alpha: f64,
     cutoff: f64,
     /// ∫f₁ over the support, to normalise f₁.
     integral: f64,
 }
-
-/// Cells of the gaussian's guide table (a power of two, so u · cells is exact).
-const GAUSSIAN_GUIDES: usize = 1024;
 
 impl GaussianFilter {
     /// `stddev` in pixels; must be positive and finite.
@@ -173,7 +169,7 @@ impl GaussianFilter {
         let r = 4.0 * stddev as f64;
         let alpha = -1.0 / (2.0 * stddev as f64 * stddev as f64);
         let cutoff = (alpha * r * r).exp();
-        let mut g = Self { stddev, cdf: Vec::new(), guide: Vec::new(), alpha, cutoff, integral: 1.0 };
+        let mut g = Self { stddev, cdf: Vec::new(), guide: CdfGuide::default(), alpha, cutoff, integral: 1.0 };
         let width = 2.0 * r / GAUSSIAN_BINS as f64;
         // Each bin's integral by composite Simpson with 16 intervals (error ~1e-9 relative).
         let simpson = |a: f64| {
@@ -194,9 +190,7 @@ impl GaussianFilter {
             acc += m;
             cdf.push(acc / total);
         }
-        g.guide = (0..GAUSSIAN_GUIDES)
-            .map(|k| cdf.partition_point(|&c| c <= k as f64 / GAUSSIAN_GUIDES as f64) as u32)
-            .collect();
+        g.guide = CdfGuide::new(GAUSSIAN_BINS, |i| cdf[i + 1]);
         g.cdf = cdf;
         g.integral = total;
         Ok(g)
@@ -239,15 +233,8 @@ impl GaussianFilter {
     #[inline]
     fn sample(&self, u: f32) -> (f32, f32) {
         let u = u as f64;
-        // The last edge whose cumulative probability is ≤ u (bins of zero mass are skipped):
-        // the first edge above u, searched from its guide cell's first edge above the cell's
-        // start (which u is not below).
-        let cell = ((u * GAUSSIAN_GUIDES as f64) as usize).min(GAUSSIAN_GUIDES - 1);
-        let mut above = self.guide[cell] as usize;
-        while above < self.cdf.len() && self.cdf[above] <= u {
-            above += 1;
-        }
-        let i = above.clamp(1, GAUSSIAN_BINS) - 1;
+        // The bin whose upper edge is the first above u (bins of zero mass are skipped).
+        let i = self.guide.find(GAUSSIAN_BINS, |i| self.cdf[i + 1], u);
         let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
         let t = if c1 > c0 { ((u - c0) / (c1 - c0)).clamp(0.0, 1.0) } else { 0.5 };
         let w = self.bin_width();
@@ -283,7 +270,7 @@ mod tests {
             let g = GaussianFilter::new(stddev).unwrap();
             // Every cell boundary, values just beside each edge, and a dense sweep.
             let edges = g.cdf.iter().flat_map(|&c| [c as f32, (c as f32).next_up(), (c as f32).next_down()]);
-            let cells = (0..GAUSSIAN_GUIDES).map(|k| k as f32 / GAUSSIAN_GUIDES as f32);
+            let cells = (0..4096).map(|k| k as f32 / 4096.0);
             let sweep = (0..100_000).map(|k| k as f32 / 100_000.0);
             for u in edges.chain(cells).chain(sweep).filter(|u| (0.0..1.0).contains(u)) {
                 let i = g.cdf.partition_point(|&c| c <= u as f64).clamp(1, GAUSSIAN_BINS) - 1;

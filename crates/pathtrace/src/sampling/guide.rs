@@ -23,8 +23,41 @@ const ITEMS_PER_BUCKET: usize = 4;
 /// a single light needs no search at all), and no table is kept.
 const SCAN_ITEMS: usize = 8;
 
+/// A cdf's number type: `f32` (distributions over images and lights) or `f64` (the pixel
+/// filter's table).
+pub(crate) trait CdfValue: Copy + PartialOrd {
+    /// The left edge k/m of bucket k.
+    fn edge(k: usize, m: usize) -> Self;
+    /// ⌊u·m⌋, saturating (u < 0 goes to bucket 0), at most m − 1.
+    fn bucket(self, m: usize) -> usize;
+}
+
+impl CdfValue for f32 {
+    #[inline(always)]
+    fn edge(k: usize, m: usize) -> Self {
+        k as f32 / m as f32
+    }
+
+    #[inline(always)]
+    fn bucket(self, m: usize) -> usize {
+        ((self * m as f32) as usize).min(m - 1)
+    }
+}
+
+impl CdfValue for f64 {
+    #[inline(always)]
+    fn edge(k: usize, m: usize) -> Self {
+        k as f64 / m as f64
+    }
+
+    #[inline(always)]
+    fn bucket(self, m: usize) -> usize {
+        ((self * m as f64) as usize).min(m - 1)
+    }
+}
+
 /// First-item records of equal buckets over a cdf of `n` items.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct CdfGuide {
     /// `m + 1` entries for `m` buckets: bucket k's search starts at `first[k]` and ends by
     /// `first[k + 1]`.
@@ -33,7 +66,7 @@ pub(crate) struct CdfGuide {
 
 impl CdfGuide {
     /// The guide of the cdf `cdf(0..n)` (non-decreasing; 1 ≤ n < 2³²).
-    pub(crate) fn new(n: usize, cdf: impl Fn(usize) -> f32) -> Self {
+    pub(crate) fn new<T: CdfValue>(n: usize, cdf: impl Fn(usize) -> T) -> Self {
         if n <= SCAN_ITEMS {
             return Self { first: Vec::new() };
         }
@@ -42,7 +75,7 @@ impl CdfGuide {
         let mut i = 0;
         let first = (0..=m)
             .map(|k| {
-                let edge = k as f32 / m as f32;
+                let edge = T::edge(k, m);
                 while i < n && cdf(i) <= edge {
                     i += 1;
                 }
@@ -58,7 +91,7 @@ impl CdfGuide {
     /// Always inlined: picking one of a scene's few lights happens per lane inside the SIMD
     /// loop, where the out-of-line call was 1% of the Cornell box's profile.
     #[inline(always)]
-    pub(crate) fn find(&self, n: usize, cdf: impl Fn(usize) -> f32, u: f32) -> usize {
+    pub(crate) fn find<T: CdfValue>(&self, n: usize, cdf: impl Fn(usize) -> T, u: T) -> usize {
         if n <= SCAN_ITEMS {
             let mut i = 0;
             while i + 1 < n && cdf(i) <= u {
@@ -71,10 +104,9 @@ impl CdfGuide {
 
     /// [`CdfGuide::find`] through the table.
     #[inline(never)]
-    fn find_guided(&self, n: usize, cdf: impl Fn(usize) -> f32, u: f32) -> usize {
+    fn find_guided<T: CdfValue>(&self, n: usize, cdf: impl Fn(usize) -> T, u: T) -> usize {
         let m = self.first.len() - 1;
-        // Saturating conversion: u < 0 goes to bucket 0.
-        let k = ((u * m as f32) as usize).min(m - 1);
+        let k = u.bucket(m);
         let (mut lo, mut hi) = (self.first[k] as usize, self.first[k + 1] as usize + 1);
         while lo < hi {
             let mid = (lo + hi) / 2;

@@ -3,7 +3,7 @@
 
 mod distribution;
 mod distribution2d;
-mod guide;
+pub(crate) mod guide;
 pub mod hash;
 mod mis;
 pub(crate) mod pcg;
