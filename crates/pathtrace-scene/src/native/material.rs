@@ -126,12 +126,15 @@ pub struct OpacityDef {
 }
 
 /// Light given off by a surface.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct EmissionDef {
     /// Emitted radiance per channel.
     pub radiance: Triple,
     /// Emit from both faces (default: only the front face).
     pub two_sided: bool,
+    /// A texture the radiance is multiplied by (`emission_texture`; glTF's `emissiveTexture`),
+    /// looked up at each point's (u, v); meshes only. Always a [`Colour::Texture`].
+    pub texture: Option<Colour>,
 }
 
 /// One named material of a scene file.
@@ -164,6 +167,9 @@ impl MaterialDef {
         if let Some(r) = &mut self.roughness {
             all.push(r);
         }
+        if let Some(t) = self.emission.as_mut().and_then(|e| e.texture.as_mut()) {
+            all.push(t);
+        }
         all
     }
 }
@@ -190,6 +196,8 @@ pub struct RawMaterial {
     emission: Option<Triple>,
     #[serde(skip_serializing_if = "Option::is_none")]
     two_sided: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    emission_texture: Option<Colour>,
     #[serde(skip_serializing_if = "Option::is_none")]
     metal: Option<MetalName>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -390,10 +398,24 @@ impl TryFrom<RawMaterial> for MaterialDef {
             }
             _ => r.emission,
         };
-        let emission = match (radiance, r.two_sided) {
-            (Some(radiance), two_sided) => Some(EmissionDef { radiance, two_sided: two_sided.unwrap_or(false) }),
-            (None, Some(_)) => return Err("`two_sided` applies only to emitting materials (add `emission`)".into()),
-            (None, None) => None,
+        let texture = match r.emission_texture.clone() {
+            None => None,
+            Some(t @ Colour::Texture(_)) => Some(t),
+            Some(Colour::Constant(_)) => {
+                return Err("`emission_texture` must be a texture table (scale `radiance` or `emission` instead)".into())
+            }
+        };
+        let emission = match (radiance, r.two_sided, texture) {
+            (Some(radiance), two_sided, texture) => {
+                Some(EmissionDef { radiance, two_sided: two_sided.unwrap_or(false), texture })
+            }
+            (None, Some(_), _) => {
+                return Err("`two_sided` applies only to emitting materials (add `emission`)".into())
+            }
+            (None, None, Some(_)) => {
+                return Err("`emission_texture` applies only to emitting materials (add `emission`)".into())
+            }
+            (None, None, None) => None,
         };
         if normal.is_some() && t == MaterialType::Emissive {
             return Err("an emissive material cannot take a normal or bump map (it does not scatter)".into());
@@ -499,6 +521,7 @@ impl From<MaterialDef> for RawMaterial {
                 r.emission = Some(e.radiance);
             }
             r.two_sided = e.two_sided.then_some(true);
+            r.emission_texture = e.texture;
         }
         if let Some(n) = m.normal {
             match n.map {
@@ -549,7 +572,8 @@ mod tests {
         let glass = parse("type = \"dielectric\"").unwrap();
         assert_eq!(glass.kind, MaterialKind::Dielectric { ior: Num::from(1.5), tint: Colour::grey(1.0) });
         let light = parse("type = \"emissive\"\nradiance = 4").unwrap();
-        assert_eq!(light.emission, Some(EmissionDef { radiance: Triple::Splat(Num::from(4.0)), two_sided: false }));
+        let four = Triple::Splat(Num::from(4.0));
+        assert_eq!(light.emission, Some(EmissionDef { radiance: four, two_sided: false, texture: None }));
     }
 
     #[test]
