@@ -172,7 +172,9 @@ fn base_colour_textures_and_their_transform_convert() {
     let path = dir.path().join("scene.gltf");
     std::fs::write(&path, serde_json::to_vec(&v).unwrap()).unwrap();
     let (file, warnings) = convert_file(&path, &[]).unwrap();
-    assert!(warnings.is_empty(), "{warnings:#?}");
+    // Material 1's colour factor is not white: only that is warned about.
+    assert_eq!(warnings.len(), 1, "{warnings:#?}");
+    assert!(warnings[0].contains("materials[1]") && warnings[0].contains("baseColorFactor"), "{warnings:?}");
     let MaterialKind::Lambertian {
         albedo: Colour::Texture(TextureDef::Bitmap { filename, nearest, clamp, to_uv, .. }),
     } = &file.materials["gltf-0"].kind
@@ -195,6 +197,8 @@ fn base_colour_textures_and_their_transform_convert() {
         panic!("{:?}", file.materials["gltf-1"]);
     };
     assert_eq!(filename, "scene.gltf#images[1]");
+    let image = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/maps/emissive.png");
+    std::fs::copy(image, dir.path().join("wood grain.png")).unwrap();
     let e = load_gltf(&path, &[]).map(|_| ()).expect_err("an error").to_string();
     assert!(e.contains("scene.gltf#images[1]") && e.contains("gltf-1"), "{e}");
 }

@@ -70,8 +70,9 @@ fn metallic_roughness_texture_matches_its_mitsuba_twin_block_by_block() {
     assert_eq!(warnings.len(), 2, "{warnings:#?}");
     assert!(warnings.iter().any(|w| w.contains("materials[0]") && w.contains("rough_conductor")), "{warnings:#?}");
     assert!(warnings.iter().any(|w| w.contains("materials[0]") && w.contains("blue")), "{warnings:#?}");
-    let Some(Colour::Texture(TextureDef::Channel { filename, channel: 1, factor, squared: true, nearest: true, .. })) =
-        &file.materials["gltf-0"].roughness
+    let Some(Colour::Texture(TextureDef::Channel {
+        filename, channel: 1, factor, squared: true, nearest: true, ..
+    })) = &file.materials["gltf-0"].roughness
     else {
         panic!("{:?}", file.materials["gltf-0"]);
     };
@@ -121,7 +122,10 @@ fn bad_embedded_images_and_data_uris_are_located_errors() {
     load_error(&path, &["emissive_data.gltf#images[0]", "gltf-1", "cannot load texture"]);
     // An image in a buffer view that runs past the end of its buffer.
     let path = edited(&dir, "emissive.gltf", &|v| {
-        v["bufferViews"].as_array_mut().unwrap().push(serde_json::json!({"buffer": 0, "byteOffset": 100, "byteLength": 5000}));
+        v["bufferViews"]
+            .as_array_mut()
+            .unwrap()
+            .push(serde_json::json!({"buffer": 0, "byteOffset": 100, "byteLength": 5000}));
         v["images"][0] = serde_json::json!({"bufferView": 6, "mimeType": "image/png"});
     });
     load_error(&path, &["images[0]", "runs past the end"]);
@@ -196,8 +200,10 @@ fn normal_texture_transforms_and_misplaced_emission_textures() {
     let (file, warnings) = convert_file(&path, &[]).unwrap();
     assert!(warnings.is_empty(), "{warnings:#?}");
     let n = file.materials["gltf-0"].normal.as_ref().unwrap();
-    let pathtrace_scene::native::model::NormalDef::Map { texture: Colour::Texture(TextureDef::Bitmap { to_uv, .. }), .. } =
-        &n.map
+    let pathtrace_scene::native::model::NormalDef::Map {
+        texture: Colour::Texture(TextureDef::Bitmap { to_uv, .. }),
+        ..
+    } = &n.map
     else {
         panic!("{n:?}")
     };

@@ -13,6 +13,7 @@ use super::model::{
 use super::transform::compose;
 use super::values::vec3;
 use crate::{LoadedScene, RenderDefaults};
+use pathtrace::film::Image;
 use pathtrace::film::{GaussianFilter, PixelFilter};
 use pathtrace::light::{DirectionalLight, Emission, EnvMap, EnvironmentLight, PointLight, SpotLight};
 use pathtrace::material::{
@@ -28,7 +29,6 @@ use pathtrace::texture::{
     Bitmap, Checkerboard, ColourSlot, FilterType, NormalPerturbation, Opacity, PerturbationKind, Texture, UvTransform,
     WrapMode,
 };
-use pathtrace::film::Image;
 use pathtrace::{Camera, CameraDesc, GroupId, Lens, MaterialId, SceneBuilder, ShapeGroup};
 use std::collections::BTreeMap;
 
@@ -441,15 +441,12 @@ impl<L: Locate> Ctx<'_, L> {
             let gltf = dir.join(file);
             let (bytes, format) = crate::gltf::images::image_bytes(&gltf, index).map_err(fail)?;
             let label = std::path::PathBuf::from(filename);
-            return crate::image_io::decode_texture(&bytes, &label, format, raw, alpha).map_err(|e| fail(e.to_string()));
+            return crate::image_io::decode_texture(&bytes, &label, format, raw, alpha)
+                .map_err(|e| fail(e.to_string()));
         }
         let path = dir.join(filename);
-        if alpha {
-            crate::image_io::read_texture_alpha(&path)
-        } else {
-            crate::image_io::read_texture(&path, raw)
-        }
-        .map_err(|e| fail(e.to_string()))
+        if alpha { crate::image_io::read_texture_alpha(&path) } else { crate::image_io::read_texture(&path, raw) }
+            .map_err(|e| fail(e.to_string()))
     }
 
     fn add_light(&mut self, l: &LightDef, at: &ItemPath) -> Result<(), SceneError> {

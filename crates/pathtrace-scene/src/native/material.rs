@@ -409,9 +409,7 @@ impl TryFrom<RawMaterial> for MaterialDef {
             (Some(radiance), two_sided, texture) => {
                 Some(EmissionDef { radiance, two_sided: two_sided.unwrap_or(false), texture })
             }
-            (None, Some(_), _) => {
-                return Err("`two_sided` applies only to emitting materials (add `emission`)".into())
-            }
+            (None, Some(_), _) => return Err("`two_sided` applies only to emitting materials (add `emission`)".into()),
             (None, None, Some(_)) => {
                 return Err("`emission_texture` applies only to emitting materials (add `emission`)".into())
             }

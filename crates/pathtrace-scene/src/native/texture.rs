@@ -179,9 +179,7 @@ impl TryFrom<RawTexture> for TextureDef {
             }
         };
         match kind {
-            TextureType::Checkerboard | TextureType::Bitmap
-                if r.factor.is_some() || r.squared.is_some() =>
-            {
+            TextureType::Checkerboard | TextureType::Bitmap if r.factor.is_some() || r.squared.is_some() => {
                 Err("`factor` and `squared` are parameters of a channel texture".into())
             }
             TextureType::Checkerboard => {

@@ -97,7 +97,11 @@ impl WideLights {
             .map(|light| {
                 let l = match light {
                     Light::Area(l) if l.texture().is_none() => l,
-                    Light::Area(_) | Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => return None,
+                    Light::Area(_)
+                    | Light::Point(_)
+                    | Light::Spot(_)
+                    | Light::Directional(_)
+                    | Light::Environment(_) => return None,
                 };
                 let (origin, e1, e2, triangle) = match l.shape {
                     LightShape::Quad(q) => (q.q, q.u, q.v, false),
