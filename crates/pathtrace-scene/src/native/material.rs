@@ -666,4 +666,20 @@ mod tests {
         let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
         assert_eq!(m, back);
     }
+
+    #[test]
+    fn emission_textures_need_an_emitter_and_a_texture_table() {
+        let lamp = "type = \"emissive\"\nradiance = 2\nemission_texture = { type = \"bitmap\", filename = \"e.png\" }";
+        let m = parse(lamp).unwrap();
+        assert!(matches!(m.emission.as_ref().and_then(|e| e.texture.as_ref()), Some(Colour::Texture(_))));
+        let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
+        assert_eq!(m, back);
+        let e = parse(
+            "type = \"lambertian\"\nalbedo = 0.5\nemission_texture = { type = \"bitmap\", filename = \"e.png\" }",
+        )
+        .unwrap_err();
+        assert!(e.contains("only to emitting materials"), "{e}");
+        let e = parse("type = \"emissive\"\nradiance = 2\nemission_texture = 0.5").unwrap_err();
+        assert!(e.contains("must be a texture table"), "{e}");
+    }
 }
