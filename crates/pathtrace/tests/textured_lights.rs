@@ -142,7 +142,7 @@ fn selection_power_uses_the_texture_mean_and_only_meshes_take_a_texture() {
     let t = b.texture(Texture::Bitmap(image()));
     b.set_emission_texture(lamp, t).unwrap();
     b.shape(Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap()), lamp, &Transform::IDENTITY).unwrap();
-    let e = b.build().err().expect("an error").to_string();
+    let e = b.build().expect_err("an error").to_string();
     assert!(e.contains("meshes only"), "{e}");
     // Nor can a material that does not emit.
     let mut b = SceneBuilder::new();
