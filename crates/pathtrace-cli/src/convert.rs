@@ -2,7 +2,7 @@
 
 use crate::args::ConvertArgs;
 use crate::{scene_arg, CliError};
-use pathtrace_scene::native::model::{Colour, GroupDef, LightDef, ObjectDef, ShapeDef, TextureDef};
+use pathtrace_scene::native::model::{Colour, GroupDef, LightDef, ObjectDef, ShapeDef};
 use pathtrace_scene::native::{self, Format};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -18,7 +18,10 @@ pub fn run(a: ConvertArgs) -> Result<ExitCode, CliError> {
             rebase(&mut file.objects, &mut file.groups, &from);
             for m in file.materials.values_mut() {
                 for c in m.textures_mut() {
-                    if let Colour::Texture(TextureDef::Bitmap { filename, .. }) = c {
+                    if let Some(filename) = match c {
+                        Colour::Texture(t) => t.filename_mut(),
+                        Colour::Constant(_) => None,
+                    } {
                         rebase_path(filename, &from);
                     }
                 }

@@ -223,6 +223,25 @@ pub fn read_texture_alpha(path: &Path) -> Result<Image, ImageIoError> {
     texture_codec::alpha(decoded, format).map_err(texture)
 }
 
+/// Decodes an in-memory PNG or JPEG texture (an image embedded in a glTF file) as
+/// [`read_texture`] (or, with `alpha`, [`read_texture_alpha`]) reads a file; `label` names it in
+/// errors.
+pub fn decode_texture(
+    bytes: &[u8],
+    label: &Path,
+    format: image::ImageFormat,
+    raw: bool,
+    alpha: bool,
+) -> Result<Image, ImageIoError> {
+    let texture = |source| ImageIoError::Texture { path: label.to_path_buf(), source };
+    let decoded = guarded_decode::decode_bytes(bytes, label, format, texture)?;
+    if alpha {
+        texture_codec::alpha(decoded, format).map_err(texture)
+    } else {
+        texture_codec::to_linear(decoded, format, raw).map_err(texture)
+    }
+}
+
 /// Reads an EXR file, explaining a missing-channel failure in our own words.
 fn read_exr(path: &Path) -> Result<Image, ImageIoError> {
     // Open it ourselves first, so "not found" and permissions read as IO errors.

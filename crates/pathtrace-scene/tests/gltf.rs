@@ -152,7 +152,7 @@ fn damaged_glb_never_panics() {
 }
 
 /// A base colour texture stored as a file becomes an image texture with the sampler's wrap and
-/// filter and `KHR_texture_transform`'s matrix; an embedded one falls back to the factor, warned.
+/// filter and `KHR_texture_transform`'s matrix; an embedded one is named inside the glTF file.
 #[test]
 fn base_colour_textures_and_their_transform_convert() {
     use pathtrace_scene::native::model::{Colour, MaterialKind, TextureDef};
@@ -172,8 +172,9 @@ fn base_colour_textures_and_their_transform_convert() {
     let path = dir.path().join("scene.gltf");
     std::fs::write(&path, serde_json::to_vec(&v).unwrap()).unwrap();
     let (file, warnings) = convert_file(&path, &[]).unwrap();
+    // Material 1's colour factor is not white: only that is warned about.
     assert_eq!(warnings.len(), 1, "{warnings:#?}");
-    assert!(warnings[0].contains("materials[1]") && warnings[0].contains("embedded"), "{warnings:?}");
+    assert!(warnings[0].contains("materials[1]") && warnings[0].contains("baseColorFactor"), "{warnings:?}");
     let MaterialKind::Lambertian {
         albedo: Colour::Texture(TextureDef::Bitmap { filename, nearest, clamp, to_uv, .. }),
     } = &file.materials["gltf-0"].kind
@@ -189,5 +190,15 @@ fn base_colour_textures_and_their_transform_convert() {
             assert!((a - b).abs() < 1e-6, "{rows:?}");
         }
     }
-    assert!(matches!(file.materials["gltf-1"].kind, MaterialKind::Lambertian { albedo: Colour::Constant(_) }));
+    // The data: URI image is named inside the glTF; its bytes (not a PNG) fail at the build.
+    let MaterialKind::Lambertian { albedo: Colour::Texture(TextureDef::Bitmap { filename, .. }) } =
+        &file.materials["gltf-1"].kind
+    else {
+        panic!("{:?}", file.materials["gltf-1"]);
+    };
+    assert_eq!(filename, "scene.gltf#images[1]");
+    let image = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/maps/emissive.png");
+    std::fs::copy(image, dir.path().join("wood grain.png")).unwrap();
+    let e = load_gltf(&path, &[]).map(|_| ()).expect_err("an error").to_string();
+    assert!(e.contains("scene.gltf#images[1]") && e.contains("gltf-1"), "{e}");
 }

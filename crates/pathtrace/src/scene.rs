@@ -5,7 +5,8 @@ use crate::accel::{Bvh, Intersectable, PrimitiveSet};
 use crate::camera::CameraDesc;
 use crate::instance::{GroupId, Instance, Instances, ShapeGroup};
 use crate::light::{
-    AreaLight, DirectionalLight, Emission, EnvironmentLight, Light, LightSet, LightShape, PointLight, SpotLight,
+    AreaLight, DirectionalLight, Emission, EnvironmentLight, Light, LightSet, LightShape, PointLight, RadianceTexture,
+    SpotLight,
 };
 use crate::material::Material;
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
@@ -14,6 +15,7 @@ use crate::primitive_store::{PrimitiveStore, SceneMesh};
 use crate::shape::{MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
 use crate::texture::{ColourSlot, NormalPerturbation, Opacity, PerturbationKind, Texture, TextureBindings, TextureId};
 use crate::wide::simd::{F32s, Ms, Vec3s};
+use std::sync::Arc;
 
 /// Index of a material in the scene.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -440,6 +442,8 @@ pub struct SceneBuilder {
     /// Bounded copies already made: (material, boundary) → the copy's id.
     bounded: Vec<(u32, MediumBoundary, u32)>,
     camera_medium: Option<MediumId>,
+    /// Per material id: the texture scaling its emitted radiance, if any.
+    emission_textures: Vec<Option<TextureId>>,
 }
 
 impl SceneBuilder {
@@ -537,6 +541,24 @@ impl SceneBuilder {
             self.bindings.resize(material.0 as usize + 1, TextureBindings::default());
         }
         self.bindings[material.0 as usize].opacity = Some(o);
+        Ok(())
+    }
+
+    /// Scales `material`'s emitted radiance by `texture` (added with [`SceneBuilder::texture`]),
+    /// looked up at each point's (u, v). Only meshes may carry such a material (their triangles
+    /// become textured lights, see [`RadianceTexture`]); other shapes are a build error.
+    pub fn set_emission_texture(&mut self, material: MaterialId, texture: TextureId) -> Result<(), BuildError> {
+        self.check_material(material)?;
+        if texture.0 as usize >= self.textures.len() {
+            return Err(BuildError::Material(format!("texture id {} does not exist", texture.0)));
+        }
+        if self.materials[material.0 as usize].1.is_none() {
+            return Err(BuildError::Material("an emission texture needs an emitting material".into()));
+        }
+        if self.emission_textures.len() <= material.0 as usize {
+            self.emission_textures.resize(material.0 as usize + 1, None);
+        }
+        self.emission_textures[material.0 as usize] = Some(texture);
         Ok(())
     }
 
@@ -803,12 +825,24 @@ impl SceneBuilder {
         let mut meshes = Vec::new();
         let mut unbounded = Vec::new();
         let mut lights = Vec::new();
+        // One shared copy of each emission texture.
+        let emission_texture = |m: u32| -> Option<Arc<Texture>> {
+            let id = (*self.emission_textures.get(m as usize)?)?;
+            Some(Arc::new(self.textures[id.0 as usize].clone()))
+        };
+        let emission_textures: Vec<Option<Arc<Texture>>> =
+            (0..self.materials.len() as u32).map(emission_texture).collect();
         for entry in self.entries {
             let (Entry::Shape(_, material) | Entry::Mesh(_, material)) = entry;
             let emission = self.materials[material as usize].1.filter(|e| !e.radiance.is_black());
             match entry {
                 Entry::Shape(shape, _) => {
                     let light = match emission {
+                        Some(_) if emission_textures[material as usize].is_some() => {
+                            return Err(BuildError::Material(
+                                "an emission texture is supported on meshes only (its triangles carry the uv)".into(),
+                            ))
+                        }
                         Some(e) => {
                             let light_shape = match &shape {
                                 Shape::Quad(q) => LightShape::Quad(*q),
@@ -835,8 +869,17 @@ impl SceneBuilder {
                     let first_light = match emission {
                         Some(e) => {
                             let first = lights.len() as u32;
-                            let tris = (0..geometry.len() as u32).map(|i| geometry.triangle(i));
-                            lights.extend(tris.map(|t| AreaLight::new(LightShape::Triangle(t), e)));
+                            for i in 0..geometry.len() as u32 {
+                                let light = AreaLight::new(LightShape::Triangle(geometry.triangle(i)), e);
+                                lights.push(match &emission_textures[material as usize] {
+                                    None => light,
+                                    Some(texture) => {
+                                        let corner_uv = geometry.corner_uvs(i);
+                                        let t = RadianceTexture { texture: texture.clone(), corner_uv };
+                                        light.with_texture(t).expect("a mesh light is a triangle")
+                                    }
+                                });
+                            }
                             first
                         }
                         None => Primitive::NO_LIGHT,

@@ -7,7 +7,10 @@
 //! Substituted, with a warning: other dielectrics become `rough_plastic` (GGX, same α and ior),
 //! metals a `rough_conductor` of a perfect mirror metal tinted by the base colour (no Schlick
 //! edge brightening), partial `metallic` the nearer of the two, transmission a `rough_dielectric`.
-//! A base colour texture stored as an image file becomes an image texture (see `texture.rs`),
+//! A base colour texture becomes an image texture (see `texture.rs`), an emissive texture the
+//! texture the emitted radiance is multiplied by, the metallic-roughness texture's green channel
+//! (times roughnessFactor, squared after filtering) the α of the rough conductor or dielectric
+//! (its blue channel, metallic, is not read: the factor picks the model, with a warning),
 //! a normal texture a normal map (see [`normal_map`]), `alphaMode` an opacity (see
 //! [`alpha_opacity`]).
 
@@ -26,7 +29,7 @@ fn triple(c: [f32; 3]) -> Triple {
 
 /// Converts `m` (the glTF default material when `None`); unsupported parts are reported through
 /// `warn` with the material's location.
-pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> MaterialDef {
+pub fn convert(m: Option<&gltf::Material>, file_name: &str, warn: &mut dyn FnMut(String)) -> MaterialDef {
     let at =
         m.and_then(|m| m.index()).map_or_else(|| "the default material".to_string(), |i| format!("materials[{i}]"));
     let mut w = |msg: &str| warn(format!("{at}: {msg}"));
@@ -34,19 +37,23 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
     let base_factor = pbr.as_ref().map_or([1.0; 4], |p| p.base_color_factor());
     let metallic = pbr.as_ref().map_or(1.0, |p| p.metallic_factor());
     let roughness = pbr.as_ref().map_or(1.0, |p| p.roughness_factor());
-    if let Some(p) = &pbr {
-        if p.metallic_roughness_texture().is_some() {
-            w("the metallic-roughness texture is not supported yet: using the factors");
+    let roughness_texture = pbr.as_ref().and_then(|p| p.metallic_roughness_texture()).and_then(|info| {
+        if metallic > 0.0 {
+            w("the metallic-roughness texture's metallic (blue) channel is not read: metallicFactor chooses \
+               between metal and dielectric");
         }
-    }
-    if let Some(m) = m {
-        if m.emissive_texture().is_some() {
-            w("the emissive texture is not supported yet: using emissiveFactor");
+        // Roughness is the green channel times roughnessFactor; α is its square.
+        match super::texture::channel_texture(&info, file_name, 1, roughness, true) {
+            Ok(t) => Some(Colour::Texture(t)),
+            Err(e) => {
+                w(&format!("metallic-roughness texture: {e}: using roughnessFactor"));
+                None
+            }
         }
-    }
+    });
     let factor = [base_factor[0], base_factor[1], base_factor[2]];
     let base = match pbr.as_ref().and_then(|p| p.base_color_texture()) {
-        Some(info) => match super::texture::colour_texture(&info) {
+        Some(info) => match super::texture::colour_texture(&info, file_name) {
             Ok(t) => {
                 if factor != [1.0; 3] {
                     w("baseColorFactor times a texture is not supported: using the texture alone");
@@ -65,11 +72,14 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
     let transmission = m.and_then(|m| m.transmission()).map_or(0.0, |t| t.transmission_factor());
     let alpha = num(roughness * roughness);
     let ggx = RoughnessDef { distribution: MicrofacetKind::Ggx, alpha_u: alpha, alpha_v: alpha };
+    // Only the microfacet models take a roughness texture.
+    let mut textured_alpha = None;
     let kind = if transmission > 0.0 && metallic < 0.5 {
         if transmission < 1.0 {
             w("transmissionFactor below 1 is rendered fully transmissive");
         }
         w("KHR_materials_transmission is approximated by rough glass (`rough_dielectric`)");
+        textured_alpha = roughness_texture;
         MaterialKind::RoughDielectric { ior: num(ior), tint: base, roughness: ggx }
     } else if metallic < 0.5 {
         if metallic > 0.0 {
@@ -79,6 +89,9 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
             MaterialKind::Lambertian { albedo: base }
         } else {
             w("the dielectric BRDF is approximated by `rough_plastic` (GGX coating over the base colour)");
+            if roughness_texture.is_some() {
+                w("the roughness texture is not applied to `rough_plastic`: using roughnessFactor");
+            }
             let spec = Colour::Constant(Triple::Splat(num(specular)));
             MaterialKind::RoughPlastic { albedo: base, specular: spec, ior: num(ior), nonlinear: false, roughness: ggx }
         }
@@ -87,33 +100,55 @@ pub fn convert(m: Option<&gltf::Material>, warn: &mut dyn FnMut(String)) -> Mate
             w("metallic between 0 and 1 is rendered as a metal");
         }
         w("the metal BRDF is approximated by `rough_conductor` (a perfect mirror metal tinted by the base colour)");
+        textured_alpha = roughness_texture;
         MaterialKind::RoughConductor { metal: MetalDef::Named(MetalName("none")), reflectance: base, roughness: ggx }
     };
     let strength = m.and_then(|m| m.emissive_strength()).unwrap_or(1.0);
     let e = m.map_or([0.0; 3], |m| m.emissive_factor()).map(|c| c * strength);
-    let emission = (e.iter().any(|&c| c > 0.0))
-        .then(|| EmissionDef { radiance: triple(e), two_sided: m.is_some_and(|m| m.double_sided()) });
-    let normal = m.and_then(|m| m.normal_texture()).and_then(|n| normal_map(&n, &mut w));
-    let mut opacity = m.and_then(|m| alpha_opacity(m, base_factor[3], &mut w));
+    let emission = (e.iter().any(|&c| c > 0.0)).then(|| EmissionDef {
+        radiance: triple(e),
+        two_sided: m.is_some_and(|m| m.double_sided()),
+        texture: m.and_then(|m| emissive_texture(m, file_name, &mut w)),
+    });
+    let normal = m.and_then(|m| m.normal_texture()).and_then(|n| normal_map(&n, file_name, &mut w));
+    let mut opacity = m.and_then(|m| alpha_opacity(m, base_factor[3], file_name, &mut w));
     if opacity.is_some() && emission.is_some() {
         w("an emissive material cannot be cut out: alphaMode ignored");
         opacity = None;
     }
-    MaterialDef { kind, emission, normal, opacity, roughness: None }
+    MaterialDef { kind, emission, normal, opacity, roughness: textured_alpha }
+}
+
+/// `emissiveTexture` (sRGB-encoded, glTF 2.0 §3.9.3) as the texture the emitted radiance
+/// (`emissiveFactor` × `emissive_strength`) is multiplied by.
+fn emissive_texture(m: &gltf::Material, file_name: &str, w: &mut dyn FnMut(&str)) -> Option<Colour> {
+    let info = m.emissive_texture()?;
+    match super::texture::colour_texture(&info, file_name) {
+        Ok(t) => Some(Colour::Texture(t)),
+        Err(e) => {
+            w(&format!("emissive texture: {e}: using emissiveFactor alone"));
+            None
+        }
+    }
 }
 
 /// `alphaMode` `MASK` (opaque where alpha ≥ `alphaCutoff`, default 0.5) or `BLEND` (alpha as
 /// the opacity: the surface is there with that probability, which is how a path tracer sees a
 /// blended surface) as a native opacity: the base colour texture's alpha channel, or
 /// `baseColorFactor`'s alpha without a texture.
-fn alpha_opacity(m: &gltf::Material, factor_alpha: f32, w: &mut dyn FnMut(&str)) -> Option<OpacityDef> {
+fn alpha_opacity(
+    m: &gltf::Material,
+    factor_alpha: f32,
+    file_name: &str,
+    w: &mut dyn FnMut(&str),
+) -> Option<OpacityDef> {
     let cutoff = match m.alpha_mode() {
         gltf::material::AlphaMode::Opaque => return None,
         gltf::material::AlphaMode::Mask => Some(num(m.alpha_cutoff().unwrap_or(0.5))),
         gltf::material::AlphaMode::Blend => None,
     };
     let texture = m.pbr_metallic_roughness().base_color_texture().and_then(|info| {
-        super::texture::colour_texture(&info).ok().map(|t| match t {
+        super::texture::colour_texture(&info, file_name).ok().map(|t| match t {
             TextureDef::Bitmap { filename, nearest, clamp, to_uv, .. } => {
                 TextureDef::Bitmap { filename, raw: true, nearest, clamp, to_uv, alpha: true }
             }
@@ -137,11 +172,12 @@ fn alpha_opacity(m: &gltf::Material, factor_alpha: f32, w: &mut dyn FnMut(&str))
 /// texture coordinates are not mirrored; `scale` scales x and y, as the glTF specification says.
 /// Tangents come from the texture coordinates (a mesh's TANGENT attribute is not read); glTF has
 /// no terminator shadowing.
-fn normal_map(n: &gltf::material::NormalTexture, w: &mut dyn FnMut(&str)) -> Option<NormalPerturbationDef> {
-    if n.extension_value("KHR_texture_transform").is_some() {
-        w("KHR_texture_transform on the normal texture is not supported: ignored");
-    }
-    match super::texture::normal_texture(n) {
+fn normal_map(
+    n: &gltf::material::NormalTexture,
+    file_name: &str,
+    w: &mut dyn FnMut(&str),
+) -> Option<NormalPerturbationDef> {
+    match super::texture::normal_texture(n, file_name) {
         Ok(t) => Some(NormalPerturbationDef {
             map: NormalDef::Map { texture: Colour::Texture(t), strength: num(n.scale()) },
             shadowing: false,

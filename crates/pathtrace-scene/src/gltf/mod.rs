@@ -13,6 +13,7 @@
 
 mod document;
 mod geometry;
+pub(crate) mod images;
 mod material;
 mod scene;
 mod texture;

@@ -2,7 +2,7 @@
 //! checked by [`size_guard`](super::size_guard) before the pixels are decoded.
 
 use std::fs::File;
-use std::io::BufReader;
+use std::io::{BufReader, Cursor};
 use std::path::Path;
 
 use image::{DynamicImage, ImageDecoder, ImageError, ImageReader};
@@ -23,5 +23,21 @@ pub(crate) fn decode_file(
     let decoder = reader.into_decoder().map_err(&wrap)?;
     let (width, height) = decoder.dimensions();
     check_declared_size(path, width.into(), height.into(), file_len)?;
+    DynamicImage::from_decoder(decoder).map_err(wrap)
+}
+
+/// Decodes in-memory `bytes` as `format` (an image embedded in a scene file), with the same size
+/// guard; `label` names the image in errors.
+pub(crate) fn decode_bytes(
+    bytes: &[u8],
+    label: &Path,
+    format: image::ImageFormat,
+    wrap: impl Fn(ImageError) -> ImageIoError,
+) -> Result<DynamicImage, ImageIoError> {
+    let mut reader = ImageReader::with_format(Cursor::new(bytes), format);
+    reader.limits(image_crate_limits());
+    let decoder = reader.into_decoder().map_err(&wrap)?;
+    let (width, height) = decoder.dimensions();
+    check_declared_size(label, width.into(), height.into(), bytes.len() as u64)?;
     DynamicImage::from_decoder(decoder).map_err(wrap)
 }

@@ -739,7 +739,7 @@ impl<'a> Conv<'a, '_> {
             let ty = self.req_attr(em, "type")?;
             if ty == "area" {
                 let radiance = self.color(em, "radiance")?.unwrap_or(Triple::Splat(num(1.0)));
-                emission = Some(EmissionDef { radiance, two_sided: false });
+                emission = Some(EmissionDef { radiance, two_sided: false, texture: None });
             } else {
                 self.warn(em, &format!("emitter `{ty}` on a shape is not supported and is skipped"));
             }

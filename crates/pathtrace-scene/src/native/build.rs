@@ -13,6 +13,7 @@ use super::model::{
 use super::transform::compose;
 use super::values::vec3;
 use crate::{LoadedScene, RenderDefaults};
+use pathtrace::film::Image;
 use pathtrace::film::{GaussianFilter, PixelFilter};
 use pathtrace::light::{DirectionalLight, Emission, EnvMap, EnvironmentLight, PointLight, SpotLight};
 use pathtrace::material::{
@@ -313,14 +314,22 @@ impl<L: Locate> Ctx<'_, L> {
             }
         };
         validate_material(&m).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
-        let id = match def.emission {
+        let id = match &def.emission {
             None => self.b.material(m),
             Some(e) => {
                 let radiance = e.radiance.rgb();
                 if radiance.r < 0.0 || radiance.g < 0.0 || radiance.b < 0.0 {
                     return Err(self.src.error_at(&at, format!("material `{name}`: emitted radiance must be ≥ 0")));
                 }
-                self.b.material_with_emission(m, Emission { radiance, two_sided: e.two_sided })
+                let id = self.b.material_with_emission(m, Emission { radiance, two_sided: e.two_sided });
+                if let Some(Colour::Texture(t)) = &e.texture {
+                    let texture = self.texture(t, &at.field("emission_texture"))?;
+                    let t = self.b.texture(texture);
+                    self.b
+                        .set_emission_texture(id, t)
+                        .map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;
+                }
+                id
             }
         };
         if one_sided {
@@ -404,14 +413,7 @@ impl<L: Locate> Ctx<'_, L> {
                 Ok(Texture::Checkerboard(Checkerboard { color0: color0.rgb(), color1: color1.rgb(), to_uv: uv(to_uv) }))
             }
             TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha } => {
-                let dir = self.src.path().parent().unwrap_or(std::path::Path::new(""));
-                let path = dir.join(filename);
-                let image = if *alpha {
-                    crate::image_io::read_texture_alpha(&path)
-                } else {
-                    crate::image_io::read_texture(&path, *raw)
-                }
-                .map_err(|e| self.src.error_at(at, format!("cannot load texture: {e}")))?;
+                let image = self.texture_image(filename, *raw, *alpha, at)?;
                 let mut b = Bitmap::new(image.width, image.height, image.pixels).ok_or_else(|| {
                     self.src.error_at(at, format!("texture `{filename}` has negative or non-finite texels"))
                 })?;
@@ -420,7 +422,38 @@ impl<L: Locate> Ctx<'_, L> {
                 b.to_uv = uv(to_uv);
                 Ok(Texture::Bitmap(b))
             }
+            TextureDef::Channel { filename, channel, factor, squared, nearest, clamp, to_uv } => {
+                let image = self.texture_image(filename, true, false, at)?;
+                // Scaling a channel commutes with the bilinear blend: done once per texel here.
+                let grey = |c: Rgb| Rgb::splat(c.to_array()[(*channel).min(2) as usize] * factor.f32());
+                let texels = image.pixels.into_iter().map(grey).collect();
+                let mut b = Bitmap::new(image.width, image.height, texels).ok_or_else(|| {
+                    self.src.error_at(at, format!("texture `{filename}` has negative or non-finite texels"))
+                })?;
+                b.filter = if *nearest { FilterType::Nearest } else { FilterType::Bilinear };
+                b.wrap = if *clamp { WrapMode::Clamp } else { WrapMode::Repeat };
+                b.to_uv = uv(to_uv);
+                Ok(if *squared { Texture::Squared(b) } else { Texture::Bitmap(b) })
+            }
         }
+    }
+
+    /// The texels of a texture's image: a file relative to the scene file (8-bit sRGB decoded
+    /// unless `raw`, float formats linear; with `alpha`, the alpha channel), or an image inside a
+    /// glTF file (`scene.glb#images[N]`, see [`crate::gltf::images`]).
+    fn texture_image(&self, filename: &str, raw: bool, alpha: bool, at: &ItemPath) -> Result<Image, SceneError> {
+        let dir = self.src.path().parent().unwrap_or(std::path::Path::new(""));
+        let fail = |e: String| self.src.error_at(at, format!("cannot load texture: {e}"));
+        if let Some((file, index)) = crate::gltf::images::split_reference(filename) {
+            let gltf = dir.join(file);
+            let (bytes, format) = crate::gltf::images::image_bytes(&gltf, index).map_err(fail)?;
+            let label = std::path::PathBuf::from(filename);
+            return crate::image_io::decode_texture(&bytes, &label, format, raw, alpha)
+                .map_err(|e| fail(e.to_string()));
+        }
+        let path = dir.join(filename);
+        if alpha { crate::image_io::read_texture_alpha(&path) } else { crate::image_io::read_texture(&path, raw) }
+            .map_err(|e| fail(e.to_string()))
     }
 
     fn add_light(&mut self, l: &LightDef, at: &ItemPath) -> Result<(), SceneError> {
@@ -544,7 +577,7 @@ impl<L: Locate> Ctx<'_, L> {
     }
 
     fn emits(&self, material: &str) -> bool {
-        self.materials.get(material).and_then(|m| m.emission).is_some_and(|e| !e.radiance.rgb().is_black())
+        self.materials.get(material).and_then(|m| m.emission.as_ref()).is_some_and(|e| !e.radiance.rgb().is_black())
     }
 
     /// Adds a shape to the scene, or to the shape group being read.

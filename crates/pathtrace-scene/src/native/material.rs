@@ -138,12 +138,15 @@ pub struct OpacityDef {
 }
 
 /// Light given off by a surface.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct EmissionDef {
     /// Emitted radiance per channel.
     pub radiance: Triple,
     /// Emit from both faces (default: only the front face).
     pub two_sided: bool,
+    /// A texture the radiance is multiplied by (`emission_texture`; glTF's `emissiveTexture`),
+    /// looked up at each point's (u, v); meshes only. Always a [`Colour::Texture`].
+    pub texture: Option<Colour>,
 }
 
 /// One named material of a scene file.
@@ -176,6 +179,9 @@ impl MaterialDef {
         if let Some(r) = &mut self.roughness {
             all.push(r);
         }
+        if let Some(t) = self.emission.as_mut().and_then(|e| e.texture.as_mut()) {
+            all.push(t);
+        }
         all
     }
 }
@@ -204,6 +210,8 @@ pub struct RawMaterial {
     two_sided: Option<bool>,
     #[serde(skip_serializing_if = "Option::is_none")]
     one_sided: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    emission_texture: Option<Colour>,
     #[serde(skip_serializing_if = "Option::is_none")]
     metal: Option<MetalName>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -404,10 +412,22 @@ impl TryFrom<RawMaterial> for MaterialDef {
             }
             _ => r.emission,
         };
-        let emission = match (radiance, r.two_sided) {
-            (Some(radiance), two_sided) => Some(EmissionDef { radiance, two_sided: two_sided.unwrap_or(false) }),
-            (None, Some(_)) => return Err("`two_sided` applies only to emitting materials (add `emission`)".into()),
-            (None, None) => None,
+        let texture = match r.emission_texture.clone() {
+            None => None,
+            Some(t @ Colour::Texture(_)) => Some(t),
+            Some(Colour::Constant(_)) => {
+                return Err("`emission_texture` must be a texture table (scale `radiance` or `emission` instead)".into())
+            }
+        };
+        let emission = match (radiance, r.two_sided, texture) {
+            (Some(radiance), two_sided, texture) => {
+                Some(EmissionDef { radiance, two_sided: two_sided.unwrap_or(false), texture })
+            }
+            (None, Some(_), _) => return Err("`two_sided` applies only to emitting materials (add `emission`)".into()),
+            (None, None, Some(_)) => {
+                return Err("`emission_texture` applies only to emitting materials (add `emission`)".into())
+            }
+            (None, None, None) => None,
         };
         if normal.is_some() && t == MaterialType::Emissive {
             return Err("an emissive material cannot take a normal or bump map (it does not scatter)".into());
@@ -530,6 +550,7 @@ impl From<MaterialDef> for RawMaterial {
                 r.emission = Some(e.radiance);
             }
             r.two_sided = e.two_sided.then_some(true);
+            r.emission_texture = e.texture;
         }
         if let Some(n) = m.normal {
             match n.map {
@@ -580,7 +601,8 @@ mod tests {
         let glass = parse("type = \"dielectric\"").unwrap();
         assert_eq!(glass.kind, MaterialKind::Dielectric { ior: Num::from(1.5), tint: Colour::grey(1.0) });
         let light = parse("type = \"emissive\"\nradiance = 4").unwrap();
-        assert_eq!(light.emission, Some(EmissionDef { radiance: Triple::Splat(Num::from(4.0)), two_sided: false }));
+        let four = Triple::Splat(Num::from(4.0));
+        assert_eq!(light.emission, Some(EmissionDef { radiance: four, two_sided: false, texture: None }));
     }
 
     #[test]
@@ -690,5 +712,21 @@ mod tests {
         let m = parse("type = \"diffuse\"\nalbedo = 0.5\nemission = [1, 2, 3]\ntwo_sided = true").unwrap();
         let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
         assert_eq!(m, back);
+    }
+
+    #[test]
+    fn emission_textures_need_an_emitter_and_a_texture_table() {
+        let lamp = "type = \"emissive\"\nradiance = 2\nemission_texture = { type = \"bitmap\", filename = \"e.png\" }";
+        let m = parse(lamp).unwrap();
+        assert!(matches!(m.emission.as_ref().and_then(|e| e.texture.as_ref()), Some(Colour::Texture(_))));
+        let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
+        assert_eq!(m, back);
+        let e = parse(
+            "type = \"lambertian\"\nalbedo = 0.5\nemission_texture = { type = \"bitmap\", filename = \"e.png\" }",
+        )
+        .unwrap_err();
+        assert!(e.contains("only to emitting materials"), "{e}");
+        let e = parse("type = \"emissive\"\nradiance = 2\nemission_texture = 0.5").unwrap_err();
+        assert!(e.contains("must be a texture table"), "{e}");
     }
 }

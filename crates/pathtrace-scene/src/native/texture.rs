@@ -4,7 +4,11 @@
 //! ```toml
 //! albedo = { type = "checkerboard", color0 = 0.4, color1 = 0.2, scale = 8 }
 //! albedo = { type = "bitmap", filename = "textures/wood.jpg", raw = false, to_uv = [[2, 0, 0], [0, 2, 0]] }
+//! alpha_texture = { type = "channel", filename = "mr.png", channel = "g", factor = 0.8, squared = true }
 //! ```
+//!
+//! A `filename` of the form `scene.gltf#images[N]` (or `.glb`) names image N of that glTF file
+//! (stored in one of its buffers, a `data:` URI or a file next to it).
 //!
 //! Tables are read into a flat [`RawTexture`] (unknown fields rejected) and checked into a
 //! [`TextureDef`]; `scale` (one number or `[su, sv]`) and `to_uv` (rows `[a, b, tx]`,
@@ -63,6 +67,20 @@ pub enum TextureDef {
     /// sRGB-decoded unless `raw`; float images are linear. `alpha`: the image's alpha channel
     /// (PNG, JPEG; 1 without one) as a grey texture (`channel = "alpha"`), for opacities.
     Bitmap { filename: String, raw: bool, nearest: bool, clamp: bool, to_uv: UvRows, alpha: bool },
+    /// One channel (`channel` 0, 1, 2 for r, g, b) of an image read raw (linear data, as glTF's
+    /// metallic-roughness texture), as a grey texture times `factor`; `squared`: the filtered
+    /// value is squared (glTF's roughness r gives α = r²).
+    Channel { filename: String, channel: u8, factor: Num, squared: bool, nearest: bool, clamp: bool, to_uv: UvRows },
+}
+
+impl TextureDef {
+    /// The image file it reads, if any (for edits such as rebasing paths).
+    pub fn filename_mut(&mut self) -> Option<&mut String> {
+        match self {
+            TextureDef::Checkerboard { .. } => None,
+            TextureDef::Bitmap { filename, .. } | TextureDef::Channel { filename, .. } => Some(filename),
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
@@ -70,6 +88,7 @@ pub enum TextureDef {
 enum TextureType {
     Checkerboard,
     Bitmap,
+    Channel,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
@@ -84,6 +103,9 @@ enum FilterType {
 enum Channel {
     Rgb,
     Alpha,
+    R,
+    G,
+    B,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
@@ -122,6 +144,10 @@ pub struct RawTexture {
     #[serde(skip_serializing_if = "Option::is_none")]
     channel: Option<Channel>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    factor: Option<Num>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    squared: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     scale: Option<Scale>,
     #[serde(skip_serializing_if = "Option::is_none")]
     to_uv: Option<UvRows>,
@@ -153,6 +179,9 @@ impl TryFrom<RawTexture> for TextureDef {
             }
         };
         match kind {
+            TextureType::Checkerboard | TextureType::Bitmap if r.factor.is_some() || r.squared.is_some() => {
+                Err("`factor` and `squared` are parameters of a channel texture".into())
+            }
             TextureType::Checkerboard => {
                 if let Some(f) = [("filename", r.filename.is_some()), ("raw", r.raw.is_some())]
                     .iter()
@@ -174,6 +203,9 @@ impl TryFrom<RawTexture> for TextureDef {
                 if r.color0.is_some() || r.color1.is_some() {
                     return Err("`color0` and `color1` are parameters of a checkerboard texture, not a bitmap".into());
                 }
+                if matches!(r.channel, Some(Channel::R | Channel::G | Channel::B)) {
+                    return Err("a single colour channel is a `channel` texture, not a bitmap".into());
+                }
                 let filename = r.filename.ok_or("a bitmap texture needs a `filename`")?;
                 Ok(TextureDef::Bitmap {
                     filename,
@@ -182,6 +214,31 @@ impl TryFrom<RawTexture> for TextureDef {
                     clamp: r.wrap_mode == Some(WrapMode::Clamp),
                     to_uv,
                     alpha: r.channel == Some(Channel::Alpha),
+                })
+            }
+            TextureType::Channel => {
+                if r.color0.is_some() || r.color1.is_some() || r.raw.is_some() {
+                    return Err("a channel texture takes no `color0`, `color1` or `raw` (it reads raw data)".into());
+                }
+                let filename = r.filename.ok_or("a channel texture needs a `filename`")?;
+                let channel = match r.channel {
+                    Some(Channel::R) => 0,
+                    Some(Channel::G) => 1,
+                    Some(Channel::B) => 2,
+                    _ => return Err("a channel texture needs `channel` = \"r\", \"g\" or \"b\"".into()),
+                };
+                let factor = r.factor.unwrap_or(Num::from(1.0));
+                if factor.get() < 0.0 {
+                    return Err("`factor` must be ≥ 0".into());
+                }
+                Ok(TextureDef::Channel {
+                    filename,
+                    channel,
+                    factor,
+                    squared: r.squared.unwrap_or(false),
+                    nearest: r.filter_type == Some(FilterType::Nearest),
+                    clamp: r.wrap_mode == Some(WrapMode::Clamp),
+                    to_uv,
                 })
             }
         }
@@ -200,6 +257,15 @@ impl From<&TextureDef> for RawTexture {
                 (r.kind, r.filename) = (Some(TextureType::Bitmap), Some(filename.clone()));
                 r.channel = alpha.then_some(Channel::Alpha);
                 r.raw = raw.then_some(true);
+                r.filter_type = nearest.then_some(FilterType::Nearest);
+                r.wrap_mode = clamp.then_some(WrapMode::Clamp);
+                to_uv
+            }
+            TextureDef::Channel { filename, channel, factor, squared, nearest, clamp, to_uv } => {
+                (r.kind, r.filename) = (Some(TextureType::Channel), Some(filename.clone()));
+                r.channel = Some([Channel::R, Channel::G, Channel::B][(*channel).min(2) as usize]);
+                r.factor = (factor.get() != 1.0).then_some(*factor);
+                r.squared = squared.then_some(true);
                 r.filter_type = nearest.then_some(FilterType::Nearest);
                 r.wrap_mode = clamp.then_some(WrapMode::Clamp);
                 to_uv
@@ -294,6 +360,14 @@ mod tests {
             .unwrap_err()
             .contains("unknown variant"));
         assert!(parse("c = { type = \"noise\" }").unwrap_err().contains("unknown variant"));
+        assert!(parse("c = { type = \"channel\", filename = \"a.png\" }").unwrap_err().contains("`channel`"));
+        assert!(parse("c = { type = \"bitmap\", filename = \"a.png\", channel = \"g\" }")
+            .unwrap_err()
+            .contains("channel` texture"));
+        assert!(parse("c = { type = \"bitmap\", filename = \"a.png\", factor = 2 }").unwrap_err().contains("factor"));
+        assert!(parse("c = { type = \"channel\", filename = \"a.png\", channel = \"r\", factor = -1 }")
+            .unwrap_err()
+            .contains("≥ 0"));
     }
 
     #[test]
@@ -302,6 +376,7 @@ mod tests {
             "c = { type = \"checkerboard\", color0 = [1, 0, 0], scale = 8 }",
             "c = { type = \"bitmap\", filename = \"t.exr\", wrap_mode = \"clamp\", to_uv = [[1, 2, 3], [4, 5, 6]] }",
             "c = [0.1, 0.2, 0.3]",
+            "c = { type = \"channel\", filename = \"s.glb#images[2]\", channel = \"g\", factor = 0.5, squared = true }",
         ] {
             let c = parse(text).unwrap();
             let json = serde_json::to_string(&c).unwrap();

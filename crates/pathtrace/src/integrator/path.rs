@@ -190,7 +190,7 @@ pub(crate) fn vertex<const N: usize>(
     // ---- Emission hit (rare: lane by lane) ---------------------------------------------
     for i in (alive & Ms::from_fn(|i| s.light[i] != Primitive::NO_LIGHT)).lanes() {
         let Some(light) = scene_lights.get(s.light[i]) else { continue };
-        let le = light.emitted(s.n_geometric.lane(i), wo.lane(i));
+        let le = light.emitted(s.n_geometric.lane(i), wo.lane(i), s.uv[i]);
         if le.is_black() {
             continue;
         }

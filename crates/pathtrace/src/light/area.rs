@@ -1,5 +1,5 @@
 //! Area lights: quads, triangles and spheres that emit a constant radiance from their front
-//! face (or both faces).
+//! face (or both faces); triangles may scale it by a texture ([`RadianceTexture`]).
 //!
 //! Sampling densities, converted from area to solid angle at the reference point:
 //! - quads, triangles and disks: uniform by area, pdf_ω = r² / (|cos θ_l| · A) (the area-to-solid-angle
@@ -8,6 +8,7 @@
 //!   pdf_ω = 1 / (2π (1 - cos θ_max)), cos θ_max = √(1 - r²/d²) (pbrt-v3 §14.2.3);
 //!   from inside: uniform by area.
 
+use super::RadianceTexture;
 use crate::math::{Frame, Ray, Rgb, Vec2, Vec3};
 use crate::sampling::warp;
 use crate::shape::{Disk, Quad, Sphere, Triangle};
@@ -33,12 +34,14 @@ pub enum LightShape {
 
 /// One emissive primitive, with its area and (for flat shapes) unit normal precomputed: light
 /// sampling runs at every path vertex.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct AreaLight {
     pub shape: LightShape,
     pub emission: Emission,
     area: f32,
     normal: Vec3,
+    /// A texture scaling the radiance (triangles only), if any.
+    texture: Option<RadianceTexture>,
 }
 
 /// A point chosen on a light, with its solid-angle density at the reference point and the
@@ -136,7 +139,27 @@ impl AreaLight {
             LightShape::Sphere(s) => (s.area(), Vec3::ZERO),
             LightShape::Disk(d) => (d.area(), d.normal()),
         };
-        Self { shape, emission, area, normal }
+        Self { shape, emission, area, normal, texture: None }
+    }
+
+    /// The same triangle light with its radiance scaled by `texture`; `None` for other shapes,
+    /// whose sampled points carry no (u, v) here.
+    pub fn with_texture(self, texture: RadianceTexture) -> Option<Self> {
+        matches!(self.shape, LightShape::Triangle(_)).then_some(Self { texture: Some(texture), ..self })
+    }
+
+    /// The radiance texture, if any.
+    pub fn texture(&self) -> Option<&RadianceTexture> {
+        self.texture.as_ref()
+    }
+
+    /// The radiance averaged over the texture (the constant radiance without one): what
+    /// selection by power weighs. Any positive weight keeps the estimator unbiased.
+    fn mean_radiance(&self) -> Rgb {
+        match &self.texture {
+            None => self.emission.radiance,
+            Some(t) => self.emission.radiance * t.texture.mean(),
+        }
     }
 
     pub fn area(&self) -> f32 {
@@ -147,16 +170,32 @@ impl AreaLight {
     /// finite radiance and area).
     pub fn power(&self) -> f64 {
         let faces = if self.emission.two_sided { 2.0 } else { 1.0 };
-        self.emission.radiance.luminance_f64() * f64::from(self.area()) * std::f64::consts::PI * faces
+        self.mean_radiance().luminance_f64() * f64::from(self.area()) * std::f64::consts::PI * faces
     }
 
-    /// Radiance leaving a point with geometric normal `n` in direction `w`.
+    /// Radiance leaving a point with geometric normal `n` and texture coordinates `uv` (what a
+    /// hit reports) in direction `w`.
     #[inline(always)]
-    pub fn emitted(&self, n: Vec3, w: Vec3) -> Rgb {
-        if self.emission.two_sided || n.dot(w) > 0.0 {
-            self.emission.radiance
-        } else {
-            Rgb::BLACK
+    pub fn emitted(&self, n: Vec3, w: Vec3, uv: Vec2) -> Rgb {
+        if !(self.emission.two_sided || n.dot(w) > 0.0) {
+            return Rgb::BLACK;
+        }
+        match &self.texture {
+            None => self.emission.radiance,
+            Some(t) => self.emission.radiance * t.texture.eval(uv),
+        }
+    }
+
+    /// Radiance leaving the light's point `p` (a sampled point: its uv is found from where it
+    /// lies on the triangle) with geometric normal `n` in direction `w`.
+    #[inline(always)]
+    pub fn emitted_at_point(&self, p: Vec3, n: Vec3, w: Vec3) -> Rgb {
+        if !(self.emission.two_sided || n.dot(w) > 0.0) {
+            return Rgb::BLACK;
+        }
+        match (&self.texture, &self.shape) {
+            (Some(t), LightShape::Triangle(tri)) => self.emission.radiance * t.at_point(p, tri.p0, tri.e1, tri.e2),
+            _ => self.emission.radiance,
         }
     }
 

@@ -57,7 +57,7 @@ impl Light {
                     wi: s.wi,
                     dist: s.dist,
                     pdf: s.pdf,
-                    radiance: light.emitted(s.normal, -s.wi),
+                    radiance: light.emitted_at_point(s.point, s.normal, -s.wi),
                     delta: false,
                 })
             }

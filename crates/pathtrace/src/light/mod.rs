@@ -7,6 +7,7 @@ mod environment;
 mod envmap;
 mod kind;
 mod point;
+mod radiance_texture;
 mod set;
 mod spot;
 
@@ -16,5 +17,6 @@ pub use environment::EnvironmentLight;
 pub use envmap::EnvMap;
 pub use kind::Light;
 pub use point::PointLight;
+pub use radiance_texture::RadianceTexture;
 pub use set::{LightSample, LightSelection, LightSet};
 pub use spot::SpotLight;

@@ -92,6 +92,16 @@ impl MeshGeometry {
         self.triangle(i).surface_with(hit, normals, uvs)
     }
 
+    /// The texture coordinates at triangle `i`'s corners; without them on the mesh, those that
+    /// make a hit's uv its barycentrics ((0, 0), (1, 0), (0, 1)), as [`MeshGeometry::surface`]
+    /// reports them.
+    pub fn corner_uvs(&self, i: u32) -> [Vec2; 3] {
+        match &self.uvs {
+            Some(uv) => self.indices[i as usize].map(|v| uv[v as usize]),
+            None => [Vec2::ZERO, Vec2::X, Vec2::Y],
+        }
+    }
+
     /// Releases spare capacity (the memory accounting counts capacities).
     pub fn shrink_to_fit(&mut self) {
         self.positions.shrink_to_fit();

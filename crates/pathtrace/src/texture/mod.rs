@@ -6,7 +6,7 @@
 //! albedo = { type = "checkerboard", color0 = 0.4, color1 = 0.2, scale = 8 }
 //! ```
 //!
-//! A closed [`Texture`] enum (constant, checkerboard, bitmap) dispatched by `match`. Any colour
+//! A closed [`Texture`] enum (constant, checkerboard, bitmap, squared bitmap) dispatched by `match`. Any colour
 //! parameter of a material may be bound to a texture ([`ColourSlot`], [`TextureBindings`]): the
 //! material keeps its constant parameters (set to the texture's mean, which is what Mitsuba uses
 //! for sampling weights), and at a hit the scene makes a copy with the texture's value in that
@@ -34,6 +34,10 @@ pub enum Texture {
     Constant(Rgb),
     Checkerboard(Checkerboard),
     Bitmap(Bitmap),
+    /// A bitmap whose filtered value is squared: glTF's perceptual roughness r, whose microfacet
+    /// α is r² (glTF 2.0, Appendix B), interpolated before it is squared as the specification
+    /// evaluates it.
+    Squared(Bitmap),
 }
 
 impl Texture {
@@ -44,6 +48,10 @@ impl Texture {
             Texture::Constant(c) => *c,
             Texture::Checkerboard(c) => c.eval(uv),
             Texture::Bitmap(b) => b.eval(uv),
+            Texture::Squared(b) => {
+                let c = b.eval(uv);
+                c * c
+            }
         }
     }
 
@@ -54,15 +62,19 @@ impl Texture {
         match self {
             Texture::Constant(_) | Texture::Checkerboard(_) => Vec2::ZERO,
             Texture::Bitmap(b) => b.luminance_gradient(uv),
+            // Exact for grey texels (luminance of c² = (luminance of c)²): 2·f·∇f.
+            Texture::Squared(b) => b.luminance_gradient(uv) * (2.0 * b.eval(uv).luminance()),
         }
     }
 
-    /// The mean colour over the unit uv square.
+    /// The mean colour over the unit uv square (for a squared bitmap, the square of the mean
+    /// texel, ≤ the true mean: it only sets sampling weights).
     pub fn mean(&self) -> Rgb {
         match self {
             Texture::Constant(c) => *c,
             Texture::Checkerboard(c) => c.mean(),
             Texture::Bitmap(b) => b.mean(),
+            Texture::Squared(b) => b.mean() * b.mean(),
         }
     }
 
@@ -72,6 +84,7 @@ impl Texture {
             Texture::Constant(c) => c.max_component(),
             Texture::Checkerboard(c) => c.color0.max_component().max(c.color1.max_component()),
             Texture::Bitmap(b) => b.max_value(),
+            Texture::Squared(b) => b.max_value() * b.max_value(),
         }
     }
 }
@@ -126,5 +139,27 @@ impl TextureBindings {
             ColourSlot::Specular => self.specular = Some(texture),
             ColourSlot::Roughness => self.roughness = Some(texture),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_squared_bitmap_squares_after_filtering() {
+        // Grey 0.2 and 0.8 side by side: halfway, the blend 0.5 squared (0.25), not the blend of
+        // the squares (0.34).
+        let b = Bitmap::new(2, 1, vec![Rgb::splat(0.2), Rgb::splat(0.8)]).unwrap();
+        let t = Texture::Squared(b.clone());
+        let v = t.eval(Vec2::new(0.5, 0.5));
+        assert!((v.r - 0.25).abs() < 1e-6, "{v:?}");
+        assert!((t.max_value() - 0.64).abs() < 1e-6);
+        // The gradient is 2·f·∇f.
+        let uv = Vec2::new(0.4, 0.5);
+        let g = t.luminance_gradient(uv);
+        let h = 1e-3;
+        let du = (t.eval(uv + Vec2::new(h, 0.0)).luminance() - t.eval(uv - Vec2::new(h, 0.0)).luminance()) / (2.0 * h);
+        assert!((g.x - du).abs() < 1e-2 * du.abs().max(1.0), "{g:?} vs {du}");
     }
 }

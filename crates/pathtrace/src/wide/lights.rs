@@ -88,16 +88,20 @@ impl<const N: usize> LightSamples<N> {
 }
 
 impl WideLights {
-    /// `None` unless every light is a quad or triangle area light (no point, spot, sphere, disk
-    /// or environment light).
+    /// `None` unless every light is a quad or triangle area light of constant radiance (no
+    /// point, spot, sphere, disk or environment light, no radiance texture).
     pub fn new(set: &LightSet) -> Option<Self> {
         let lights = set
             .lights()
             .iter()
             .map(|light| {
                 let l = match light {
-                    Light::Area(l) => l,
-                    Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => return None,
+                    Light::Area(l) if l.texture().is_none() => l,
+                    Light::Area(_)
+                    | Light::Point(_)
+                    | Light::Spot(_)
+                    | Light::Directional(_)
+                    | Light::Environment(_) => return None,
                 };
                 let (origin, e1, e2, triangle) = match l.shape {
                     LightShape::Quad(q) => (q.q, q.u, q.v, false),
