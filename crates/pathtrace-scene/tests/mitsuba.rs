@@ -671,3 +671,30 @@ fn mitsuba_0_6_scenes_are_upgraded() {
     let (c, _) = conv(&new.replace("int_ior", "intIOR"), &[]);
     assert_ne!(c, b);
 }
+
+#[test]
+fn opaque_bsdfs_outside_twosided_are_one_sided_and_dielectrics_never_are() {
+    let bsdfs = [
+        ("conductor", true),
+        ("roughconductor", true),
+        ("plastic", true),
+        ("roughplastic", true),
+        ("diffuse", true),
+        ("dielectric", false),
+        ("thindielectric", false),
+        ("roughdielectric", false),
+    ];
+    for (ty, opaque) in bsdfs {
+        for wrapped in [false, true] {
+            let bsdf = format!(r#"<bsdf type="{ty}" id="m"/>"#);
+            let bsdf = if wrapped {
+                format!(r#"<bsdf type="twosided" id="m">{}</bsdf>"#, bsdf.replace(r#" id="m""#, ""))
+            } else {
+                bsdf
+            };
+            let (f, _) = conv(&scene(&format!(r#"{bsdf}<shape type="sphere"><ref id="m"/></shape>{LIGHT}"#)), &[]);
+            let (_, one_sided) = f.materials["m"].kind.sides();
+            assert_eq!(one_sided, opaque && !wrapped, "{ty}, inside twosided: {wrapped}");
+        }
+    }
+}

@@ -625,14 +625,41 @@ impl<'a> Conv<'a, '_> {
 
     /// The scattering part of a `<bsdf>` (after `<ref>`), unwrapping `twosided`, its normal or
     /// bump map, unwrapping `normalmap` and `bumpmap`, and its opacity, unwrapping `mask`.
-    /// Mitsuba's `diffuse` reflects from its front only (both cosines > 0 in its shading frame)
-    /// unless wrapped in `twosided`: outside one it becomes one-sided.
+    /// Mitsuba's opaque BSDFs (`diffuse`, `conductor`, `roughconductor`, `plastic`,
+    /// `roughplastic`, and what 0.6 files upgrade to them) reflect from their front only (both
+    /// cosines > 0 in the shading frame, e.g. `conductor.cpp`'s `eval`) unless wrapped in
+    /// `twosided`: outside one they become one-sided. Dielectrics and `null` are crossed from
+    /// either side.
     fn bsdf_kind(&mut self, e: &'a Element) -> R<(MaterialKind, Wrappers)> {
         let mut maps = Wrappers::default();
         let kind = self.bsdf_kind_at(e, 0, &mut maps)?;
         let kind = match kind {
-            MaterialKind::Lambertian { .. } if !maps.two_sided => MaterialKind::OneSided(Box::new(kind)),
-            k => k,
+            MaterialKind::Diffuse { .. }
+            | MaterialKind::Lambertian { .. }
+            | MaterialKind::Mirror { .. }
+            | MaterialKind::Glossy { .. }
+            | MaterialKind::Conductor { .. }
+            | MaterialKind::RoughConductor { .. }
+            | MaterialKind::Plastic { .. }
+            | MaterialKind::RoughPlastic { .. }
+                if !maps.two_sided =>
+            {
+                MaterialKind::OneSided(Box::new(kind))
+            }
+            MaterialKind::Diffuse { .. }
+            | MaterialKind::Lambertian { .. }
+            | MaterialKind::Mirror { .. }
+            | MaterialKind::Glossy { .. }
+            | MaterialKind::Conductor { .. }
+            | MaterialKind::RoughConductor { .. }
+            | MaterialKind::Plastic { .. }
+            | MaterialKind::RoughPlastic { .. }
+            | MaterialKind::Dielectric { .. }
+            | MaterialKind::ThinDielectric { .. }
+            | MaterialKind::RoughDielectric { .. }
+            | MaterialKind::Emissive
+            | MaterialKind::Null
+            | MaterialKind::OneSided(_) => kind,
         };
         Ok((kind, maps))
     }
