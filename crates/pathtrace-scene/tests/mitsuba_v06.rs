@@ -70,10 +70,12 @@ fn convert(body: &str) -> (SceneFile, Vec<String>) {
 }
 
 /// The one material made for the scene's second shape (a rectangle with the BSDF under test).
+/// The scattering model of a rectangle's `body` BSDF (one-sided or not: every opaque Mitsuba
+/// BSDF outside `twosided` is, which `tests/mitsuba.rs` checks) and the import's warnings.
 fn material(body: &str) -> (MaterialKind, Vec<String>) {
     let (file, warnings) = convert(&format!(r#"<shape type="rectangle">{body}</shape>"#));
     let name = &file.objects[1].material;
-    (file.materials[name].kind.clone(), warnings)
+    (file.materials[name].kind.sides().0.clone(), warnings)
 }
 
 fn albedo(kind: &MaterialKind) -> String {

@@ -196,7 +196,7 @@ fn mitsuba_textures_nested_and_by_reference() {
     let rows = to_uv.map(|r| r.map(|x| x.get()));
     assert_eq!(rows, [[8.0, 0.0, 0.25], [0.0, 4.0, 0.0]]);
     let MaterialKind::Plastic { albedo: Colour::Texture(TextureDef::Bitmap { filename, raw, clamp, .. }), .. } =
-        &file.materials["toy"].kind
+        file.materials["toy"].kind.sides().0
     else {
         panic!("{:?}", file.materials["toy"])
     };
