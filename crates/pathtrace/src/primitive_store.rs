@@ -6,7 +6,7 @@
 use crate::accel::{Packable, PrimitiveSet};
 use crate::math::{Aabb, Ray, Vec3};
 use crate::scene::Primitive;
-use crate::shape::{MeshGeometry, PrimHit, Shape, SurfacePoint, Triangle};
+use crate::shape::{MeshGeometry, PrimHit, Shape, Sphere, SurfacePoint, Triangle};
 
 /// A mesh in a scene.
 #[derive(Clone, Debug)]
@@ -29,6 +29,28 @@ pub(crate) struct FlatPolygon {
     pub triangle: bool,
     pub material: u32,
     pub light: u32,
+}
+
+/// A sphere with its material and light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SceneSphere {
+    pub sphere: Sphere,
+    pub material: u32,
+    pub light: u32,
+}
+
+/// The primitives of a scene made only of flat polygons and spheres.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct SmallSceneShapes {
+    pub polygons: Vec<FlatPolygon>,
+    pub spheres: Vec<SceneSphere>,
+}
+
+impl SmallSceneShapes {
+    /// Polygons and spheres together.
+    pub fn len(&self) -> usize {
+        self.polygons.len() + self.spheres.len()
+    }
 }
 
 /// Which stored item a primitive index names.
@@ -130,27 +152,33 @@ impl PrimitiveStore {
         }
     }
 
-    /// Every primitive as a flat polygon (in index order), or `None` if some primitive is
-    /// another shape or a mesh triangle with interpolated normals: what the estimator's
-    /// brute-force lane intersector (`wide/geometry.rs`) can hold.
-    pub fn flat_polygons(&self) -> Option<Vec<FlatPolygon>> {
-        let mut out = Vec::with_capacity(self.len());
+    /// Every primitive as a flat polygon or a sphere, or `None` if some primitive is another
+    /// shape or a mesh triangle whose shading normal departs from its face's: what the
+    /// estimator's brute-force lane intersector (`wide/geometry.rs`) can hold.
+    pub fn small_scene_shapes(&self) -> Option<SmallSceneShapes> {
+        let mut out = SmallSceneShapes { polygons: Vec::with_capacity(self.len()), spheres: Vec::new() };
         for p in &self.shapes {
             let (origin, e1, e2, triangle) = match p.shape {
                 Shape::Quad(q) => (q.q, q.u, q.v, false),
                 Shape::Triangle(t) if t.shading == Triangle::FLAT => (t.p0, t.e1, t.e2, true),
+                Shape::Sphere(sphere) => {
+                    out.spheres.push(SceneSphere { sphere, material: p.material, light: p.light });
+                    continue;
+                }
                 _ => return None,
             };
-            out.push(FlatPolygon { origin, e1, e2, triangle, material: p.material, light: p.light });
+            out.polygons.push(FlatPolygon { origin, e1, e2, triangle, material: p.material, light: p.light });
         }
         for m in &self.meshes {
-            if m.geometry.has_normals() {
+            if !m.geometry.is_planar_shaded() {
                 return None;
             }
             for i in 0..m.geometry.len() as u32 {
                 let t = m.geometry.triangle(i);
                 let light = if m.first_light == Primitive::NO_LIGHT { m.first_light } else { m.first_light + i };
-                out.push(FlatPolygon { origin: t.p0, e1: t.e1, e2: t.e2, triangle: true, material: m.material, light });
+                let polygon =
+                    FlatPolygon { origin: t.p0, e1: t.e1, e2: t.e2, triangle: true, material: m.material, light };
+                out.polygons.push(polygon);
             }
         }
         Some(out)

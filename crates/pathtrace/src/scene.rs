@@ -273,9 +273,10 @@ impl Scene {
         !self.instances.is_empty()
     }
 
-    /// The bounded primitives as flat polygons (see [`PrimitiveStore::flat_polygons`]).
-    pub(crate) fn flat_polygons(&self) -> Option<Vec<crate::primitive_store::FlatPolygon>> {
-        self.prims.flat_polygons()
+    /// The bounded primitives as flat polygons and spheres (see
+    /// [`PrimitiveStore::small_scene_shapes`]).
+    pub(crate) fn small_scene_shapes(&self) -> Option<crate::primitive_store::SmallSceneShapes> {
+        self.prims.small_scene_shapes()
     }
 
     /// True if any material has a texture.

@@ -551,8 +551,9 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
         s.p = paths.origin.add(&paths.dir.scale(hits.t));
         for i in active.lanes() {
             if hits.polygon[i] != u32::MAX {
-                let (n, material, light) = geometry.polygon(hits.polygon[i]);
+                let (p, n, material, light) = geometry.surface(hits.polygon[i], s.p.lane(i));
                 s.hit.0[i] = u32::MAX;
+                s.p.set(i, p);
                 s.n_geometric.set(i, n);
                 s.material[i] = material;
                 s.light[i] = light;

@@ -57,6 +57,25 @@ impl MeshGeometry {
         self.normals.is_some()
     }
 
+    /// True if every triangle's shading normal is its face normal: no vertex normals, or vertex
+    /// normals all parallel to the faces they touch (a planar mesh given smooth normals, as
+    /// Mitsuba gives meshes without normals). The shading normal is kept on the face's side
+    /// ([`Triangle::surface_with`]), so either orientation counts. "Parallel" allows a cosine
+    /// two float steps below 1 (an angle under 5·10⁻⁴ rad), the rounding of normals computed
+    /// from the faces.
+    pub fn is_planar_shaded(&self) -> bool {
+        // Floats below 1 are ε/2 apart: two steps.
+        const PARALLEL: f32 = 1.0 - f32::EPSILON;
+        let Some(normals) = &self.normals else { return true };
+        (0..self.len() as u32).all(|i| {
+            let t = self.triangle(i);
+            let face = t.e1.cross(t.e2).normalize();
+            self.indices[i as usize]
+                .iter()
+                .all(|&v| normals[v as usize].normalize_or_zero().dot(face).abs() >= PARALLEL)
+        })
+    }
+
     /// Triangle `i` (flat: its vertex normals stay in the mesh).
     #[inline(always)]
     pub fn triangle(&self, i: u32) -> Triangle {

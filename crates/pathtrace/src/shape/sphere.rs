@@ -3,6 +3,7 @@
 
 use super::{PrimHit, Shape, SurfacePoint};
 use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, PI};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// A sphere with outward normals.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,46 +18,52 @@ impl Sphere {
         (radius > 0.0 && radius.is_finite() && center.is_finite()).then_some(Self { center, radius })
     }
 
-    /// Solves |o + t d - c|² = r² for the nearest root in range (both roots are tried, so rays
-    /// starting inside the sphere hit its far side). Uses the half-b form and the
-    /// cancellation-free quadratic of Press et al. (Numerical Recipes §5.6).
+    /// The nearest hit with t ∈ [t_min, t_max]: the one-lane instance of [`Sphere::hits`].
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<PrimHit> {
-        let oc = ray.origin - self.center;
-        let a = ray.dir.length_squared();
-        let half_b = oc.dot(ray.dir);
+        let (o, d) = (Vec3s::<1>::splat(ray.origin), Vec3s::<1>::splat(ray.dir));
+        let (hit, t) = self.hits(&o, &d, F32s::splat(t_min), F32s::splat(t_max));
+        hit.lane(0).then_some(PrimHit { t: t.0[0], u: 0.0, v: 0.0 })
+    }
+
+    /// Solves |o + t d - c|² = r² for the nearest root in [t_min, t_max], for `N` rays at once
+    /// (the BVH's one-ray test and the brute-force test of small scenes, `wide::geometry`, share
+    /// it). Both roots are tried, so rays starting inside the sphere hit its far side. Uses the
+    /// half-b form and the cancellation-free quadratic of Press et al. (Numerical Recipes §5.6).
+    #[inline(always)]
+    pub fn hits<const N: usize>(&self, o: &Vec3s<N>, d: &Vec3s<N>, t_min: F32s<N>, t_max: F32s<N>) -> (Ms<N>, F32s<N>) {
+        let oc = o.sub(&Vec3s::splat(self.center));
+        let a = d.dot(d);
+        let half_b = oc.dot(d);
         // c = |oc|² - r², computed as (|oc| - r)(|oc| + r) for accuracy near the surface.
         let oc_len = oc.length();
         let c = (oc_len - self.radius) * (oc_len + self.radius);
         // Discriminant as r² - |oc - (oc·d̂)d̂|², which avoids cancellation for distant spheres
         // (Haines et al., "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems 2019).
-        let perp = oc - (half_b / a) * ray.dir;
-        let disc = a * (self.radius * self.radius - perp.length_squared());
-        if disc < 0.0 {
-            return None;
-        }
-        let sq = disc.sqrt();
+        let perp = oc.sub(&d.scale(half_b / a));
+        let disc = a * (self.radius * self.radius - perp.dot(&perp));
+        let real = disc.ge(F32s::ZERO);
+        let sq = disc.max(F32s::ZERO).sqrt();
         let q = -(half_b + sq.copysign(half_b));
-        let (mut t0, mut t1) = if q != 0.0 { (q / a, c / q) } else { (0.0, 0.0) };
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
-        let t = if t0 >= t_min && t0 <= t_max {
-            t0
-        } else if t1 >= t_min && t1 <= t_max {
-            t1
-        } else {
-            return None;
-        };
-        Some(PrimHit { t, u: 0.0, v: 0.0 })
+        let nonzero = !q.eq(F32s::ZERO);
+        let t0 = F32s::select(nonzero, q / a, F32s::ZERO);
+        let t1 = F32s::select(nonzero, c / q, F32s::ZERO);
+        let (near, far) = (t0.min(t1), t0.max(t1));
+        let near_in = near.ge(t_min) & near.le(t_max);
+        let far_in = far.ge(t_min) & far.le(t_max);
+        (real & (near_in | far_in), F32s::select(near_in, near, far))
+    }
+
+    /// The surface point and unit normal where a ray met the sphere at `p_raw`: the point is
+    /// re-projected onto the surface to cut the intersection's rounding error.
+    #[inline(always)]
+    pub fn point_and_normal(&self, p_raw: Vec3) -> (Vec3, Vec3) {
+        let n = ((p_raw - self.center) / self.radius).normalize_or(Vec3::Z);
+        (self.center + n * self.radius, n)
     }
 
     pub fn surface(&self, ray: &Ray, hit: &PrimHit) -> SurfacePoint {
-        let p_raw = ray.at(hit.t);
-        let n = (p_raw - self.center) / self.radius;
-        let n = n.normalize_or(Vec3::Z);
-        // Re-project onto the surface to cut the error of the intersection point.
-        let p = self.center + n * self.radius;
+        let (p, n) = self.point_and_normal(ray.at(hit.t));
         let (dpdu, dpdv) = sphere_dp_duv(n);
         SurfacePoint {
             p,

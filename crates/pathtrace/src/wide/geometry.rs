@@ -1,22 +1,23 @@
-//! Brute-force intersection of eight rays with every polygon of a small scene.
+//! Brute-force intersection of a group of rays with every polygon and sphere of a small scene.
 //!
-//! Why no tree: for a few dozen polygons a BVH visit costs more than the tests it saves (the
-//! Cornell box's 19 quads sit under one or two four-wide nodes anyway), and testing one polygon
-//! against eight rays at once keeps every SIMD lane busy on incoherent rays, which packet
-//! traversal of a tree cannot. Scenes above [`MAX_FLAT_POLYGONS`] use the BVH one lane at a
-//! time instead.
+//! Why no tree: for a few dozen primitives a BVH visit costs more than the tests it saves (the
+//! Cornell box's 19 quads sit under one or two four-wide nodes anyway), and testing one
+//! primitive against 8 or 16 rays at once keeps every SIMD lane busy on incoherent rays, which
+//! packet traversal of a tree cannot. Scenes above [`MAX_FLAT_POLYGONS`] primitives use the BVH
+//! one lane at a time instead.
 //!
 //! Each polygon is tested as a plane and two edge coordinates, as [`crate::shape::Quad`] does
 //! ("Ray Tracing: The Next Week" §6): with n = e1 × e2, t = (n·q − n·o) / n·d, and for
 //! h = o + t·d − q the coordinates a = h·ẽ1, b = h·ẽ2 with the dual vectors
 //! ẽ1 = (e2 × n)/|n|², ẽ2 = (n × e1)/|n|². A quad holds a, b ∈ [0, 1]; a triangle a, b ≥ 0,
-//! a + b ≤ 1 (a and b are then its barycentric coordinates).
+//! a + b ≤ 1 (a and b are then its barycentric coordinates). Spheres take the shape's own
+//! test ([`Sphere::hits`], written for lanes), and their hits its re-projected point and normal.
 
 use super::boxes::Parallelepiped;
 use super::simd::{F32s, Ms, Vec3s};
 use crate::math::Vec3;
-use crate::primitive_store::FlatPolygon;
-use crate::shape::EDGE_SLACK;
+use crate::primitive_store::{FlatPolygon, SmallSceneShapes};
+use crate::shape::{Sphere, EDGE_SLACK};
 
 /// Largest scene tested by brute force; chosen by `pathtrace bench` on the Cornell box (19)
 /// against meshes of a few hundred triangles, where the BVH wins.
@@ -32,20 +33,22 @@ struct Plane {
     e2_dual: Vec3,
 }
 
-/// The polygons of a small scene, with what shading needs at a hit.
+/// The polygons and spheres of a small scene, with what shading needs at a hit.
 #[derive(Clone, Debug)]
 pub struct FlatGeometry {
     boxes: Vec<Parallelepiped>,
     quads: Vec<Plane>,
     triangles: Vec<Plane>,
+    spheres: Vec<Sphere>,
     /// Per polygon (the boxes' faces first, six per box, then quads, then triangles): unit
-    /// normal along e1 × e2, material, light.
+    /// normal along e1 × e2.
     normals: Vec<Vec3>,
+    /// Per primitive (the polygons in that order, then the spheres): material and light.
     materials: Vec<u32>,
     lights: Vec<u32>,
 }
 
-/// Eight rays' closest hits: distance and polygon (`u32::MAX` where nothing was hit).
+/// The rays' closest hits: distance and primitive (`u32::MAX` where nothing was hit).
 #[derive(Clone, Copy, Debug)]
 pub struct Hits<const N: usize> {
     pub t: F32s<N>,
@@ -54,7 +57,8 @@ pub struct Hits<const N: usize> {
 
 impl FlatGeometry {
     /// `None` when some polygon is degenerate (the scene builder rejects those already).
-    pub(crate) fn new(polygons: &[FlatPolygon]) -> Option<Self> {
+    pub(crate) fn new(shapes: &SmallSceneShapes) -> Option<Self> {
+        let (polygons, spheres) = (&shapes.polygons, &shapes.spheres);
         let (quad_list, triangles): (Vec<&FlatPolygon>, Vec<&FlatPolygon>) = polygons.iter().partition(|p| !p.triangle);
         // Runs of six quads that bound a box (as `box` objects make them) become one box.
         let (mut boxes, mut box_faces, mut quads) = (Vec::new(), Vec::new(), Vec::new());
@@ -87,16 +91,28 @@ impl FlatGeometry {
             quads: quads.iter().map(plane).collect::<Option<_>>()?,
             triangles: triangles.iter().map(plane).collect::<Option<_>>()?,
             normals: ordered().map(|p| p.e1.cross(p.e2).normalize()).collect(),
-            materials: ordered().map(|p| p.material).collect(),
-            lights: ordered().map(|p| p.light).collect(),
+            materials: ordered().map(|p| p.material).chain(spheres.iter().map(|s| s.material)).collect(),
+            lights: ordered().map(|p| p.light).chain(spheres.iter().map(|s| s.light)).collect(),
+            spheres: spheres.iter().map(|s| s.sphere).collect(),
         })
     }
 
-    /// Unit normal (front side), material and light of polygon `i`.
+    /// Where a ray met primitive `i` at `p`: the surface point, its unit normal (front side),
+    /// material and light.
     #[inline(always)]
-    pub fn polygon(&self, i: u32) -> (Vec3, u32, u32) {
+    pub fn surface(&self, i: u32, p: Vec3) -> (Vec3, Vec3, u32, u32) {
         let i = i as usize;
-        (self.normals[i], self.materials[i], self.lights[i])
+        let (p, n) = match self.normals.get(i) {
+            Some(&n) => (p, n),
+            None => self.spheres[i - self.normals.len()].point_and_normal(p),
+        };
+        (p, n, self.materials[i], self.lights[i])
+    }
+
+    /// Material of primitive `i`.
+    #[cfg(test)]
+    fn material(&self, i: u32) -> u32 {
+        self.materials[i as usize]
     }
 
     /// Closest hits with t ∈ [0, t_max) of the lanes in `active`.
@@ -122,6 +138,13 @@ impl FlatGeometry {
             let (hit, t) = plane.test::<N, true>(o, d, best);
             record(hit, t, first + k as u32, &mut best, &mut polygon);
         }
+        let first = self.normals.len() as u32;
+        for (k, sphere) in self.spheres.iter().enumerate() {
+            let (hit, t) = sphere.hits(o, d, F32s::ZERO, best);
+            // The sphere's range is closed; a tie with a closer primitive keeps that one.
+            let hit = hit & t.lt(best);
+            record(hit, t, first + k as u32, &mut best, &mut polygon);
+        }
         Hits { t: best, polygon }
     }
 
@@ -144,6 +167,13 @@ impl FlatGeometry {
         }
         for plane in &self.triangles {
             blocked = blocked | plane.test::<N, true>(o, d, limit).0;
+            if !(active & !blocked).any() {
+                return active;
+            }
+        }
+        for sphere in &self.spheres {
+            let (hit, t) = sphere.hits(o, d, F32s::ZERO, limit);
+            blocked = blocked | (hit & t.lt(limit));
             if !(active & !blocked).any() {
                 return active;
             }
@@ -191,6 +221,7 @@ mod tests {
     use super::*;
     use crate::math::Ray;
     use crate::math::Transform;
+    use crate::primitive_store::SceneSphere;
     use crate::sampling::Pcg32;
     use crate::shape::{Quad, Triangle};
     use crate::wide::simd::LANES_256 as N;
@@ -199,13 +230,13 @@ mod tests {
         Vec3::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, rng.next_f32() - 0.5) * scale
     }
 
-    /// Casts 4000 groups of random rays at `polygons` and compares the brute-force hits with
-    /// the scalar quad and triangle tests; returns how many rays hit.
-    fn assert_agrees_with_scalar(polygons: &[FlatPolygon], rng: &mut Pcg32) -> u32 {
-        let geometry = FlatGeometry::new(polygons).unwrap();
+    /// Casts 4000 groups of random rays at `shapes` and compares the brute-force hits with
+    /// the scalar quad, triangle and sphere tests; returns how many rays hit.
+    fn assert_agrees_with_scalar(shapes: &SmallSceneShapes, rng: &mut Pcg32) -> u32 {
+        let geometry = FlatGeometry::new(shapes).unwrap();
         let scalar_hit = |ray: &Ray, t_max: f32| -> Option<(f32, u32)> {
             let mut best: Option<(f32, u32)> = None;
-            for p in polygons {
+            for p in &shapes.polygons {
                 let limit = best.map_or(t_max, |b| b.0);
                 let hit = if p.triangle {
                     Triangle::new(p.origin, p.origin + p.e1, p.origin + p.e2, Triangle::FLAT)?
@@ -215,6 +246,12 @@ mod tests {
                 };
                 if let Some(h) = hit {
                     best = Some((h.t, p.material));
+                }
+            }
+            for s in &shapes.spheres {
+                let limit = best.map_or(t_max, |b| b.0);
+                if let Some(h) = s.sphere.intersect(ray, 0.0, limit).filter(|h| h.t < limit) {
+                    best = Some((h.t, s.material));
                 }
             }
             best
@@ -236,7 +273,7 @@ mod tests {
                     continue;
                 }
                 let expect = scalar_hit(ray, t_max.0[i]);
-                let got = (wide.polygon[i] != u32::MAX).then(|| (wide.t.0[i], geometry.polygon(wide.polygon[i]).1));
+                let got = (wide.polygon[i] != u32::MAX).then(|| (wide.t.0[i], geometry.material(wide.polygon[i])));
                 hits += expect.is_some() as u32;
                 match (expect, got) {
                     (Some((te, me)), Some((tg, mg))) => {
@@ -265,12 +302,20 @@ mod tests {
         }
     }
 
-    /// Random quads and triangles against the scalar shape tests.
+    /// Random quads, triangles and spheres against the scalar shape tests.
     #[test]
     fn brute_force_hits_agree_with_the_scalar_shape_tests() {
         let mut rng = Pcg32::new(7, 3);
         let polygons: Vec<FlatPolygon> = (0..40).map(|k| random_polygon(&mut rng, k)).collect();
-        let hits = assert_agrees_with_scalar(&polygons, &mut rng);
+        let spheres = (40..48)
+            .map(|k| SceneSphere {
+                sphere: Sphere::new(random_vec(&mut rng, 5.0), 0.2 + rng.next_f32()).unwrap(),
+                material: k,
+                light: u32::MAX,
+            })
+            .collect();
+        let shapes = SmallSceneShapes { polygons, spheres };
+        let hits = assert_agrees_with_scalar(&shapes, &mut rng);
         assert!(hits > 2000, "the test rays must hit often: {hits}");
     }
 
@@ -301,8 +346,9 @@ mod tests {
             polygons.push(random_polygon(&mut rng, k));
             k += 1;
         }
-        assert_eq!(FlatGeometry::new(&polygons).unwrap().boxes.len(), 5);
-        let hits = assert_agrees_with_scalar(&polygons, &mut rng);
+        let shapes = SmallSceneShapes { polygons, spheres: Vec::new() };
+        assert_eq!(FlatGeometry::new(&shapes).unwrap().boxes.len(), 5);
+        let hits = assert_agrees_with_scalar(&shapes, &mut rng);
         assert!(hits > 2000, "the test rays must hit often: {hits}");
     }
 }

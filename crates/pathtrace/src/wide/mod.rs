@@ -145,7 +145,7 @@ impl WideScene {
         let geometry = if needs_uv || scene.has_unbounded() || scene.has_instances() {
             None
         } else {
-            scene.flat_polygons().filter(|p| p.len() <= MAX_FLAT_POLYGONS).and_then(|p| FlatGeometry::new(&p))
+            scene.small_scene_shapes().filter(|p| p.len() <= MAX_FLAT_POLYGONS).and_then(|p| FlatGeometry::new(&p))
         };
         let emitters_hittable = scene.lights.area_lights().next().is_some() || scene.lights.environment().is_some();
         Self { geometry, lights: WideLights::new(&scene.lights), classes, settings: *settings, emitters_hittable }

@@ -95,6 +95,12 @@ impl<const N: usize> F32s<N> {
         map(self, f32::sqrt)
     }
 
+    /// The magnitude of `self` with the sign of `sign` per lane (`f32::copysign`).
+    #[inline(always)]
+    pub fn copysign(self, sign: Self) -> Self {
+        zip(self, sign, f32::copysign)
+    }
+
     #[inline(always)]
     pub fn abs(self) -> Self {
         map(self, f32::abs)
@@ -108,6 +114,11 @@ impl<const N: usize> F32s<N> {
             out[i] = f32::from_bits((a.0[i].to_bits() & mask.0[i]) | (b.0[i].to_bits() & !mask.0[i]));
         }
         F32s(out)
+    }
+
+    #[inline(always)]
+    pub fn eq(self, b: Self) -> Ms<N> {
+        compare(self, b, |a, b| a == b)
     }
 
     #[inline(always)]
