@@ -9,10 +9,11 @@
 //!   from inside: uniform by area.
 
 use super::RadianceTexture;
-use crate::math::{Frame, Ray, Rgb, Vec2, Vec3};
+use crate::math::{Ray, Rgb, Vec2, Vec3, INV_2PI, PI};
 use crate::sampling::warp;
-use crate::shape::{Disk, Quad, Sphere, Triangle};
+use crate::shape::{sphere_hits, Disk, Quad, Sphere, Triangle};
 use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::warp as lanes;
 
 /// What an object emits.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,6 +114,65 @@ pub(crate) fn sample_flat_lanes<const N: usize>(
     let wi = d.scale(1.0 / dist);
     let cos_l = l.normal.dot(&wi);
     FlatSamples { point, wi, dist, cos_l, pdf_area_one: dist2 / cos_l.abs() }
+}
+
+/// Sphere lights, one per lane.
+pub(crate) struct SphereLights<const N: usize> {
+    pub center: Vec3s<N>,
+    pub radius: F32s<N>,
+}
+
+/// Points sampled on sphere lights, seen from reference points.
+pub(crate) struct SphereSamples<const N: usize> {
+    pub point: Vec3s<N>,
+    /// Outward unit normal at `point`.
+    pub normal: Vec3s<N>,
+    /// Unit direction from the reference point to `point`, and the distance.
+    pub wi: Vec3s<N>,
+    pub dist: F32s<N>,
+    /// Solid-angle density (light selection not included).
+    pub pdf: F32s<N>,
+}
+
+/// Points on sphere lights: from a reference point clearly outside, a direction uniform in the
+/// cone the sphere subtends and the point where it meets the sphere, pdf 1/(2π(1 − cos θ_max));
+/// from inside or on the surface, a point uniform by area, pdf r²/(|cos θ_l| · 4πR²) (see
+/// [`sees_outside`]). Every lane count runs this one formula: the scalar light set (one lane)
+/// and the estimator's light lanes (`wide::lights`).
+#[inline(always)]
+pub(crate) fn sample_sphere_lanes<const N: usize>(
+    l: &SphereLights<N>,
+    ref_p: &Vec3s<N>,
+    u1: F32s<N>,
+    u2: F32s<N>,
+) -> SphereSamples<N> {
+    let to_center = l.center.sub(ref_p);
+    let d2 = to_center.dot(&to_center);
+    let r2 = l.radius * l.radius;
+    let outside = d2.gt(r2 * (1.0 + SURFACE_BAND));
+    // Outside: the cone, cos θ_max = √(1 − R²/d²).
+    let cos_max = (1.0 - (r2 / d2).min(F32s::ONE)).max(F32s::ZERO).sqrt();
+    let axis = to_center.scale(1.0 / d2.sqrt());
+    let dir = lanes::to_world(&axis, &lanes::square_to_uniform_cone(u1, u2, cos_max));
+    let (hit, t) = sphere_hits(&l.center, l.radius, ref_p, &dir, F32s::ZERO, F32s::splat(f32::INFINITY));
+    // Grazing the silhouette in f32: the nearest point on the sphere to the ray.
+    let off_axis = ref_p.add(&dir.scale(to_center.dot(&dir))).sub(&l.center);
+    let rcp = 1.0 / off_axis.length();
+    let towards = Vec3s::select(rcp.is_finite() & rcp.gt(F32s::ZERO), &off_axis.scale(rcp), &dir.neg());
+    let cone_point = Vec3s::select(hit, &ref_p.add(&dir.scale(t)), &l.center.add(&towards.scale(l.radius)));
+    let cone_normal = cone_point.sub(&l.center).scale(1.0 / l.radius);
+    let cone_pdf = F32s::select(cos_max.lt(F32s::ONE), INV_2PI / (1.0 - cos_max), F32s::ZERO);
+    // Inside or on the surface: uniform by area.
+    let area_normal = lanes::square_to_uniform_sphere(u1, u2);
+    let area_point = l.center.add(&area_normal.scale(l.radius));
+
+    let point = Vec3s::select(outside, &cone_point, &area_point);
+    let normal = Vec3s::select(outside, &cone_normal, &area_normal);
+    let d = point.sub(ref_p);
+    let dist = d.length();
+    let wi = d.scale(1.0 / dist);
+    let area_pdf = dist * dist / (normal.dot(&wi).abs() * (4.0 * PI * r2));
+    SphereSamples { point, normal, wi, dist, pdf: F32s::select(outside, cone_pdf, area_pdf) }
 }
 
 /// r² / (|cos θ_l| · A) from the distance and unit direction to the light point.
@@ -283,8 +343,11 @@ impl AreaLight {
 /// from a point on a sphere, area sampling is exactly cosine-weighted (chord d = 2r cos θ
 /// gives r²/(|cos θ_l| A) = cos θ / π), with no singularity.
 fn sees_outside(s: &Sphere, p: Vec3) -> bool {
-    (s.center - p).length_squared() > s.radius * s.radius * (1.0 + 1e-3)
+    (s.center - p).length_squared() > s.radius * s.radius * (1.0 + SURFACE_BAND)
 }
+
+/// How far beyond R² the squared distance to a sphere's centre must be for [`sees_outside`].
+const SURFACE_BAND: f32 = 1e-3;
 
 /// Distance to where a ray starting inside (or on) the sphere leaves it: the larger root.
 fn exit_distance(s: &Sphere, ray: &Ray) -> Option<f32> {
@@ -305,25 +368,18 @@ fn cone_cos_max(s: &Sphere, dist2: f32) -> f32 {
     (1.0 - sin2).max(0.0).sqrt()
 }
 
+/// A sphere light: the one-lane instance of [`sample_sphere_lanes`].
 fn sample_sphere(s: &Sphere, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
-    let to_center = s.center - ref_p;
-    let d2 = to_center.length_squared();
-    if !sees_outside(s, ref_p) {
-        let n = warp::square_to_uniform_sphere(u);
-        let point = s.center + n * s.radius;
-        return ShapeSample::new(ref_p, point, n, |dist, wi| solid_angle_pdf(dist, wi, n, s.area()));
-    }
-    let cos_max = cone_cos_max(s, d2);
-    let frame = Frame::from_normal(to_center / d2.sqrt());
-    let dir = frame.to_world(warp::square_to_uniform_cone(u, cos_max));
-    let ray = Ray::new(ref_p, dir);
-    let point = match s.intersect(&ray, 0.0, f32::INFINITY) {
-        Some(h) => ray.at(h.t),
-        // Grazing the silhouette in f32: take the nearest point on the sphere to the ray.
-        None => s.center + (ray.at(to_center.dot(dir)) - s.center).normalize_or(-dir) * s.radius,
-    };
-    let normal = (point - s.center) / s.radius;
-    ShapeSample::new(ref_p, point, normal, |_, _| warp::uniform_cone_pdf(Vec3::Z, cos_max))
+    let l = SphereLights { center: Vec3s::splat(s.center), radius: F32s([s.radius]) };
+    let x = sample_sphere_lanes(&l, &Vec3s::splat(ref_p), F32s([u.x]), F32s([u.y]));
+    let (dist, pdf) = (x.dist.0[0], x.pdf.0[0]);
+    (dist > 0.0 && pdf > 0.0 && pdf.is_finite()).then(|| ShapeSample {
+        point: x.point.lane(0),
+        normal: x.normal.lane(0),
+        wi: x.wi.lane(0),
+        dist,
+        pdf,
+    })
 }
 
 fn sphere_pdf(s: &Sphere, ref_p: Vec3, p: Vec3, n: Vec3) -> f32 {

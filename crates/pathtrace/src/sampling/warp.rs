@@ -15,12 +15,10 @@ pub fn square_to_uniform_disk(u: Vec2) -> Vec2 {
     Vec2::new(x.0[0], y.0[0])
 }
 
-/// Uniform direction on the unit sphere: z = 1 - 2u, φ = 2πv; pdf = 1/(4π).
+/// Uniform direction on the unit sphere: z = 1 - 2u, φ = 2πv; pdf = 1/(4π). The one-lane
+/// instance of the lane-parallel warp.
 pub fn square_to_uniform_sphere(u: Vec2) -> Vec3 {
-    let z = 1.0 - 2.0 * u.x;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    lanes::square_to_uniform_sphere(F32s([u.x]), F32s([u.y])).lane(0)
 }
 
 pub fn uniform_sphere_pdf() -> f32 {
@@ -60,10 +58,7 @@ pub fn cosine_hemisphere_pdf(w: Vec3) -> f32 {
 /// Uniform direction in the cone of half-angle θ_max around +z: cos θ = 1 - u(1 - cos θ_max);
 /// pdf = 1 / (2π (1 - cos θ_max)).
 pub fn square_to_uniform_cone(u: Vec2, cos_theta_max: f32) -> Vec3 {
-    let z = 1.0 - u.x * (1.0 - cos_theta_max);
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    lanes::square_to_uniform_cone(F32s([u.x]), F32s([u.y]), F32s([cos_theta_max])).lane(0)
 }
 
 pub fn uniform_cone_pdf(w: Vec3, cos_theta_max: f32) -> f32 {

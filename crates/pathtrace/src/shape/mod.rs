@@ -15,6 +15,7 @@ pub use mesh::{MeshError, TriangleMesh};
 pub use mesh_geometry::MeshGeometry;
 pub use plane::Plane;
 pub use quad::Quad;
+pub(crate) use sphere::sphere_hits;
 pub use sphere::{Ellipsoid, Sphere};
 pub use triangle::Triangle;
 pub(crate) use triangle::EDGE_SLACK;

@@ -26,32 +26,10 @@ impl Sphere {
         hit.lane(0).then_some(PrimHit { t: t.0[0], u: 0.0, v: 0.0 })
     }
 
-    /// Solves |o + t d - c|² = r² for the nearest root in [t_min, t_max], for `N` rays at once
-    /// (the BVH's one-ray test and the brute-force test of small scenes, `wide::geometry`, share
-    /// it). Both roots are tried, so rays starting inside the sphere hit its far side. Uses the
-    /// half-b form and the cancellation-free quadratic of Press et al. (Numerical Recipes §5.6).
+    /// [`sphere_hits`] for this sphere.
     #[inline(always)]
     pub fn hits<const N: usize>(&self, o: &Vec3s<N>, d: &Vec3s<N>, t_min: F32s<N>, t_max: F32s<N>) -> (Ms<N>, F32s<N>) {
-        let oc = o.sub(&Vec3s::splat(self.center));
-        let a = d.dot(d);
-        let half_b = oc.dot(d);
-        // c = |oc|² - r², computed as (|oc| - r)(|oc| + r) for accuracy near the surface.
-        let oc_len = oc.length();
-        let c = (oc_len - self.radius) * (oc_len + self.radius);
-        // Discriminant as r² - |oc - (oc·d̂)d̂|², which avoids cancellation for distant spheres
-        // (Haines et al., "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems 2019).
-        let perp = oc.sub(&d.scale(half_b / a));
-        let disc = a * (self.radius * self.radius - perp.dot(&perp));
-        let real = disc.ge(F32s::ZERO);
-        let sq = disc.max(F32s::ZERO).sqrt();
-        let q = -(half_b + sq.copysign(half_b));
-        let nonzero = !q.eq(F32s::ZERO);
-        let t0 = F32s::select(nonzero, q / a, F32s::ZERO);
-        let t1 = F32s::select(nonzero, c / q, F32s::ZERO);
-        let (near, far) = (t0.min(t1), t0.max(t1));
-        let near_in = near.ge(t_min) & near.le(t_max);
-        let far_in = far.ge(t_min) & far.le(t_max);
-        (real & (near_in | far_in), F32s::select(near_in, near, far))
+        sphere_hits(&Vec3s::splat(self.center), F32s::splat(self.radius), o, d, t_min, t_max)
     }
 
     /// The surface point and unit normal where a ray met the sphere at `p_raw`: the point is
@@ -96,6 +74,42 @@ impl Sphere {
             }),
         }
     }
+}
+
+/// Solves |o + t d - c|² = r² for the nearest root in [t_min, t_max], for `N` rays and spheres
+/// at once (the BVH's one-ray test, the brute-force test of small scenes in `wide::geometry` and
+/// sphere-light sampling share it). Both roots are tried, so rays starting inside the sphere
+/// hit its far side. Uses the half-b form and the cancellation-free quadratic of Press et al.
+/// (Numerical Recipes §5.6).
+#[inline(always)]
+pub(crate) fn sphere_hits<const N: usize>(
+    center: &Vec3s<N>,
+    radius: F32s<N>,
+    o: &Vec3s<N>,
+    d: &Vec3s<N>,
+    t_min: F32s<N>,
+    t_max: F32s<N>,
+) -> (Ms<N>, F32s<N>) {
+    let oc = o.sub(center);
+    let a = d.dot(d);
+    let half_b = oc.dot(d);
+    // c = |oc|² - r², computed as (|oc| - r)(|oc| + r) for accuracy near the surface.
+    let oc_len = oc.length();
+    let c = (oc_len - radius) * (oc_len + radius);
+    // Discriminant as r² - |oc - (oc·d̂)d̂|², which avoids cancellation for distant spheres
+    // (Haines et al., "Precision Improvements for Ray/Sphere Intersection", Ray Tracing Gems 2019).
+    let perp = oc.sub(&d.scale(half_b / a));
+    let disc = a * (radius * radius - perp.dot(&perp));
+    let real = disc.ge(F32s::ZERO);
+    let sq = disc.max(F32s::ZERO).sqrt();
+    let q = -(half_b + sq.copysign(half_b));
+    let nonzero = !q.eq(F32s::ZERO);
+    let t0 = F32s::select(nonzero, q / a, F32s::ZERO);
+    let t1 = F32s::select(nonzero, c / q, F32s::ZERO);
+    let (near, far) = (t0.min(t1), t0.max(t1));
+    let near_in = near.ge(t_min) & near.le(t_max);
+    let far_in = far.ge(t_min) & far.le(t_max);
+    (real & (near_in | far_in), F32s::select(near_in, near, far))
 }
 
 /// (u, v) = (φ / 2π, θ / π) with θ from +y, the usual lat-long parameterisation.

@@ -1,12 +1,14 @@
-//! Light samples for a group of lanes: computed together when every light is a flat area light
-//! (quads and triangles), else gathered lane by lane from the scene's light set.
+//! Light samples for a group of lanes: computed together when every light is an area light of
+//! constant radiance on a quad, triangle or sphere, else gathered lane by lane from the scene's
+//! light set.
 //!
 //! Each lane picks its light with the scene's own selection distribution ([`LightSet::pick`]),
 //! then the point on it, the direction and the density are computed for all lanes together by
-//! `light::area::sample_flat_lanes`, the formula the scalar light set runs in one lane.
+//! `light::area::sample_flat_lanes` and `sample_sphere_lanes`, the formulas the scalar light set
+//! runs in one lane.
 
 use super::simd::{F32s, Ms, Vec3s};
-use crate::light::area::{sample_flat_lanes, FlatLights, FlatSamples};
+use crate::light::area::{sample_flat_lanes, sample_sphere_lanes, FlatLights, FlatSamples, SphereLights};
 use crate::light::{Light, LightSet, LightShape};
 use crate::math::{Rgb, Vec2, Vec3};
 
@@ -23,10 +25,29 @@ struct FlatLight {
     two_sided: bool,
 }
 
-/// The scene's lights, when all are flat area lights.
+/// One sphere light.
+#[derive(Clone, Copy, Debug)]
+struct SphereLight {
+    center: Vec3,
+    radius: f32,
+    radiance: Rgb,
+    two_sided: bool,
+}
+
+/// A light with a lane-parallel form.
+#[derive(Clone, Copy, Debug)]
+enum WideLight {
+    Flat(FlatLight),
+    Sphere(SphereLight),
+}
+
+/// The scene's lights, when all are flat or sphere area lights.
 #[derive(Clone, Debug)]
 pub struct WideLights {
-    lights: Vec<FlatLight>,
+    lights: Vec<WideLight>,
+    /// Some light is flat; some is a sphere (each form is computed only if present).
+    any_flat: bool,
+    any_sphere: bool,
 }
 
 /// `N` light samples (meaningful in `valid` lanes).
@@ -88,8 +109,8 @@ impl<const N: usize> LightSamples<N> {
 }
 
 impl WideLights {
-    /// `None` unless every light is a quad or triangle area light of constant radiance (no
-    /// point, spot, sphere, disk or environment light, no radiance texture).
+    /// `None` unless every light is a quad, triangle or sphere area light of constant radiance
+    /// (no point, spot, disk or environment light, no radiance texture).
     pub fn new(set: &LightSet) -> Option<Self> {
         let lights = set
             .lights()
@@ -103,24 +124,24 @@ impl WideLights {
                     | Light::Directional(_)
                     | Light::Environment(_) => return None,
                 };
+                let (radiance, two_sided) = (l.emission.radiance, l.emission.two_sided);
                 let (origin, e1, e2, triangle) = match l.shape {
                     LightShape::Quad(q) => (q.q, q.u, q.v, false),
                     LightShape::Triangle(t) => (t.p0, t.e1, t.e2, true),
-                    _ => return None,
+                    LightShape::Sphere(s) => {
+                        let sphere = SphereLight { center: s.center, radius: s.radius, radiance, two_sided };
+                        return Some(WideLight::Sphere(sphere));
+                    }
+                    LightShape::Disk(_) => return None,
                 };
-                Some(FlatLight {
-                    origin,
-                    e1,
-                    e2,
-                    triangle,
-                    normal: e1.cross(e2).normalize(),
-                    area: l.area(),
-                    radiance: l.emission.radiance,
-                    two_sided: l.emission.two_sided,
-                })
+                let normal = e1.cross(e2).normalize();
+                let area = l.area();
+                Some(WideLight::Flat(FlatLight { origin, e1, e2, triangle, normal, area, radiance, two_sided }))
             })
             .collect::<Option<Vec<_>>>()?;
-        Some(Self { lights })
+        let any_flat = lights.iter().any(|l| matches!(l, WideLight::Flat(_)));
+        let any_sphere = lights.iter().any(|l| matches!(l, WideLight::Sphere(_)));
+        Some(Self { lights, any_flat, any_sphere })
     }
 
     /// Samples a light point for each lane of `active` from `p`, with the selection numbers
@@ -143,25 +164,53 @@ impl WideLights {
             normal: Vec3s::default(),
             triangle: Ms::NONE,
         };
-        let mut pmf_per_area = F32s::<N>::ZERO;
+        let mut spheres = SphereLights { center: Vec3s::default(), radius: F32s::ZERO };
+        let mut on_sphere = Ms::<N>::NONE;
+        // The selection pmf, divided by the area for flat lights (whose density is per area).
+        let mut pmf_factor = F32s::<N>::ZERO;
         let mut radiance = [F32s::<N>::ZERO; 3];
         let mut two_sided = Ms::<N>::NONE;
         let mut picked = Ms::<N>::NONE;
         for i in active.lanes() {
             let Some((id, pmf)) = set.pick(u_select.0[i]) else { continue };
-            let Some(l) = self.lights.get(id) else { continue };
-            f.origin.set(i, l.origin);
-            f.e1.set(i, l.e1);
-            f.e2.set(i, l.e2);
-            f.normal.set(i, l.normal);
-            f.triangle.0[i] = if l.triangle { u32::MAX } else { 0 };
-            pmf_per_area.0[i] = pmf / l.area;
-            [radiance[0].0[i], radiance[1].0[i], radiance[2].0[i]] = l.radiance.to_array();
-            two_sided.0[i] = if l.two_sided { u32::MAX } else { 0 };
+            let Some(light) = self.lights.get(id) else { continue };
+            let (emitted, both_faces) = match light {
+                WideLight::Flat(l) => {
+                    f.origin.set(i, l.origin);
+                    f.e1.set(i, l.e1);
+                    f.e2.set(i, l.e2);
+                    f.normal.set(i, l.normal);
+                    f.triangle.0[i] = if l.triangle { u32::MAX } else { 0 };
+                    pmf_factor.0[i] = pmf / l.area;
+                    (l.radiance, l.two_sided)
+                }
+                WideLight::Sphere(l) => {
+                    spheres.center.set(i, l.center);
+                    spheres.radius.0[i] = l.radius;
+                    on_sphere.0[i] = u32::MAX;
+                    pmf_factor.0[i] = pmf;
+                    (l.radiance, l.two_sided)
+                }
+            };
+            [radiance[0].0[i], radiance[1].0[i], radiance[2].0[i]] = emitted.to_array();
+            two_sided.0[i] = if both_faces { u32::MAX } else { 0 };
             picked.0[i] = u32::MAX;
         }
-        let FlatSamples { point, wi, dist, cos_l, pdf_area_one } = sample_flat_lanes(&f, p, u1, u2);
-        let pdf = pdf_area_one * pmf_per_area;
+        let (mut point, mut wi, mut dist, mut cos_l, mut pdf) =
+            (Vec3s::default(), Vec3s::default(), F32s::ZERO, F32s::ZERO, F32s::ZERO);
+        if self.any_flat {
+            let FlatSamples { point: p_f, wi: wi_f, dist: dist_f, cos_l: cos_f, pdf_area_one } =
+                sample_flat_lanes(&f, p, u1, u2);
+            (point, wi, dist, cos_l, pdf) = (p_f, wi_f, dist_f, cos_f, pdf_area_one * pmf_factor);
+        }
+        if self.any_sphere && on_sphere.any() {
+            let s = sample_sphere_lanes(&spheres, p, u1, u2);
+            point = Vec3s::select(on_sphere, &s.point, &point);
+            wi = Vec3s::select(on_sphere, &s.wi, &wi);
+            dist = F32s::select(on_sphere, s.dist, dist);
+            cos_l = F32s::select(on_sphere, s.normal.dot(&s.wi), cos_l);
+            pdf = F32s::select(on_sphere, s.pdf * pmf_factor, pdf);
+        }
         // One-sided lights emit along their normal: towards p when cos θ_l = n·wi < 0.
         let faces_p = two_sided | cos_l.lt(F32s::<N>::ZERO);
         let valid = picked & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);

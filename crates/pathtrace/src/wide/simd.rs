@@ -102,6 +102,11 @@ impl<const N: usize> F32s<N> {
     }
 
     #[inline(always)]
+    pub fn floor(self) -> Self {
+        map(self, f32::floor)
+    }
+
+    #[inline(always)]
     pub fn abs(self) -> Self {
         map(self, f32::abs)
     }

@@ -1,11 +1,11 @@
-//! The warps of the Lambertian form, written once for every lane count: the concentric disk
-//! and the cosine-weighted hemisphere (Malley's method), and the orthonormal basis of a normal
-//! (Duff et al. 2017). `sampling::warp` and `math::Frame::from_normal` are their one-lane
-//! instances.
+//! The warps of the lane-parallel forms, written once for every lane count: the concentric disk
+//! and the cosine-weighted hemisphere (Malley's method), uniform directions on the sphere and in
+//! a cone (sphere lights), and the orthonormal basis of a normal (Duff et al. 2017).
+//! `sampling::warp` and `math::Frame::from_normal` are their one-lane instances.
 //!
-//! The concentric map only needs sin and cos of angles in [-π/4, π/4] (the other octants are
-//! reached by swapping the two and by the radius' sign), where short Taylor polynomials are
-//! accurate to 3·10⁻⁷ and vectorise, unlike calls to `sinf`/`cosf`.
+//! The warps only need sin and cos of angles in [-π/4, π/4] (other angles are reached by
+//! swapping the two and by signs), where short Taylor polynomials are accurate to 3·10⁻⁷ and
+//! vectorise, unlike calls to `sinf`/`cosf`.
 
 use super::simd::{F32s, Vec3s};
 use crate::math::PI;
@@ -45,6 +45,45 @@ pub fn square_to_cosine_hemisphere<const N: usize>(u1: F32s<N>, u2: F32s<N>) -> 
     let (x, y) = square_to_uniform_disk(u1, u2);
     let z = (1.0 - x * x - y * y).max(F32s::<N>::ZERO).sqrt();
     Vec3s { x, y, z }
+}
+
+/// (cos 2πu, sin 2πu) per lane, for u in [0, 1]: the angle is split into the nearest multiple
+/// of π/2, kπ/2, and a remainder |x| ≤ π/4 (4u − k is exact), whose sine and cosine are then
+/// rotated by k quarter turns.
+#[inline(always)]
+pub fn cos_sin_turn<const N: usize>(u: F32s<N>) -> (F32s<N>, F32s<N>) {
+    let quarters = 4.0 * u;
+    let k = (quarters + 0.5).floor();
+    let x = (quarters - k) * (PI / 2.0);
+    let (c, s) = (cos_quarter(x), sin_quarter(x));
+    // k mod 4 picks the rotation: (c, s), (−s, c), (−c, −s), (s, −c).
+    let k = k - 4.0 * (k * 0.25).floor();
+    let (k1, k2, k3) = (k.eq(F32s::splat(1.0)), k.eq(F32s::splat(2.0)), k.eq(F32s::splat(3.0)));
+    let cos = F32s::select(k1, -s, F32s::select(k2, -c, F32s::select(k3, s, c)));
+    let sin = F32s::select(k1, c, F32s::select(k2, -s, F32s::select(k3, -c, s)));
+    (cos, sin)
+}
+
+/// A direction with height `z` above the xy plane and azimuth 2π·`u`.
+#[inline(always)]
+fn at_height<const N: usize>(z: F32s<N>, u: F32s<N>) -> Vec3s<N> {
+    let r = (1.0 - z * z).max(F32s::<N>::ZERO).sqrt();
+    let (c, s) = cos_sin_turn(u);
+    Vec3s { x: r * c, y: r * s, z }
+}
+
+/// Uniform direction on the unit sphere: z = 1 − 2u1, φ = 2πu2 (Archimedes' hat-box
+/// theorem: z is uniform); pdf 1/(4π).
+#[inline(always)]
+pub fn square_to_uniform_sphere<const N: usize>(u1: F32s<N>, u2: F32s<N>) -> Vec3s<N> {
+    at_height(1.0 - 2.0 * u1, u2)
+}
+
+/// Uniform direction in the cone of half-angle θ_max about +z: z = 1 − u1(1 − cos θ_max),
+/// φ = 2πu2; pdf 1/(2π(1 − cos θ_max)) (pbrt-v3 §13.6.4).
+#[inline(always)]
+pub fn square_to_uniform_cone<const N: usize>(u1: F32s<N>, u2: F32s<N>, cos_theta_max: F32s<N>) -> Vec3s<N> {
+    at_height(1.0 - u1 * (1.0 - cos_theta_max), u2)
 }
 
 /// Uniform barycentric coordinates on a triangle by the square-root warp, (1 − √u1, u2·√u1)
@@ -89,6 +128,19 @@ pub fn to_world<const N: usize>(n: &Vec3s<N>, v: &Vec3s<N>) -> Vec3s<N> {
 mod tests {
     use super::*;
     use crate::wide::simd::LANES_256 as N;
+
+    /// The quarter-turn reduction matches `cos`/`sin` over the whole turn, at and between the
+    /// quadrant boundaries.
+    #[test]
+    fn turns_match_cos_and_sin() {
+        for k in 0..=4096 {
+            let u = k as f32 / 4096.0;
+            let (c, s) = cos_sin_turn(F32s::<N>::splat(u));
+            let phi = 2.0 * std::f64::consts::PI * f64::from(u);
+            assert!((f64::from(c.0[0]) - phi.cos()).abs() < 5e-7, "cos at u = {u}");
+            assert!((f64::from(s.0[0]) - phi.sin()).abs() < 5e-7, "sin at u = {u}");
+        }
+    }
 
     #[test]
     fn polynomials_match_sin_and_cos_on_the_octant() {
