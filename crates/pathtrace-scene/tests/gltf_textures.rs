@@ -253,5 +253,5 @@ fn normal_texture_transforms_and_misplaced_emission_textures() {
     "#;
     let path = dir.write("lamp.toml", toml);
     let e = pathtrace_scene::load_file(&path, &[], &mut |_| {}).map(|_| ()).expect_err("an error").to_string();
-    assert!(e.contains("lamp.toml") && e.contains("meshes only"), "{e}");
+    assert!(e.contains("lamp.toml") && e.contains("meshes and quads only"), "{e}");
 }

@@ -545,8 +545,9 @@ impl SceneBuilder {
     }
 
     /// Scales `material`'s emitted radiance by `texture` (added with [`SceneBuilder::texture`]),
-    /// looked up at each point's (u, v). Only meshes may carry such a material (their triangles
-    /// become textured lights, see [`RadianceTexture`]); other shapes are a build error.
+    /// looked up at each point's (u, v). Only meshes and quads may carry such a material (their
+    /// triangles, or the quad, become textured lights, see [`RadianceTexture`]); other shapes are
+    /// a build error.
     pub fn set_emission_texture(&mut self, material: MaterialId, texture: TextureId) -> Result<(), BuildError> {
         self.check_material(material)?;
         if texture.0 as usize >= self.textures.len() {
@@ -838,10 +839,17 @@ impl SceneBuilder {
             match entry {
                 Entry::Shape(shape, _) => {
                     let light = match emission {
-                        Some(_) if emission_textures[material as usize].is_some() => {
-                            return Err(BuildError::Material(
-                                "an emission texture is supported on meshes only (its triangles carry the uv)".into(),
-                            ))
+                        Some(e) if emission_textures[material as usize].is_some() => {
+                            let (Shape::Quad(q), Some(texture)) = (&shape, &emission_textures[material as usize])
+                            else {
+                                return Err(BuildError::Material(
+                                    "an emission texture is supported on meshes and quads only (they carry the uv)"
+                                        .into(),
+                                ));
+                            };
+                            let t = RadianceTexture::on_quad(texture.clone());
+                            lights.push(AreaLight::new(LightShape::Quad(*q), e).with_texture(t).expect("a quad light"));
+                            lights.len() as u32 - 1
                         }
                         Some(e) => {
                             let light_shape = match &shape {

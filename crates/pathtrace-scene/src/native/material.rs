@@ -145,7 +145,7 @@ pub struct EmissionDef {
     /// Emit from both faces (default: only the front face).
     pub two_sided: bool,
     /// A texture the radiance is multiplied by (`emission_texture`; glTF's `emissiveTexture`),
-    /// looked up at each point's (u, v); meshes only. Always a [`Colour::Texture`].
+    /// looked up at each point's (u, v); meshes and quads only. Always a [`Colour::Texture`].
     pub texture: Option<Colour>,
 }
 
