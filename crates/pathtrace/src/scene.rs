@@ -8,7 +8,7 @@ use crate::light::{
     AreaLight, DirectionalLight, Emission, EnvironmentLight, Light, LightSet, LightShape, PointLight, RadianceTexture,
     SpotLight,
 };
-use crate::material::Material;
+use crate::material::{Material, RoughPlasticAlphaTable};
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::medium::{HomogeneousMedium, MediumBoundary, MediumId};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
@@ -107,6 +107,8 @@ pub struct Scene {
     materials: Vec<Material>,
     /// Per material: the textures bound to its colour slots (most are empty).
     bindings: Vec<TextureBindings>,
+    /// Per material: the coating tables over α of a rough plastic with a roughness texture.
+    plastic_alpha_tables: Vec<Option<Arc<RoughPlasticAlphaTable>>>,
     textures: Vec<Texture>,
     /// Some material has an opacity mask (rays then pass cut-outs: `crate::cutout`).
     cutouts: bool,
@@ -303,14 +305,20 @@ impl Scene {
     pub fn textured_material(&self, it: &Interaction) -> Material {
         let b = self.bindings.get(it.material_id as usize).copied().unwrap_or_default();
         let mut m = *it.material;
+        // Roughness first: a rough plastic's base term depends on α (through its tables).
+        if let Some(t) = b.roughness {
+            let c = self.textures[t.0 as usize].eval(it.surface.uv);
+            let table = self.plastic_alpha_tables.get(it.material_id as usize).and_then(Option::as_deref);
+            m = match (&m, table) {
+                (Material::RoughPlastic(p), Some(table)) => Material::RoughPlastic(p.with_alpha(c.luminance(), table)),
+                _ => m.with_colour(ColourSlot::Roughness, c),
+            };
+        }
         if let Some(t) = b.base {
             m = m.with_colour(ColourSlot::Base, self.textures[t.0 as usize].eval(it.surface.uv));
         }
         if let Some(t) = b.specular {
             m = m.with_colour(ColourSlot::Specular, self.textures[t.0 as usize].eval(it.surface.uv));
-        }
-        if let Some(t) = b.roughness {
-            m = m.with_colour(ColourSlot::Roughness, self.textures[t.0 as usize].eval(it.surface.uv));
         }
         m
     }
@@ -919,6 +927,16 @@ impl SceneBuilder {
         let mut bindings = self.bindings;
         bindings.resize(self.materials.len(), TextureBindings::default());
         let cutouts = bindings.iter().any(|b| b.opacity.is_some());
+        // A rough plastic whose α is textured needs its coating tables at every α: built once here.
+        let plastic_alpha_tables = self
+            .materials
+            .iter()
+            .zip(&bindings)
+            .map(|((m, _), b)| match m {
+                Material::RoughPlastic(p) if b.roughness.is_some() => Some(Arc::new(RoughPlasticAlphaTable::new(p))),
+                _ => None,
+            })
+            .collect();
         let mut one_sided = self.one_sided;
         one_sided.resize(self.materials.len(), false);
         let mut boundaries = self.boundaries;
@@ -935,6 +953,7 @@ impl SceneBuilder {
             instances,
             materials: self.materials.into_iter().map(|(m, _)| m).collect(),
             bindings,
+            plastic_alpha_tables,
             textures: self.textures,
             cutouts,
             one_sided,
