@@ -14,6 +14,7 @@ use pathtrace_scene::native::model::MaterialKind;
 use std::path::Path;
 
 include!("data/backfaces_blocks.rs");
+include!("data/smooth_edges/blocks.rs");
 
 fn path() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/backfaces.xml")
@@ -41,4 +42,19 @@ fn two_sided_diffuse_is_seen_to_disagree() {
     let loaded = build_model(&file, &path()).unwrap();
     let o = blocks::render_blocks("backfaces.xml (two-sided)", loaded, 1024, &BACKFACES_MEAN, &BACKFACES_SE);
     assert!(o.beyond >= 2, "two-sided shading should be told apart: worst |z| {:.2}, {} beyond", o.worst, o.beyond);
+}
+
+/// One-sided diffuse with smooth normals where the true surface faces away from the viewer but
+/// the shading normal faces it (tests/data/smooth_edges/scene.xml: a card with bent vertex
+/// normals seen from just below, and a low-poly smooth sphere, whose silhouettes show the
+/// reverse): Mitsuba shades by the cosine in the shading frame, and so do we. Judging by the
+/// true normal instead (black where it faces away) fails this test (see docs/scene-format.md).
+#[test]
+fn one_sided_smooth_normals_follow_the_shading_frame_as_mitsuba() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/smooth_edges/scene.xml");
+    let (file, warnings) = convert_file(&path, &[]).unwrap();
+    assert!(warnings.is_empty(), "{warnings:#?}");
+    let one_sided = file.materials.values().filter(|m| matches!(m.kind, MaterialKind::OneSided(_))).count();
+    assert_eq!(one_sided, 4, "the two cards, the sphere and the floor");
+    blocks::assert_agrees(&path, 1024, &SMOOTH_EDGES_MEAN, &SMOOTH_EDGES_SE);
 }

@@ -102,6 +102,7 @@ fn lanes_and_one_lane_give_every_sample_the_same_value() {
         "tests/data/maps/roughness.xml",
         "tests/data/maps/plastic_alpha.xml",
         "tests/data/maps/emitter_texture.xml",
+        "tests/data/smooth_edges/scene.xml",
         "tests/data/media/fog_shafts.xml",
         "tests/data/media/jelly_sphere.xml",
     ] {
