@@ -481,6 +481,8 @@ impl<const N: usize> LambertLight<N> {
 /// The lane-parallel form of a Lambertian vertex (f = albedo/π, cosine-weighted continuation)
 /// for the lanes of `simd`: light samples in SIMD too when every light is a flat area light, else
 /// lane by lane from the scene's light set. Queues the shadow rays and continuations in `sc`.
+/// `one_sided`: the lanes whose material is one-sided (their shading normal is not turned over).
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn lambertian_lanes<const N: usize>(
     job: &LaneJob,
