@@ -2,7 +2,9 @@
 //! backs to the camera, one plain `diffuse` and one `twosided`, a card facing the camera, a floor,
 //! an area light behind the cards; path tracing to depth 4) agrees with Mitsuba block by block
 //! (8 × 8-pixel blocks of a 64 × 64 image) and in its mean colour within 1%; the same scene with
-//! every surface shaded on both faces (pathtrace's reading before) is seen to disagree.
+//! every surface shaded on both faces (pathtrace's reading before) is seen to disagree. Also
+//! tests/data/smooth_edges/scene.xml: one-sided surfaces whose smooth normals face the viewer
+//! where the true surface does not (shaded, as Mitsuba's shading-frame rule).
 //!
 //! Reference (tests/data/backfaces_blocks.rs): Mitsuba 3.9.1 `llvm_ad_rgb`, 16 renders × 1024
 //! spp, made by the command in that file's first line.

@@ -7,7 +7,9 @@
 //! 1024 spp, from `DRJIT_LIBLLVM_PATH=…/libLLVM-19.so .venv-peers/bin/python
 //! benches/peers/block_means.py normal_bump.xml --scenes crates/pathtrace-scene/tests/data/maps
 //! --spp 1024 --runs 16 --name NORMAL_BUMP --variant llvm_ad_rgb`; the images come from
-//! benches/peers/make_map_assets.py.
+//! benches/peers/make_map_assets.py. The same pattern covers textured area emitters
+//! (emitter_texture.xml, emissive.xml) and a rough plastic with an α texture (plastic_alpha.xml
+//! against its constant-α twin); each block file's first line is its command.
 
 mod blocks;
 
