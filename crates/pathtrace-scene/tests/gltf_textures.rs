@@ -13,7 +13,7 @@ mod common;
 
 use pathtrace::{render, RenderSettings};
 use pathtrace_scene::gltf::{convert_file, load_gltf};
-use pathtrace_scene::native::model::{Colour, TextureDef};
+use pathtrace_scene::native::model::{Colour, MaterialKind, TextureDef};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -41,6 +41,32 @@ fn emissive_texture_matches_its_mitsuba_twin_block_by_block() {
     let (mut loaded, _) = load_gltf(&data("emissive.gltf"), &[]).unwrap();
     loaded.defaults.max_depth = 4;
     blocks::assert_scene_agrees("emissive.gltf", loaded, 1024, &GLTF_EMISSIVE_MEAN, &GLTF_EMISSIVE_SE);
+}
+
+/// A dielectric (metallicFactor 0) with the same texture becomes a rough plastic whose α is
+/// the texture, as the metal's (the plastic model's approximation is the only warning), and it
+/// loads.
+#[test]
+fn metallic_roughness_texture_drives_the_rough_plastic_approximation() {
+    let dir = common::TempDir::new();
+    for f in ["metal_rough.bin", "metal_rough.png"] {
+        std::fs::copy(data(f), dir.path().join(f)).unwrap();
+    }
+    let mut v: serde_json::Value = serde_json::from_slice(&std::fs::read(data("metal_rough.gltf")).unwrap()).unwrap();
+    v["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0.0.into();
+    let path = dir.path().join("plastic_rough.gltf");
+    std::fs::write(&path, serde_json::to_vec_pretty(&v).unwrap()).unwrap();
+    let (file, warnings) = convert_file(&path, &[]).unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:#?}");
+    assert!(warnings[0].contains("materials[0]") && warnings[0].contains("rough_plastic"), "{warnings:#?}");
+    let m = &file.materials["gltf-0"];
+    assert!(matches!(m.kind, MaterialKind::RoughPlastic { .. }), "{m:?}");
+    assert!(
+        matches!(m.roughness, Some(Colour::Texture(TextureDef::Channel { channel: 1, squared: true, .. }))),
+        "{m:?}"
+    );
+    let (loaded, _) = load_gltf(&path, &[]).unwrap();
+    assert!(loaded.scene.is_material_textured(0));
 }
 
 /// The image of a render of `path` at `spp` (seed fixed).
@@ -253,5 +279,5 @@ fn normal_texture_transforms_and_misplaced_emission_textures() {
     "#;
     let path = dir.write("lamp.toml", toml);
     let e = pathtrace_scene::load_file(&path, &[], &mut |_| {}).map(|_| ()).expect_err("an error").to_string();
-    assert!(e.contains("lamp.toml") && e.contains("meshes only"), "{e}");
+    assert!(e.contains("lamp.toml") && e.contains("meshes and quads only"), "{e}");
 }

@@ -100,6 +100,9 @@ fn lanes_and_one_lane_give_every_sample_the_same_value() {
         "tests/data/maps/normal_bump.xml",
         "tests/data/maps/mask.xml",
         "tests/data/maps/roughness.xml",
+        "tests/data/maps/plastic_alpha.xml",
+        "tests/data/maps/emitter_texture.xml",
+        "tests/data/smooth_edges/scene.xml",
         "tests/data/media/fog_shafts.xml",
         "tests/data/media/jelly_sphere.xml",
     ] {

@@ -8,7 +8,7 @@ use crate::light::{
     AreaLight, DirectionalLight, Emission, EnvironmentLight, Light, LightSet, LightShape, PointLight, RadianceTexture,
     SpotLight,
 };
-use crate::material::Material;
+use crate::material::{Material, RoughPlasticAlphaTable};
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::medium::{HomogeneousMedium, MediumBoundary, MediumId};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
@@ -107,6 +107,8 @@ pub struct Scene {
     materials: Vec<Material>,
     /// Per material: the textures bound to its colour slots (most are empty).
     bindings: Vec<TextureBindings>,
+    /// Per material: the coating tables over α of a rough plastic with a roughness texture.
+    plastic_alpha_tables: Vec<Option<Arc<RoughPlasticAlphaTable>>>,
     textures: Vec<Texture>,
     /// Some material has an opacity mask (rays then pass cut-outs: `crate::cutout`).
     cutouts: bool,
@@ -304,14 +306,20 @@ impl Scene {
     pub fn textured_material(&self, it: &Interaction) -> Material {
         let b = self.bindings.get(it.material_id as usize).copied().unwrap_or_default();
         let mut m = *it.material;
+        // Roughness first: a rough plastic's base term depends on α (through its tables).
+        if let Some(t) = b.roughness {
+            let c = self.textures[t.0 as usize].eval(it.surface.uv);
+            let table = self.plastic_alpha_tables.get(it.material_id as usize).and_then(Option::as_deref);
+            m = match (&m, table) {
+                (Material::RoughPlastic(p), Some(table)) => Material::RoughPlastic(p.with_alpha(c.luminance(), table)),
+                _ => m.with_colour(ColourSlot::Roughness, c),
+            };
+        }
         if let Some(t) = b.base {
             m = m.with_colour(ColourSlot::Base, self.textures[t.0 as usize].eval(it.surface.uv));
         }
         if let Some(t) = b.specular {
             m = m.with_colour(ColourSlot::Specular, self.textures[t.0 as usize].eval(it.surface.uv));
-        }
-        if let Some(t) = b.roughness {
-            m = m.with_colour(ColourSlot::Roughness, self.textures[t.0 as usize].eval(it.surface.uv));
         }
         m
     }
@@ -546,8 +554,9 @@ impl SceneBuilder {
     }
 
     /// Scales `material`'s emitted radiance by `texture` (added with [`SceneBuilder::texture`]),
-    /// looked up at each point's (u, v). Only meshes may carry such a material (their triangles
-    /// become textured lights, see [`RadianceTexture`]); other shapes are a build error.
+    /// looked up at each point's (u, v). Only meshes and quads may carry such a material (their
+    /// triangles, or the quad, become textured lights, see [`RadianceTexture`]); other shapes are
+    /// a build error.
     pub fn set_emission_texture(&mut self, material: MaterialId, texture: TextureId) -> Result<(), BuildError> {
         self.check_material(material)?;
         if texture.0 as usize >= self.textures.len() {
@@ -839,10 +848,17 @@ impl SceneBuilder {
             match entry {
                 Entry::Shape(shape, _) => {
                     let light = match emission {
-                        Some(_) if emission_textures[material as usize].is_some() => {
-                            return Err(BuildError::Material(
-                                "an emission texture is supported on meshes only (its triangles carry the uv)".into(),
-                            ))
+                        Some(e) if emission_textures[material as usize].is_some() => {
+                            let (Shape::Quad(q), Some(texture)) = (&shape, &emission_textures[material as usize])
+                            else {
+                                return Err(BuildError::Material(
+                                    "an emission texture is supported on meshes and quads only (they carry the uv)"
+                                        .into(),
+                                ));
+                            };
+                            let t = RadianceTexture::on_quad(texture.clone());
+                            lights.push(AreaLight::new(LightShape::Quad(*q), e).with_texture(t).expect("a quad light"));
+                            lights.len() as u32 - 1
                         }
                         Some(e) => {
                             let light_shape = match &shape {
@@ -912,6 +928,16 @@ impl SceneBuilder {
         let mut bindings = self.bindings;
         bindings.resize(self.materials.len(), TextureBindings::default());
         let cutouts = bindings.iter().any(|b| b.opacity.is_some());
+        // A rough plastic whose α is textured needs its coating tables at every α: built once here.
+        let plastic_alpha_tables = self
+            .materials
+            .iter()
+            .zip(&bindings)
+            .map(|((m, _), b)| match m {
+                Material::RoughPlastic(p) if b.roughness.is_some() => Some(Arc::new(RoughPlasticAlphaTable::new(p))),
+                _ => None,
+            })
+            .collect();
         let mut one_sided = self.one_sided;
         one_sided.resize(self.materials.len(), false);
         let mut boundaries = self.boundaries;
@@ -928,6 +954,7 @@ impl SceneBuilder {
             instances,
             materials: self.materials.into_iter().map(|(m, _)| m).collect(),
             bindings,
+            plastic_alpha_tables,
             textures: self.textures,
             cutouts,
             one_sided,

@@ -2,14 +2,14 @@
 //! sample carries the radiance a ray hitting the same point sees (the sampled point's uv found
 //! from its place on the triangle agrees with the hit's interpolated uv); light sampling and
 //! direction sampling estimate the same irradiance (the textured light is sampled uniformly by
-//! area, which stays unbiased); power-based selection weighs the texture's mean; only meshes may
-//! carry such a light.
+//! area, which stays unbiased); power-based selection weighs the texture's mean; only meshes and
+//! quads may carry such a light. Each is checked on a mesh panel and on a quad panel.
 
 use pathtrace::light::{Emission, Light};
 use pathtrace::material::{Lambertian, Material};
 use pathtrace::math::{Frame, Ray, Rgb, Transform, Vec2, Vec3};
 use pathtrace::sampling::warp;
-use pathtrace::shape::{Shape, Sphere, TriangleMesh};
+use pathtrace::shape::{Quad, Shape, Sphere, TriangleMesh};
 use pathtrace::texture::{Bitmap, Texture};
 use pathtrace::{Scene, SceneBuilder};
 use pathtrace_testkit::TestRng;
@@ -29,9 +29,9 @@ fn image() -> Bitmap {
     Bitmap::new(4, 4, texels).unwrap()
 }
 
-/// A floor and a tilted emissive quad (two triangles, uvs not aligned with the edges) whose
-/// radiance is `scale` × the image.
-fn scene(scale: Rgb) -> Scene {
+/// A floor and a tilted emissive panel whose radiance is `scale` × the image: two triangles with
+/// uvs not aligned with the edges, or (`quad`) a quad shape, whose uv is its (a, b).
+fn scene(scale: Rgb, quad: bool) -> Scene {
     let mut b = SceneBuilder::new();
     let floor = b.material(Material::Lambertian(Lambertian { albedo: Rgb::splat(0.5) }));
     let lamp = b.material_with_emission(Material::Black, Emission { radiance: scale, two_sided: false });
@@ -56,13 +56,25 @@ fn scene(scale: Rgb) -> Scene {
         normals: None,
         uvs: Some(vec![Vec2::new(0.1, 0.9), Vec2::new(1.3, 0.8), Vec2::new(1.1, -0.2), Vec2::new(0.0, 0.05)]),
     };
-    b.mesh(&panel, lamp, &Transform::IDENTITY).unwrap();
+    if quad {
+        // Facing −z and a little down (u × v), towards the reference points.
+        let q = Quad::new(Vec3::new(-1.0, 0.5, 1.0), Vec3::new(0.0, 1.1, -0.5), Vec3::new(2.0, -0.2, 0.2)).unwrap();
+        b.shape(Shape::Quad(q), lamp, &Transform::IDENTITY).unwrap();
+    } else {
+        b.mesh(&panel, lamp, &Transform::IDENTITY).unwrap();
+    }
     b.build().unwrap()
 }
 
 #[test]
 fn a_light_sample_carries_the_radiance_a_ray_sees_there() {
-    let s = scene(Rgb::new(2.0, 1.0, 3.0));
+    for quad in [false, true] {
+        a_light_sample_carries_the_radiance_a_ray_sees_there_on(quad);
+    }
+}
+
+fn a_light_sample_carries_the_radiance_a_ray_sees_there_on(quad: bool) {
+    let s = scene(Rgb::new(2.0, 1.0, 3.0), quad);
     let mut rng = TestRng::new(11);
     let mut checked = 0;
     for _ in 0..2000 {
@@ -83,7 +95,13 @@ fn a_light_sample_carries_the_radiance_a_ray_sees_there() {
 
 #[test]
 fn light_sampling_and_direction_sampling_estimate_the_same_irradiance() {
-    let s = scene(Rgb::new(2.0, 1.0, 3.0));
+    for quad in [false, true] {
+        light_sampling_and_direction_sampling_estimate_the_same_irradiance_on(quad);
+    }
+}
+
+fn light_sampling_and_direction_sampling_estimate_the_same_irradiance_on(quad: bool) {
+    let s = scene(Rgb::new(2.0, 1.0, 3.0), quad);
     let p = Vec3::new(0.1, 0.2, -1.0);
     let n = Vec3::new(0.0, 0.3, 1.0).normalize();
     let frame = Frame::from_normal(n);
@@ -127,14 +145,16 @@ fn light_sampling_and_direction_sampling_estimate_the_same_irradiance() {
 }
 
 #[test]
-fn selection_power_uses_the_texture_mean_and_only_meshes_take_a_texture() {
-    let s = scene(Rgb::new(2.0, 1.0, 3.0));
+fn selection_power_uses_the_texture_mean_and_only_meshes_and_quads_take_a_texture() {
     let mean = image().mean() * Rgb::new(2.0, 1.0, 3.0);
-    for light in s.lights.lights() {
-        let Light::Area(l) = light else { continue };
-        let expected = mean.luminance_f64() * l.area() as f64 * std::f64::consts::PI;
-        assert!((l.power() / expected - 1.0).abs() < 1e-5, "{} vs {expected}", l.power());
-        assert!(l.texture().is_some());
+    for quad in [false, true] {
+        let s = scene(Rgb::new(2.0, 1.0, 3.0), quad);
+        for light in s.lights.lights() {
+            let Light::Area(l) = light else { continue };
+            let expected = mean.luminance_f64() * l.area() as f64 * std::f64::consts::PI;
+            assert!((l.power() / expected - 1.0).abs() < 1e-5, "{} vs {expected}", l.power());
+            assert!(l.texture().is_some());
+        }
     }
     // A sphere cannot carry a radiance texture.
     let mut b = SceneBuilder::new();
@@ -143,7 +163,7 @@ fn selection_power_uses_the_texture_mean_and_only_meshes_take_a_texture() {
     b.set_emission_texture(lamp, t).unwrap();
     b.shape(Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0).unwrap()), lamp, &Transform::IDENTITY).unwrap();
     let e = b.build().expect_err("an error").to_string();
-    assert!(e.contains("meshes only"), "{e}");
+    assert!(e.contains("meshes and quads only"), "{e}");
     // Nor can a material that does not emit.
     let mut b = SceneBuilder::new();
     let grey = b.material(Material::Lambertian(Lambertian { albedo: Rgb::splat(0.5) }));

@@ -9,8 +9,8 @@
 //! edge brightening), partial `metallic` the nearer of the two, transmission a `rough_dielectric`.
 //! A base colour texture becomes an image texture (see `texture.rs`), an emissive texture the
 //! texture the emitted radiance is multiplied by, the metallic-roughness texture's green channel
-//! (times roughnessFactor, squared after filtering) the α of the rough conductor or dielectric
-//! (its blue channel, metallic, is not read: the factor picks the model, with a warning),
+//! (times roughnessFactor, squared after filtering) the α of the rough conductor, dielectric or
+//! plastic (its blue channel, metallic, is not read: the factor picks the model, with a warning),
 //! a normal texture a normal map (see [`normal_map`]), `alphaMode` an opacity (see
 //! [`alpha_opacity`]).
 
@@ -72,7 +72,7 @@ pub fn convert(m: Option<&gltf::Material>, file_name: &str, warn: &mut dyn FnMut
     let transmission = m.and_then(|m| m.transmission()).map_or(0.0, |t| t.transmission_factor());
     let alpha = num(roughness * roughness);
     let ggx = RoughnessDef { distribution: MicrofacetKind::Ggx, alpha_u: alpha, alpha_v: alpha };
-    // Only the microfacet models take a roughness texture.
+    // Only the microfacet models (rough conductor, dielectric, plastic) take a roughness texture.
     let mut textured_alpha = None;
     let kind = if transmission > 0.0 && metallic < 0.5 {
         if transmission < 1.0 {
@@ -89,9 +89,7 @@ pub fn convert(m: Option<&gltf::Material>, file_name: &str, warn: &mut dyn FnMut
             MaterialKind::Lambertian { albedo: base }
         } else {
             w("the dielectric BRDF is approximated by `rough_plastic` (GGX coating over the base colour)");
-            if roughness_texture.is_some() {
-                w("the roughness texture is not applied to `rough_plastic`: using roughnessFactor");
-            }
+            textured_alpha = roughness_texture;
             let spec = Colour::Constant(Triple::Splat(num(specular)));
             MaterialKind::RoughPlastic { albedo: base, specular: spec, ior: num(ior), nonlinear: false, roughness: ggx }
         }

@@ -765,8 +765,17 @@ impl<'a> Conv<'a, '_> {
         if let Some(em) = emitter {
             let ty = self.req_attr(em, "type")?;
             if ty == "area" {
-                let radiance = self.color(em, "radiance")?.unwrap_or(Triple::Splat(num(1.0)));
-                emission = Some(EmissionDef { radiance, two_sided: false, texture: None });
+                // A `bitmap` (or other texture) radiance is looked up at the shape's uv, as
+                // Mitsuba's area emitter evaluates `radiance` at the surface interaction.
+                emission = Some(match self.colour(em, "radiance")? {
+                    Some(Colour::Texture(t)) => EmissionDef {
+                        radiance: Triple::Splat(num(1.0)),
+                        two_sided: false,
+                        texture: Some(Colour::Texture(t)),
+                    },
+                    Some(Colour::Constant(radiance)) => EmissionDef { radiance, two_sided: false, texture: None },
+                    None => EmissionDef { radiance: Triple::Splat(num(1.0)), two_sided: false, texture: None },
+                });
             } else {
                 self.warn(em, &format!("emitter `{ty}` on a shape is not supported and is skipped"));
             }
@@ -877,6 +886,13 @@ impl<'a> Conv<'a, '_> {
         };
         let transform = self.to_world(e)?;
         let material = self.shape_material(e, &label)?;
+        let textured_light = self.materials[&material].emission.as_ref().is_some_and(|m| m.texture.is_some());
+        if textured_light && !matches!(shape, ShapeDef::Mesh { .. } | ShapeDef::Quad { .. }) {
+            return Err(self.src.error(
+                e.offset,
+                format!("a textured area emitter is supported on meshes and rectangles only, not on a `{ty}`"),
+            ));
+        }
         let item = self.objects_at.index(self.objects.len());
         self.origins.push((item.clone(), e.offset));
         for (field, prop) in [("file", "filename"), ("part", "shape_index")] {

@@ -145,7 +145,7 @@ pub struct EmissionDef {
     /// Emit from both faces (default: only the front face).
     pub two_sided: bool,
     /// A texture the radiance is multiplied by (`emission_texture`; glTF's `emissiveTexture`),
-    /// looked up at each point's (u, v); meshes only. Always a [`Colour::Texture`].
+    /// looked up at each point's (u, v); meshes and quads only. Always a [`Colour::Texture`].
     pub texture: Option<Colour>,
 }
 
@@ -161,7 +161,8 @@ pub struct MaterialDef {
     pub normal: Option<NormalPerturbationDef>,
     /// An opacity mask (cut-out), if any.
     pub opacity: Option<OpacityDef>,
-    /// A texture of the isotropic roughness α (`alpha_texture`, rough conductors and dielectrics).
+    /// A texture of the isotropic roughness α (`alpha_texture`: rough conductors, dielectrics and
+    /// plastics).
     pub roughness: Option<Colour>,
 }
 
@@ -265,7 +266,9 @@ fn allowed(t: MaterialType) -> &'static [&'static str] {
             &["ior", "tint", "distribution", "alpha", "alpha_u", "alpha_v", "alpha_texture"]
         }
         MaterialType::Plastic => &["albedo", "specular", "ior", "nonlinear"],
-        MaterialType::RoughPlastic => &["albedo", "specular", "ior", "nonlinear", "distribution", "alpha"],
+        MaterialType::RoughPlastic => {
+            &["albedo", "specular", "ior", "nonlinear", "distribution", "alpha", "alpha_texture"]
+        }
     }
 }
 
@@ -701,7 +704,9 @@ mod tests {
         assert!(matches!(m.roughness, Some(Colour::Texture(_))));
         let back: MaterialDef = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
         assert_eq!(m, back);
-        assert!(parse("type = \"rough_plastic\"\nalpha_texture = 0.2").unwrap_err().contains("not a parameter"));
+        let plastic = parse("type = \"rough_plastic\"\nalpha_texture = { type = \"bitmap\", filename = \"r.png\" }");
+        assert!(matches!(plastic.unwrap().roughness, Some(Colour::Texture(_))));
+        assert!(parse("type = \"plastic\"\nalpha_texture = 0.2").unwrap_err().contains("not a parameter"));
         assert!(parse("type = \"rough_dielectric\"\nalpha_u = 0.1\nalpha_v = 0.2\nalpha_texture = 0.2")
             .unwrap_err()
             .contains("isotropic"));

@@ -209,12 +209,16 @@ pub(crate) fn vertex<const N: usize>(
     let max_segments = settings.max_segments();
     let mut nee = Ms::<N>::NONE;
     let mut simd = Ms::<N>::NONE;
+    let mut one_sided = Ms::<N>::NONE;
     let mut albedo = [F32s::<N>::ZERO; 3];
     for i in (alive & !scatter).lanes() {
         let class = &lanes.classes[s.material[i] as usize];
         // A one-sided material seen from behind (the shading normal facing away, Mitsuba's
-        // cos θ_o ≤ 0 in the shading frame) scatters nothing, like a black one.
+        // cos θ_o ≤ 0 in the shading frame) scatters nothing, like a black one. Its front is
+        // the shading normal's side even where the true surface faces away (smooth normals at
+        // an open mesh's edge): it is shaded there, unflipped (`one_sided` lanes).
         let from_behind = class.one_sided && s.n_shading.lane(i).dot(wo.lane(i)) <= 0.0;
+        one_sided.0[i] = u32::from(class.one_sided).wrapping_neg();
         if paths.segments[i] >= max_segments || class.black || from_behind {
             paths.finish(i, out);
             alive.0[i] = 0;
@@ -253,7 +257,7 @@ pub(crate) fn vertex<const N: usize>(
 
     let mut sc = Scattered::none();
     let lambert_light = if simd.any() {
-        lambertian_lanes(job, &s, &wo, simd, nee, [&u_select, &ul1, &ul2, &ud1, &ud2], &mut sc)
+        lambertian_lanes(job, &s, &wo, simd, one_sided, nee, [&u_select, &ul1, &ul2, &ud1, &ud2], &mut sc)
     } else {
         LambertLight::none()
     };
@@ -477,12 +481,15 @@ impl<const N: usize> LambertLight<N> {
 /// The lane-parallel form of a Lambertian vertex (f = albedo/π, cosine-weighted continuation)
 /// for the lanes of `simd`: light samples in SIMD too when every light is a flat area light, else
 /// lane by lane from the scene's light set. Queues the shadow rays and continuations in `sc`.
+/// `one_sided`: the lanes whose material is one-sided (their shading normal is not turned over).
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn lambertian_lanes<const N: usize>(
     job: &LaneJob,
     s: &Surfaces<N>,
     wo: &Vec3s<N>,
     simd: Ms<N>,
+    one_sided: Ms<N>,
     nee: Ms<N>,
     [u_select, ul1, ul2, ud1, ud2]: [&F32s<N>; 5],
     sc: &mut Scattered<N>,
@@ -490,10 +497,12 @@ fn lambertian_lanes<const N: usize>(
     let LaneJob { scene, lanes, .. } = *job;
     let strategy = lanes.settings.strategy;
     let zero = F32s::<N>::ZERO;
-    // Lambertian surfaces are two-sided: face the normals towards the viewer.
+    // Face the true normal towards the viewer (the side rays must stay on). A two-sided
+    // surface's shading normal turns with it; a one-sided one's already faces the viewer (the
+    // classification ended the others), even where the true surface faces away.
     let back = s.n_geometric.dot(wo).lt(zero);
     let n_g = Vec3s::select(back, &s.n_geometric.neg(), &s.n_geometric);
-    let n_s = Vec3s::select(back, &s.n_shading.neg(), &s.n_shading);
+    let n_s = Vec3s::select(back & !one_sided, &s.n_shading.neg(), &s.n_shading);
     let wo_z = n_s.dot(wo);
     // Both rays leave on n_g's side (the viewer's; checked below), so they share one origin.
     let origin = offset_ray_origin_lanes(&s.p, &n_g, wo);

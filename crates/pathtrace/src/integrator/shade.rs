@@ -76,10 +76,12 @@ pub(crate) fn shade(
         it.material
     };
 
-    // Shading frame, flipped to the viewer's side for two-sided materials.
+    // Shading frame, flipped to the viewer's side for two-sided materials. A one-sided one
+    // reaches here only with its shading normal facing the viewer (path.rs), which is its
+    // front even where the true surface faces away, as Mitsuba's cos θ_o in the shading frame.
     let mut n_g = it.surface.n_geometric;
     let mut n_s = it.surface.n_shading;
-    let flipped = material.is_two_sided() && n_g.dot(wo_world) < 0.0;
+    let flipped = material.is_two_sided() && !scene.is_one_sided(it.material_id) && n_g.dot(wo_world) < 0.0;
     if flipped {
         n_g = -n_g;
         n_s = -n_s;

@@ -1,5 +1,5 @@
 //! Area lights: quads, triangles and spheres that emit a constant radiance from their front
-//! face (or both faces); triangles may scale it by a texture ([`RadianceTexture`]).
+//! face (or both faces); triangles and quads may scale it by a texture ([`RadianceTexture`]).
 //!
 //! Sampling densities, converted from area to solid angle at the reference point:
 //! - quads, triangles and disks: uniform by area, pdf_ω = r² / (|cos θ_l| · A) (the area-to-solid-angle
@@ -41,7 +41,7 @@ pub struct AreaLight {
     pub emission: Emission,
     area: f32,
     normal: Vec3,
-    /// A texture scaling the radiance (triangles only), if any.
+    /// A texture scaling the radiance (triangles and quads only), if any.
     texture: Option<RadianceTexture>,
 }
 
@@ -202,10 +202,11 @@ impl AreaLight {
         Self { shape, emission, area, normal, texture: None }
     }
 
-    /// The same triangle light with its radiance scaled by `texture`; `None` for other shapes,
-    /// whose sampled points carry no (u, v) here.
+    /// The same triangle or quad light with its radiance scaled by `texture`; `None` for other
+    /// shapes, whose sampled points carry no (u, v) here.
     pub fn with_texture(self, texture: RadianceTexture) -> Option<Self> {
-        matches!(self.shape, LightShape::Triangle(_)).then_some(Self { texture: Some(texture), ..self })
+        matches!(self.shape, LightShape::Triangle(_) | LightShape::Quad(_))
+            .then_some(Self { texture: Some(texture), ..self })
     }
 
     /// The radiance texture, if any.
@@ -247,7 +248,7 @@ impl AreaLight {
     }
 
     /// Radiance leaving the light's point `p` (a sampled point: its uv is found from where it
-    /// lies on the triangle) with geometric normal `n` in direction `w`.
+    /// lies on the triangle or quad) with geometric normal `n` in direction `w`.
     #[inline(always)]
     pub fn emitted_at_point(&self, p: Vec3, n: Vec3, w: Vec3) -> Rgb {
         if !(self.emission.two_sided || n.dot(w) > 0.0) {
@@ -255,6 +256,7 @@ impl AreaLight {
         }
         match (&self.texture, &self.shape) {
             (Some(t), LightShape::Triangle(tri)) => self.emission.radiance * t.at_point(p, tri.p0, tri.e1, tri.e2),
+            (Some(t), LightShape::Quad(q)) => self.emission.radiance * t.at_point(p, q.q, q.u, q.v),
             _ => self.emission.radiance,
         }
     }

@@ -1,4 +1,4 @@
-//! A texture over an emissive triangle: the light emits its `Emission::radiance` times the
+//! A texture over an emissive triangle or quad: the light emits its `Emission::radiance` times the
 //! texture's value at the point's (u, v) (glTF's `emissiveTexture`, Mitsuba's `area` emitter with
 //! a `bitmap` radiance).
 //!
@@ -13,7 +13,9 @@ use std::sync::Arc;
 
 /// The texture and the (u, v) at the triangle's corners `p0`, `p0 + e1`, `p0 + e2` (on a mesh
 /// without texture coordinates: (0, 0), (1, 0), (0, 1), so that uv = the barycentrics, as a
-/// mesh hit reports them).
+/// mesh hit reports them). A quad `q + a·u + b·v` uses the same three corners (q, q + u, q + v)
+/// with uv (0, 0), (1, 0), (0, 1): the blend below is affine, so it gives uv = (a, b) over the
+/// whole parallelogram, as a quad hit reports it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RadianceTexture {
     pub texture: Arc<Texture>,
@@ -21,6 +23,11 @@ pub struct RadianceTexture {
 }
 
 impl RadianceTexture {
+    /// A texture over a quad, whose uv is (a, b) at `q + a·u + b·v` (see the type's comment).
+    pub fn on_quad(texture: Arc<Texture>) -> Self {
+        Self { texture, corner_uv: [Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)] }
+    }
+
     /// The texture's value at a point `p` of the triangle `p0 + b1·e1 + b2·e2`: its barycentrics
     /// from the 2×2 normal equations of the edges (exact for a point in the plane), then the
     /// corners' uv blended with them, as a mesh hit does.

@@ -21,6 +21,7 @@ mod plastic;
 mod rough_conductor;
 mod rough_dielectric;
 mod rough_plastic;
+mod rough_plastic_alpha;
 mod thin_dielectric;
 
 pub use conductor::Conductor;
@@ -37,6 +38,7 @@ pub use plastic::Plastic;
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
+pub use rough_plastic_alpha::RoughPlasticAlphaTable;
 pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Rgb, Vec2, Vec3};
@@ -210,7 +212,8 @@ impl Material {
                 ColourSlot::Specular => p.specular = c,
                 ColourSlot::Roughness => {}
             },
-            // Its coating tables depend on α (and Mitsuba's `roughplastic` takes no texture).
+            // Its coating tables depend on α: a roughness texture goes through
+            // `RoughPlastic::with_alpha` and the material's α table (`Scene::textured_material`).
             Material::RoughPlastic(p) => match slot {
                 ColourSlot::Base => *p = p.with_albedo(c),
                 ColourSlot::Specular => p.specular = c,
@@ -225,7 +228,9 @@ impl Material {
         match slot {
             ColourSlot::Base => !matches!(self, Material::Black | Material::Null),
             ColourSlot::Specular => matches!(self, Material::Plastic(_) | Material::RoughPlastic(_)),
-            ColourSlot::Roughness => matches!(self, Material::RoughConductor(_) | Material::RoughDielectric(_)),
+            ColourSlot::Roughness => {
+                matches!(self, Material::RoughConductor(_) | Material::RoughDielectric(_) | Material::RoughPlastic(_))
+            }
         }
     }
 

@@ -15,17 +15,20 @@
 //! - Sampling: the coating (visible normals) with probability (1 − t(cos θo))·s, the base
 //!   (cosine) with t(cos θo)(1 − s), normalised; s = Mitsuba's specular sampling weight. The
 //!   weight is f·cos/pdf with the pdf of the whole mixture.
+//! - A textured α: [`RoughPlastic::with_alpha`] with the tables interpolated over α
+//!   (`rough_plastic_alpha.rs`).
 
 use super::dielectric::fresnel_dielectric;
 use super::microfacet::{reflect_about, refract_about, Microfacet};
 use super::plastic::{base_albedo, specular_sampling_weight};
+use super::rough_plastic_alpha::RoughPlasticAlphaTable;
 use super::BsdfSample;
 use crate::math::special::gauss_legendre;
 use crate::math::{Rgb, Vec2, Vec3, INV_PI};
 use crate::sampling::warp;
 
 /// Entries of the transmittance table (Mitsuba's `MI_ROUGH_TRANSMITTANCE_RES`).
-const TABLE_SIZE: usize = 64;
+pub(crate) const TABLE_SIZE: usize = 64;
 
 /// A rough plastic. Build it with [`RoughPlastic::new`], which precomputes the coating tables.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,6 +116,28 @@ impl RoughPlastic {
     pub fn with_albedo(&self, albedo: Rgb) -> Self {
         let base = base_albedo(albedo, self.internal, self.nonlinear) * (INV_PI / (self.ior * self.ior));
         Self { albedo, base, ..*self }
+    }
+
+    /// The same plastic at isotropic roughness `alpha` (a roughness texture's value at one
+    /// hit), its coating tables blended from `table` (built from this plastic). The lobe
+    /// sampling weight does not depend on α.
+    #[inline]
+    pub fn with_alpha(&self, alpha: f32, table: &RoughPlasticAlphaTable) -> Self {
+        let alpha = alpha.clamp(0.0, 1.0);
+        let (transmittance, internal) = table.at(alpha);
+        let base = base_albedo(self.albedo, internal, self.nonlinear) * (INV_PI / (self.ior * self.ior));
+        let distribution = Microfacet::isotropic(self.distribution.kind, alpha);
+        Self { distribution, base, internal, transmittance, ..*self }
+    }
+
+    /// t(μ) at μ = i/(TABLE_SIZE − 1).
+    pub(crate) fn transmittance_table(&self) -> &[f32; TABLE_SIZE] {
+        &self.transmittance
+    }
+
+    /// The coating's internal diffuse reflectance F_dr.
+    pub(crate) fn internal_reflectance(&self) -> f32 {
+        self.internal
     }
 
     /// t(μ) by linear interpolation in the table.

@@ -74,8 +74,8 @@ impl<'a> Conv<'a, '_> {
                 self.src.error(at, msg)
             })?,
         };
-        // An `alpha` texture (rough conductors and dielectrics) is read by `alpha_texture`.
-        let alpha = self.roughness_value(e, "alpha", anisotropic)?;
+        // An `alpha` texture is read by `alpha_texture`.
+        let alpha = self.roughness_value(e, "alpha", true)?;
         let (u, v) = if anisotropic {
             (self.roughness_value(e, "alpha_u", false)?, self.roughness_value(e, "alpha_v", false)?)
         } else {
@@ -112,9 +112,10 @@ impl<'a> Conv<'a, '_> {
     }
 
     /// The `alpha` texture of a `roughconductor` or `roughdielectric` (Mitsuba evaluates it per
-    /// hit as an isotropic α), if it is one.
+    /// hit as an isotropic α), or of a `roughplastic` (an extension: Mitsuba 3.9.1 refuses a
+    /// texture there, "expected float"; we read it as the others), if it is one.
     pub(super) fn alpha_texture(&mut self, e: &'a Element, ty: &str) -> R<Option<Colour>> {
-        if ty != "roughconductor" && ty != "roughdielectric" {
+        if ty != "roughconductor" && ty != "roughdielectric" && ty != "roughplastic" {
             return Ok(None);
         }
         Ok(self.colour(e, "alpha")?.filter(|c| matches!(c, Colour::Texture(_))))
