@@ -560,12 +560,21 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
         s.p = paths.origin.add(&paths.dir.scale(hits.t));
         for i in active.lanes() {
             if hits.polygon[i] != u32::MAX {
-                let (p, n, material, light) = geometry.surface(hits.polygon[i], s.p.lane(i));
+                let (n, material, light) = geometry.polygon(hits.polygon[i]);
                 s.hit.0[i] = u32::MAX;
-                s.p.set(i, p);
                 s.n_geometric.set(i, n);
                 s.material[i] = material;
                 s.light[i] = light;
+            }
+        }
+        // Spheres' points and normals (kept out of the polygon-only loop: the Cornell box's
+        // lanes would pay for the stores).
+        if geometry.has_spheres() {
+            for i in (active & s.hit).lanes() {
+                if let Some((p, n)) = geometry.sphere_hit(hits.polygon[i], s.p.lane(i)) {
+                    s.p.set(i, p);
+                    s.n_geometric.set(i, n);
+                }
             }
         }
         s.n_shading = s.n_geometric;

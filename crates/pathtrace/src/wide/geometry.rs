@@ -97,16 +97,26 @@ impl FlatGeometry {
         })
     }
 
-    /// Where a ray met primitive `i` at `p`: the surface point, its unit normal (front side),
-    /// material and light.
+    /// Unit normal (front side), material and light of primitive `i`; a sphere's normal
+    /// depends on the point: it is the caller's to complete with [`FlatGeometry::sphere_hit`].
     #[inline(always)]
-    pub fn surface(&self, i: u32, p: Vec3) -> (Vec3, Vec3, u32, u32) {
+    pub fn polygon(&self, i: u32) -> (Vec3, u32, u32) {
         let i = i as usize;
-        let (p, n) = match self.normals.get(i) {
-            Some(&n) => (p, n),
-            None => self.spheres[i - self.normals.len()].point_and_normal(p),
-        };
-        (p, n, self.materials[i], self.lights[i])
+        (self.normals.get(i).copied().unwrap_or(Vec3::Z), self.materials[i], self.lights[i])
+    }
+
+    /// True if the scene has spheres (whose hits [`FlatGeometry::sphere_hit`] completes).
+    #[inline(always)]
+    pub fn has_spheres(&self) -> bool {
+        !self.spheres.is_empty()
+    }
+
+    /// Where a ray met primitive `i` at `p`, if it is a sphere: the re-projected point and its
+    /// outward unit normal.
+    #[inline(always)]
+    pub fn sphere_hit(&self, i: u32, p: Vec3) -> Option<(Vec3, Vec3)> {
+        let k = (i as usize).checked_sub(self.normals.len())?;
+        Some(self.spheres[k].point_and_normal(p))
     }
 
     /// Material of primitive `i`.
