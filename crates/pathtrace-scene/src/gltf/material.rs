@@ -170,8 +170,8 @@ fn alpha_opacity(
 /// A `normalTexture` as a native normal map: glTF's tangent space (+x along increasing u, +y
 /// towards decreasing v, the image's up) is the base frame's (s = ∂p/∂u, t = n × s) wherever the
 /// texture coordinates are not mirrored; `scale` scales x and y, as the glTF specification says.
-/// Tangents come from the texture coordinates (a mesh's TANGENT attribute is not read); glTF has
-/// no terminator shadowing.
+/// A mesh's TANGENT attribute, where it has one, replaces s and the sign of t (see
+/// `geometry.rs` and `SurfacePoint::vertex_tangent`); glTF has no terminator shadowing.
 fn normal_map(
     n: &gltf::material::NormalTexture,
     file_name: &str,

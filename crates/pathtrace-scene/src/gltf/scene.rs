@@ -121,14 +121,6 @@ impl Converter<'_> {
                 continue;
             }
             let material = self.material_name(Some(prim.material()).filter(|m| m.index().is_some()));
-            if prim.get(&gltf::Semantic::Tangents).is_some() && prim.material().normal_texture().is_some() {
-                self.warn(format!(
-                    "meshes[{}].primitives[{}]: the TANGENT attribute is not read: the normal map's tangents come \
-                     from the texture coordinates",
-                    mesh.index(),
-                    prim.index()
-                ));
-            }
             // glTF: without NORMAL, flat normals.
             let normals =
                 if prim.get(&gltf::Semantic::Normals).is_some() { MeshNormals::File } else { MeshNormals::Face };
