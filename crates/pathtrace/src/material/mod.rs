@@ -7,6 +7,7 @@
 //! dielectric sees both sides (z > 0 is outside, where the geometric normal points); the thin
 //! dielectric is symmetric, so it is two-sided too.
 
+mod blend;
 mod conductor;
 mod dielectric;
 mod diffuse;
@@ -21,8 +22,10 @@ mod plastic;
 mod rough_conductor;
 mod rough_dielectric;
 mod rough_plastic;
+mod scattering;
 mod thin_dielectric;
 
+pub use blend::{Blend, Mixture};
 pub use conductor::Conductor;
 pub use dielectric::{fresnel_dielectric, Dielectric};
 pub use diffuse::Diffuse;
@@ -37,6 +40,7 @@ pub use plastic::Plastic;
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
+pub use scattering::Scattering;
 pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Rgb, Vec2, Vec3};
@@ -82,6 +86,9 @@ pub enum Material {
     Plastic(Plastic),
     RoughPlastic(RoughPlastic),
     ThinDielectric(ThinDielectric),
+    /// A mix of two other materials of the scene (see [`Blend`]); shaded as the [`Mixture`] the
+    /// scene makes of it at a hit (`Scene::mixture`): on its own it scatters nothing.
+    Blend(Blend),
 }
 
 impl Material {
@@ -103,6 +110,7 @@ impl Material {
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
             Material::RoughPlastic(m) => m.sample(wo, u_lobe, u),
             Material::ThinDielectric(m) => m.sample(wo, u_lobe),
+            Material::Blend(_) => None,
         }
     }
 
@@ -122,7 +130,8 @@ impl Material {
             | Material::Mirror(_)
             | Material::Dielectric(_)
             | Material::Conductor(_)
-            | Material::ThinDielectric(_) => Rgb::BLACK,
+            | Material::ThinDielectric(_)
+            | Material::Blend(_) => Rgb::BLACK,
         }
     }
 
@@ -142,7 +151,8 @@ impl Material {
             | Material::Mirror(_)
             | Material::Dielectric(_)
             | Material::Conductor(_)
-            | Material::ThinDielectric(_) => 0.0,
+            | Material::ThinDielectric(_)
+            | Material::Blend(_) => 0.0,
         }
     }
 
@@ -164,7 +174,8 @@ impl Material {
             | Material::Conductor(_)
             | Material::RoughDielectric(_)
             | Material::RoughPlastic(_)
-            | Material::ThinDielectric(_) => (self.eval(wo, wi), self.pdf(wo, wi)),
+            | Material::ThinDielectric(_)
+            | Material::Blend(_) => (self.eval(wo, wi), self.pdf(wo, wi)),
         }
     }
 
@@ -216,6 +227,13 @@ impl Material {
                 ColourSlot::Specular => p.specular = c,
                 ColourSlot::Roughness => {}
             },
+            // A blend's one colour is its weight (the value's luminance, as Mitsuba's
+            // `blendbsdf` reads its `weight` texture with `eval_1`).
+            Material::Blend(b) => {
+                if base {
+                    b.weight = c.luminance().clamp(0.0, 1.0)
+                }
+            }
         }
         m
     }
@@ -264,7 +282,8 @@ impl Material {
             | Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::Plastic(_)
-            | Material::ThinDielectric(_) => false,
+            | Material::ThinDielectric(_)
+            | Material::Blend(_) => false,
         }
     }
 
@@ -299,6 +318,7 @@ impl Material {
             Material::Plastic(_) => "plastic",
             Material::RoughPlastic(_) => "rough_plastic",
             Material::ThinDielectric(_) => "thindielectric",
+            Material::Blend(_) => "blend",
         }
     }
 }
