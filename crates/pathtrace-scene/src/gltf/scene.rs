@@ -105,9 +105,12 @@ impl Converter<'_> {
             m.as_ref().and_then(|m| m.index()).map_or_else(|| "gltf-default".to_string(), |i| format!("gltf-{i}"));
         if !self.file.materials.contains_key(&name) {
             let mut warnings = Vec::new();
-            let def: MaterialDef = material::convert(m.as_ref(), self.file_name, &mut |w| warnings.push(w));
+            let mut models = std::collections::BTreeMap::new();
+            let def: MaterialDef =
+                material::convert(m.as_ref(), self.file_name, &name, &mut models, &mut |w| warnings.push(w));
             warnings.into_iter().for_each(|w| self.warn(w));
             self.file.materials.insert(name.clone(), def);
+            self.file.materials.extend(models);
         }
         name
     }
