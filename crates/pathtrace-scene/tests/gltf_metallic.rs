@@ -50,6 +50,26 @@ fn metallic_texture_becomes_a_blend_that_matches_the_mitsuba_twin() {
     blocks::assert_agrees(&data("metallic.xml"), 1024, &GLTF_METALLIC_MEAN, &GLTF_METALLIC_SE);
 }
 
+/// The comparison sees the weight: the same file with metallicFactor 0.45 (half the metal per
+/// texel) disagrees with the reference in many blocks.
+#[test]
+fn a_halved_metallic_factor_is_seen() {
+    let dir = std::env::temp_dir().join(format!("pathtrace-metallic-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in ["metallic.bin", "metallic.png"] {
+        std::fs::copy(data(f), dir.join(f)).unwrap();
+    }
+    let mut v: serde_json::Value = serde_json::from_slice(&std::fs::read(data("metallic.gltf")).unwrap()).unwrap();
+    v["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0.45.into();
+    let path = dir.join("metallic.gltf");
+    std::fs::write(&path, serde_json::to_vec(&v).unwrap()).unwrap();
+    let (mut loaded, _) = load_gltf(&path, &[]).unwrap();
+    loaded.defaults.max_depth = 4;
+    let o = blocks::render_blocks("metallic.gltf (factor 0.45)", loaded, 256, &GLTF_METALLIC_MEAN, &GLTF_METALLIC_SE);
+    assert!(o.beyond > 20, "worst |z| {:.2}, {} beyond", o.worst, o.beyond);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// The converted model written as TOML (`type = "blend"`, `weight`, `bsdfs`) and read back
 /// renders exactly as the glTF.
 #[test]
