@@ -16,6 +16,9 @@ crates/pathtrace-scene/tests/data/gltf/:
   `diffuse` in a `normalmap` without the terminator shadowing (glTF has none) and reads the OBJ's
   texture coordinates unflipped. The uv layout is not mirrored (−∂p/∂v along n × ∂p/∂u), where
   glTF's tangent space and Mitsuba's agree.
+- ../maps/normal_map_tangents.gltf: normal_map.gltf with a TANGENT attribute (a second buffer, a
+  data: URI) turned 30° about the normal from +x, bitangent sign w = -1: the estimator's lanes
+  test (lanes_exact.rs) renders it.
 
 - ../maps/cutout.gltf + cutout.bin and its twin cutout.xml + cutout_card.obj: a floor and a
   standing card whose base colour texture (../maps/cutout.png, from make_map_assets.py) has the
@@ -294,6 +297,24 @@ CLIGHT = look_at([-1.0, 3.0, 3.0], [0, 0, 0], [0, 1, 0])
 CARD_SRGB = [200, 120, 60]
 
 
+def write_tangent_variant():
+    """normal_map.gltf plus tangents of w = -1 turned 30 degrees from +x about the floor's +y."""
+    import base64
+    with open(os.path.join(MAPS, "normal_map.gltf")) as f:
+        doc = json.load(f)
+    a = math.radians(30.0)
+    tangent = [math.cos(a), 0.0, -math.sin(a), -1.0]
+    data = b"".join(struct.pack("<4f", *tangent) for _ in NFLOOR_P)
+    doc["buffers"].append({"uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode(),
+                           "byteLength": len(data)})
+    doc["bufferViews"].append({"buffer": 1, "byteOffset": 0, "byteLength": len(data)})
+    doc["accessors"].append({"bufferView": len(doc["bufferViews"]) - 1, "componentType": 5126,
+                             "count": len(NFLOOR_P), "type": "VEC4"})
+    doc["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] = len(doc["accessors"]) - 1
+    with open(os.path.join(MAPS, "normal_map_tangents.gltf"), "w") as f:
+        json.dump(doc, f, indent=1)
+
+
 def srgb_decode(c):
     return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
 
@@ -393,6 +414,7 @@ def write_cutout_twin():
 def main():
     os.makedirs(OUT, exist_ok=True)
     write_normal_map_twin()
+    write_tangent_variant()
     write_cutout_twin()
     data, views, accessors, ids = buffer_and_accessors()
     with open(os.path.join(OUT, "scene.bin"), "wb") as f:

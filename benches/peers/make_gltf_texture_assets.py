@@ -18,6 +18,14 @@ crates/pathtrace-scene/tests/data/maps/ (plain Python, no dependencies):
   `alpha` is a nearest `bitmap` of metal_rough_alpha.pfm, α = (roughnessFactor · G)² per texel
   (with nearest lookups squaring per texel equals squaring after the lookup), and an `area`
   emitter of the panel's radiance.
+- metallic.gltf + metallic.bin + metallic.png: the same floor, metallicFactor 0.9 and a
+  metallicRoughnessTexture (4 × 4, nearest, linear) whose blue channel (metallic) varies per
+  texel and whose green is metal_rough.png's roughness; KHR_materials_specular specularFactor 0,
+  so glTF's dielectric is Lambertian. Our import: a `blend` of a `lambertian` and a
+  `rough_conductor` weighted by 0.9 × blue.
+  Twin metallic.xml: a `twosided` `blendbsdf` whose `weight` is a nearest `bitmap` of
+  metallic_weight.pfm (0.9 × blue per texel), `bsdf_0` a `diffuse` and `bsdf_1` the
+  metal_rough.xml `roughconductor` (α from metal_rough_alpha.pfm), both of the base colour.
 
     python3 benches/peers/make_gltf_texture_assets.py
 """
@@ -258,10 +266,74 @@ def write_metal_rough():
                      "metal_rough_alpha.pfm: α = (roughnessFactor × the texture's green)² per texel"))
 
 
+# metallic.png's blue channel (its green is ROUGHNESS): metallic per texel, times METALLIC_FACTOR.
+METALLIC = [[0.0, 0.25, 0.5, 1.0], [1.0, 0.75, 0.1, 0.0], [0.6, 0.0, 1.0, 0.3], [0.2, 0.9, 0.45, 0.8]]
+METALLIC_FACTOR = 0.9
+
+
+def write_metallic():
+    data, views, accessors = geometry()
+    with open(os.path.join(OUT, "metallic.bin"), "wb") as f:
+        f.write(data)
+    rows = [[c for r, m in zip(rrow, mrow) for c in (0, int(round(r * 255)), int(round(m * 255)))]
+            for rrow, mrow in zip(ROUGHNESS, METALLIC)]
+    with open(os.path.join(OUT, "metallic.png"), "wb") as f:
+        f.write(png(rows, 3))
+    floor = {"pbrMetallicRoughness": {"baseColorFactor": METAL_COLOUR + [1.0], "metallicFactor": METALLIC_FACTOR,
+                                      "roughnessFactor": ROUGHNESS_FACTOR, "metallicRoughnessTexture": {"index": 0}},
+             "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}
+    panel = {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+             "emissiveFactor": [1.0, 1.0, 1.0],
+             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": PANEL_RADIANCE}}}
+    nearest = {"magFilter": 9728, "minFilter": 9728}
+    doc = document("metallic", data, views, accessors, panel, {"uri": "metallic.png"}, floor, nearest)
+    with open(os.path.join(OUT, "metallic.gltf"), "w") as f:
+        json.dump(doc, f, indent=1)
+    weight = [[(METALLIC_FACTOR * round(m * 255) / 255,) * 3 for m in row] for row in METALLIC]
+    write_pfm(os.path.join(OUT, "metallic_weight.pfm"), weight)
+    shapes = f"""    <shape type="obj">
+        <string name="filename" value="emissive_floor.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <boolean name="flip_tex_coords" value="false"/>
+        <bsdf type="twosided">
+            <bsdf type="blendbsdf">
+                <texture name="weight" type="bitmap">
+                    <string name="filename" value="metallic_weight.pfm"/>
+                    <string name="filter_type" value="nearest"/>
+                </texture>
+                <bsdf type="diffuse">
+                    <rgb name="reflectance" value="{rgb(METAL_COLOUR)}"/>
+                </bsdf>
+                <bsdf type="roughconductor">
+                    <string name="material" value="none"/>
+                    <string name="distribution" value="ggx"/>
+                    <texture name="alpha" type="bitmap">
+                        <string name="filename" value="metal_rough_alpha.pfm"/>
+                        <string name="filter_type" value="nearest"/>
+                    </texture>
+                    <rgb name="specular_reflectance" value="{rgb(METAL_COLOUR)}"/>
+                </bsdf>
+            </bsdf>
+        </bsdf>
+    </shape>
+    <shape type="obj">
+        <string name="filename" value="emissive_panel.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="{rgb([PANEL_RADIANCE] * 3)}"/></emitter>
+    </shape>
+"""
+    with open(os.path.join(OUT, "metallic.xml"), "w") as f:
+        f.write(twin("metallic.gltf (same floor, uv, metallic and roughness texels, panel, camera)", shapes,
+                     "metallic_weight.pfm: metallicFactor × the texture's blue per texel; metal_rough_alpha.pfm: "
+                     "α = (roughnessFactor × green)²"))
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     write_emissive()
     write_metal_rough()
+    write_metallic()
 
 
 if __name__ == "__main__":

@@ -6,7 +6,7 @@
 //! This checks the lane machinery — masks, per-lane state, path regeneration, the split
 //! between SIMD-shaded and lane-by-lane-shaded lanes — on scenes that use every material,
 //! light, texture, strategy and sampler the repository's scenes hold, every camera,
-//! participating media, and glTF's textured emission and roughness.
+//! participating media, and glTF's textured emission, roughness and metallic and mesh tangents.
 
 use pathtrace::film::Image;
 use pathtrace::integrator::Strategy;
@@ -110,9 +110,15 @@ fn lanes_and_one_lane_give_every_sample_the_same_value() {
         let (loaded, _) = load_mitsuba(&path, &[]).unwrap_or_else(|e| panic!("{rel}: {e}"));
         all.push((rel.to_string(), Arc::new(loaded.scene)));
     }
-    // glTF: a light whose radiance is a texture (sampled lane by lane through the light set) and
-    // a roughness texture.
-    for rel in ["tests/data/maps/emissive.glb", "tests/data/maps/metal_rough.gltf"] {
+    // glTF: a light whose radiance is a texture (sampled lane by lane through the light set), a
+    // roughness texture, a metallic texture (a blend of two models), and a normal map in the frame of the mesh's own tangents (carried per
+    // lane, with a negative bitangent sign).
+    for rel in [
+        "tests/data/maps/emissive.glb",
+        "tests/data/maps/metal_rough.gltf",
+        "tests/data/maps/metallic.gltf",
+        "tests/data/maps/normal_map_tangents.gltf",
+    ] {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(rel);
         let (loaded, _) = pathtrace_scene::gltf::load_gltf(&path, &[]).unwrap_or_else(|e| panic!("{rel}: {e}"));
         all.push((rel.to_string(), Arc::new(loaded.scene)));

@@ -116,13 +116,13 @@ fn unsupported_plugins_warn_and_fall_back() {
     let xml = scene(&format!(
         r#"<emitter type="projector"/><shape type="cylinder"/>
         <emitter type="spot"><texture type="bitmap" name="texture"/></emitter>
-        <shape type="sphere"><bsdf type="blendbsdf"/></shape>{LIGHT}"#
+        <shape type="sphere"><bsdf type="principled"/></shape>{LIGHT}"#
     ));
     let (f, w) = conv(&xml, &[]);
     assert!(w.iter().any(|w| w.contains("projector")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("spot light's projected `texture`")), "{w:?}");
     assert!(w.iter().any(|w| w.contains("cylinder")), "{w:?}");
-    assert!(w.iter().any(|w| w.contains("blendbsdf") && w.starts_with("t.xml:")), "{w:?}");
+    assert!(w.iter().any(|w| w.contains("principled") && w.starts_with("t.xml:")), "{w:?}");
     assert_eq!(f.objects.len(), 2);
 }
 

@@ -8,7 +8,7 @@ use crate::light::{
     AreaLight, DirectionalLight, Emission, EnvironmentLight, Light, LightSet, LightShape, PointLight, RadianceTexture,
     SpotLight,
 };
-use crate::material::{Material, RoughPlasticAlphaTable};
+use crate::material::{Blend, Material, Mixture, RoughPlasticAlphaTable};
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::medium::{HomogeneousMedium, MediumBoundary, MediumId};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
@@ -322,6 +322,27 @@ impl Scene {
             m = m.with_colour(ColourSlot::Specular, self.textures[t.0 as usize].eval(it.surface.uv));
         }
         m
+    }
+
+    /// A blend's two models at `surface`, each with its own textures applied, mixed by
+    /// `b.weight` (the blend's weight at this hit: [`Scene::textured_material`] has applied its
+    /// texture, if any).
+    #[inline(never)]
+    pub fn mixture(&self, b: &Blend, surface: &SurfacePoint) -> Mixture {
+        let model = |id: u32| {
+            let it = Interaction {
+                surface: *surface,
+                material: &self.materials[id as usize],
+                material_id: id,
+                light: Primitive::NO_LIGHT,
+            };
+            if self.is_textured(&it) {
+                self.textured_material(&it)
+            } else {
+                *it.material
+            }
+        };
+        Mixture { weight: b.weight, bsdfs: b.bsdfs.map(model) }
     }
 
     /// The normal or bump map of material `id`, if it has one.
@@ -829,6 +850,9 @@ impl SceneBuilder {
         }
         for (m, _) in &self.materials {
             validate_material(m)?;
+            if let Material::Blend(b) = m {
+                check_blend_models(b, |id| self.materials.get(id as usize).map(|(m, _)| m))?;
+            }
         }
         let instances = self.build_instances()?;
         let mut shapes = Vec::new();
@@ -1049,7 +1073,32 @@ pub fn validate_material(m: &Material) -> Result<(), BuildError> {
             check_ior("rough_plastic", p.ior)?;
             check_roughness("rough_plastic", &p.distribution)
         }
+        Material::Blend(b) => {
+            if !(0.0..=1.0).contains(&b.weight) {
+                return material_error(format!("blend weight {} must be from 0 to 1", b.weight));
+            }
+            Ok(())
+        }
     }
+}
+
+/// A blend's two models, found by `model`: they must exist and be opaque models without Dirac
+/// lobes ([`Blend::accepts`]).
+pub fn check_blend_models<'a>(b: &Blend, model: impl Fn(u32) -> Option<&'a Material>) -> Result<(), BuildError> {
+    for (k, &id) in b.bsdfs.iter().enumerate() {
+        match model(id) {
+            None => return material_error(format!("blend model {k} is material {id}, which does not exist")),
+            Some(m) if !Blend::accepts(m) => {
+                return material_error(format!(
+                    "blend model {k} is a `{}`: a blend mixes opaque models without mirror-like lobes \
+                     (black, diffuse, lambertian, glossy, rough_conductor, rough_plastic)",
+                    m.name()
+                ))
+            }
+            Some(_) => {}
+        }
+    }
+    Ok(())
 }
 
 fn material_error(message: String) -> Result<(), BuildError> {

@@ -16,6 +16,7 @@ fn square() -> TriangleMesh {
         indices: vec![[0, 1, 2], [0, 2, 3]],
         normals: None,
         uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y]),
+        tangents: None,
     }
 }
 

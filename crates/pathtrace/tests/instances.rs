@@ -14,7 +14,8 @@ use std::sync::Arc;
 /// A bumpy `n`×`n` height field over [-1, 1]² with vertex normals and texture coordinates.
 fn bumpy_mesh(n: usize) -> TriangleMesh {
     let h = |x: f32, y: f32| 0.25 * (3.0 * x).sin() * (2.0 * y).cos();
-    let mut m = TriangleMesh { positions: vec![], indices: vec![], normals: Some(vec![]), uvs: Some(vec![]) };
+    let mut m =
+        TriangleMesh { positions: vec![], indices: vec![], normals: Some(vec![]), uvs: Some(vec![]), tangents: None };
     for j in 0..=n {
         for i in 0..=n {
             let (x, y) = (2.0 * i as f32 / n as f32 - 1.0, 2.0 * j as f32 / n as f32 - 1.0);
@@ -352,7 +353,7 @@ fn emissive_instances_are_rejected() {
 
 /// A UV sphere of about `2 · stacks · slices` triangles with shared vertices.
 fn uv_sphere(stacks: usize, slices: usize) -> TriangleMesh {
-    let mut m = TriangleMesh { positions: vec![], indices: vec![], normals: None, uvs: None };
+    let mut m = TriangleMesh { positions: vec![], indices: vec![], normals: None, uvs: None, tangents: None };
     for i in 0..=stacks {
         let theta = std::f32::consts::PI * i as f32 / stacks as f32;
         for j in 0..slices {

@@ -141,7 +141,7 @@ fn fan() -> TriangleMesh {
     ];
     // Winding so that each normal points down (towards the reference point below).
     let indices = vec![[0, 2, 1], [0, 3, 2], [0, 4, 3], [0, 1, 4]];
-    TriangleMesh { positions, indices, normals: None, uvs: None }
+    TriangleMesh { positions, indices, normals: None, uvs: None, tangents: None }
 }
 
 #[test]

@@ -23,7 +23,7 @@ fn square(uvs: bool) -> TriangleMesh {
     // u = (x cos 30° + z sin 30°)/4, v = (−x sin 30° + z cos 30°)/4: ∂p/∂u ∥ (cos 30°, 0, sin 30°).
     let uv = |p: Vec3| Vec2::new((p.x * c + p.z * s) / 4.0, (-p.x * s + p.z * c) / 4.0);
     let uvs = uvs.then(|| positions.iter().map(|&p| uv(p)).collect());
-    TriangleMesh { positions, indices: vec![[0, 2, 1], [0, 3, 2]], normals: None, uvs }
+    TriangleMesh { positions, indices: vec![[0, 2, 1], [0, 3, 2]], normals: None, uvs, tangents: None }
 }
 
 fn surface_below(b: SceneBuilder, origin: Vec3) -> pathtrace::shape::SurfacePoint {
@@ -158,7 +158,7 @@ fn bumpy_sphere(tilt: f32, rng: &mut TestRng) -> TriangleMesh {
             indices.push([a, c, d]);
         }
     }
-    TriangleMesh { positions, indices, normals: Some(normals), uvs: None }
+    TriangleMesh { positions, indices, normals: Some(normals), uvs: None, tangents: None }
 }
 
 #[test]

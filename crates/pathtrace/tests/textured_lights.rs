@@ -42,6 +42,7 @@ fn scene(scale: Rgb, quad: bool) -> Scene {
         indices: vec![[0, 2, 1]],
         normals: None,
         uvs: None,
+        tangents: None,
     };
     b.mesh(&floor_mesh, floor, &Transform::IDENTITY).unwrap();
     let panel = TriangleMesh {
@@ -55,6 +56,7 @@ fn scene(scale: Rgb, quad: bool) -> Scene {
         indices: vec![[0, 2, 1], [0, 3, 2]],
         normals: None,
         uvs: Some(vec![Vec2::new(0.1, 0.9), Vec2::new(1.3, 0.8), Vec2::new(1.1, -0.2), Vec2::new(0.0, 0.05)]),
+        tangents: None,
     };
     if quad {
         // Facing −z and a little down (u × v), towards the reference points.

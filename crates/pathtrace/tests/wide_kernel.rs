@@ -21,7 +21,8 @@ fn lambertian(r: f32, g: f32, b: f32) -> Material {
 
 /// A quad split into `n × n` smaller quads, as a triangle mesh (two triangles each).
 fn subdivided(quads: &[Quad], n: u32) -> TriangleMesh {
-    let mut mesh = TriangleMesh { positions: Vec::new(), indices: Vec::new(), normals: None, uvs: None };
+    let mut mesh =
+        TriangleMesh { positions: Vec::new(), indices: Vec::new(), normals: None, uvs: None, tangents: None };
     for q in quads {
         let base = mesh.positions.len() as u32;
         for j in 0..=n {

@@ -1,13 +1,14 @@
 //! glTF mesh primitives as triangle meshes: one part per primitive, numbered through all meshes
-//! in order (`meshes[0].primitives[0]` is part 0). Positions, normals and the first texture
-//! coordinates are read in the mesh's own space; the node transforms are the scene's business.
+//! in order (`meshes[0].primitives[0]` is part 0). Positions, normals, the first texture
+//! coordinates and tangents (`TANGENT`: xyz and the bitangent's sign w, glTF 2.0 §3.7.2.1)
+//! are read in the mesh's own space; the node transforms are the scene's business.
 //! Every accessor is checked against its buffer view and buffer before it is read, so a
 //! truncated buffer or an out-of-range accessor is an error naming the accessor, never a panic.
 
 use super::document::Opened;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
-use pathtrace::math::{Vec2, Vec3};
+use pathtrace::math::{Vec2, Vec3, Vec4};
 use pathtrace::shape::TriangleMesh;
 
 /// The part number of every primitive: `first[m] + p` for `meshes[m].primitives[p]`.
@@ -93,6 +94,10 @@ fn primitive(o: &Opened, prim: &gltf::Primitive) -> Result<TriangleMesh, String>
     if let Some(a) = &uv_acc {
         check(o, a, "TEXCOORD_0", &[DataType::F32, DataType::U8, DataType::U16], Dimensions::Vec2)?;
     }
+    let tangent_acc = prim.get(&gltf::Semantic::Tangents);
+    if let Some(a) = &tangent_acc {
+        check(o, a, "TANGENT", &[DataType::F32], Dimensions::Vec4)?;
+    }
     if let Some(a) = prim.indices() {
         check(o, &a, "indices", &[DataType::U8, DataType::U16, DataType::U32], Dimensions::Scalar)?;
     }
@@ -100,7 +105,7 @@ fn primitive(o: &Opened, prim: &gltf::Primitive) -> Result<TriangleMesh, String>
     let unreadable = |what: &str| format!("{what} cannot be read");
     let positions: Vec<Vec3> = reader.read_positions().ok_or_else(|| unreadable("POSITION"))?.map(Vec3::from).collect();
     let n = positions.len();
-    let normals = match normals_acc {
+    let normals = match &normals_acc {
         Some(_) => {
             let ns: Vec<Vec3> = reader.read_normals().ok_or_else(|| unreadable("NORMAL"))?.map(Vec3::from).collect();
             same_count(ns, n, "NORMAL")?
@@ -115,6 +120,21 @@ fn primitive(o: &Opened, prim: &gltf::Primitive) -> Result<TriangleMesh, String>
         }
         None => None,
     };
+    // glTF 2.0 §3.7.2.1: without NORMAL (flat normals), TANGENT must be ignored.
+    let tangents = match tangent_acc {
+        Some(_) if normals_acc.is_some() => {
+            let ts: Vec<Vec4> = reader.read_tangents().ok_or_else(|| unreadable("TANGENT"))?.map(Vec4::from).collect();
+            if let Some(i) = ts.iter().position(|t| !t.is_finite() || t.w.abs() != 1.0) {
+                return Err(format!(
+                    "TANGENT element {i} is {:?}: its w (the bitangent's sign) must be 1 or -1 and every \
+                     component finite",
+                    ts[i].to_array()
+                ));
+            }
+            same_count(ts, n, "TANGENT")?
+        }
+        _ => None,
+    };
     let flat: Vec<u32> = match reader.read_indices() {
         Some(i) => i.into_u32().collect(),
         None => (0..n as u32).collect(),
@@ -128,7 +148,7 @@ fn primitive(o: &Opened, prim: &gltf::Primitive) -> Result<TriangleMesh, String>
     let indices = flat.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     // Zero normals cannot be normalised: drop them (the mesh is then flat shaded).
     let normals = normals.and_then(crate::mesh::normalised_normals);
-    let mesh = TriangleMesh { positions, indices, normals, uvs };
+    let mesh = TriangleMesh { positions, indices, normals, uvs, tangents };
     mesh.validate().map_err(|e| e.to_string())?;
     Ok(mesh)
 }

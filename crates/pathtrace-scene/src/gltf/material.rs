@@ -10,7 +10,8 @@
 //! A base colour texture becomes an image texture (see `texture.rs`), an emissive texture the
 //! texture the emitted radiance is multiplied by, the metallic-roughness texture's green channel
 //! (times roughnessFactor, squared after filtering) the α of the rough conductor, dielectric or
-//! plastic (its blue channel, metallic, is not read: the factor picks the model, with a warning),
+//! plastic; its blue channel (metallic, times metallicFactor) makes the material a `blend` of the
+//! dielectric and the metal, texel by texel, as glTF's BRDF mixes them (see [`convert`]);
 //! a normal texture a normal map (see [`normal_map`]), `alphaMode` an opacity (see
 //! [`alpha_opacity`]).
 
@@ -18,6 +19,7 @@ use super::num;
 use crate::native::model::{Colour, EmissionDef, MaterialDef, MaterialKind, MetalDef, RoughnessDef};
 use crate::native::model::{MetalName, NormalDef, NormalPerturbationDef, OpacityDef, TextureDef, Triple};
 use pathtrace::material::MicrofacetKind;
+use std::collections::BTreeMap;
 
 fn triple(c: [f32; 3]) -> Triple {
     if c[0] == c[1] && c[1] == c[2] {
@@ -27,9 +29,18 @@ fn triple(c: [f32; 3]) -> Triple {
     }
 }
 
-/// Converts `m` (the glTF default material when `None`); unsupported parts are reported through
-/// `warn` with the material's location.
-pub fn convert(m: Option<&gltf::Material>, file_name: &str, warn: &mut dyn FnMut(String)) -> MaterialDef {
+/// Converts `m` (the glTF default material when `None`), named `name` in the converted file;
+/// unsupported parts are reported through `warn` with the material's location. A material
+/// whose metallic-roughness texture gives metallic per texel (metallicFactor > 0) becomes a
+/// `blend` with weight = blue × metallicFactor of model 0, the dielectric (`NAME-dielectric`),
+/// and model 1, the metal (`NAME-metal`), which are added to `models`.
+pub fn convert(
+    m: Option<&gltf::Material>,
+    file_name: &str,
+    name: &str,
+    models: &mut BTreeMap<String, MaterialDef>,
+    warn: &mut dyn FnMut(String),
+) -> MaterialDef {
     let at =
         m.and_then(|m| m.index()).map_or_else(|| "the default material".to_string(), |i| format!("materials[{i}]"));
     let mut w = |msg: &str| warn(format!("{at}: {msg}"));
@@ -37,11 +48,18 @@ pub fn convert(m: Option<&gltf::Material>, file_name: &str, warn: &mut dyn FnMut
     let base_factor = pbr.as_ref().map_or([1.0; 4], |p| p.base_color_factor());
     let metallic = pbr.as_ref().map_or(1.0, |p| p.metallic_factor());
     let roughness = pbr.as_ref().map_or(1.0, |p| p.roughness_factor());
-    let roughness_texture = pbr.as_ref().and_then(|p| p.metallic_roughness_texture()).and_then(|info| {
-        if metallic > 0.0 {
-            w("the metallic-roughness texture's metallic (blue) channel is not read: metallicFactor chooses \
-               between metal and dielectric");
+    let metal_rough = pbr.as_ref().and_then(|p| p.metallic_roughness_texture());
+    // Metallic is the blue channel times metallicFactor (a weight, not squared).
+    let metallic_texture = metal_rough.as_ref().filter(|_| metallic > 0.0).and_then(|info| {
+        match super::texture::channel_texture(info, file_name, 2, metallic, false) {
+            Ok(t) => Some(Colour::Texture(t)),
+            Err(e) => {
+                w(&format!("metallic-roughness texture: {e}: using metallicFactor"));
+                None
+            }
         }
+    });
+    let roughness_texture = metal_rough.and_then(|info| {
         // Roughness is the green channel times roughnessFactor; α is its square.
         match super::texture::channel_texture(&info, file_name, 1, roughness, true) {
             Ok(t) => Some(Colour::Texture(t)),
@@ -72,34 +90,59 @@ pub fn convert(m: Option<&gltf::Material>, file_name: &str, warn: &mut dyn FnMut
     let transmission = m.and_then(|m| m.transmission()).map_or(0.0, |t| t.transmission_factor());
     let alpha = num(roughness * roughness);
     let ggx = RoughnessDef { distribution: MicrofacetKind::Ggx, alpha_u: alpha, alpha_v: alpha };
-    // Only the microfacet models (rough conductor, dielectric, plastic) take a roughness texture.
+    // glTF's dielectric: exactly Lambertian without a specular layer, else the rough plastic
+    // approximation (with the roughness texture, if any).
+    let dielectric = |w: &mut dyn FnMut(&str)| {
+        if specular == 0.0 {
+            (MaterialKind::Lambertian { albedo: base.clone() }, None)
+        } else {
+            w("the dielectric BRDF is approximated by `rough_plastic` (GGX coating over the base colour)");
+            let spec = Colour::Constant(Triple::Splat(num(specular)));
+            let albedo = base.clone();
+            let kind =
+                MaterialKind::RoughPlastic { albedo, specular: spec, ior: num(ior), nonlinear: false, roughness: ggx };
+            (kind, roughness_texture.clone())
+        }
+    };
+    let metal = |w: &mut dyn FnMut(&str)| {
+        w("the metal BRDF is approximated by `rough_conductor` (a perfect mirror metal tinted by the base colour)");
+        let none = MetalDef::Named(MetalName("none"));
+        MaterialKind::RoughConductor { metal: none, reflectance: base.clone(), roughness: ggx }
+    };
+    // Only the microfacet models take a roughness texture.
     let mut textured_alpha = None;
     let kind = if transmission > 0.0 && metallic < 0.5 {
         if transmission < 1.0 {
             w("transmissionFactor below 1 is rendered fully transmissive");
         }
+        if metallic_texture.is_some() {
+            w("the metallic channel is not read on a transmissive material");
+        }
         w("KHR_materials_transmission is approximated by rough glass (`rough_dielectric`)");
-        textured_alpha = roughness_texture;
-        MaterialKind::RoughDielectric { ior: num(ior), tint: base, roughness: ggx }
+        textured_alpha = roughness_texture.clone();
+        MaterialKind::RoughDielectric { ior: num(ior), tint: base.clone(), roughness: ggx }
+    } else if let Some(weight) = metallic_texture {
+        // glTF 2.0 Appendix B: f = mix(dielectric, metal, metallic), per texel.
+        let (kind, alpha) = dielectric(&mut w);
+        let dielectric = MaterialDef { roughness: alpha, ..MaterialDef::plain(kind) };
+        let metal = MaterialDef { roughness: roughness_texture.clone(), ..MaterialDef::plain(metal(&mut w)) };
+        let names = [format!("{name}-dielectric"), format!("{name}-metal")];
+        models.insert(names[0].clone(), dielectric);
+        models.insert(names[1].clone(), metal);
+        MaterialKind::Blend { weight, bsdfs: names }
     } else if metallic < 0.5 {
         if metallic > 0.0 {
             w("metallic between 0 and 1 is rendered as a dielectric");
         }
-        if specular == 0.0 {
-            MaterialKind::Lambertian { albedo: base }
-        } else {
-            w("the dielectric BRDF is approximated by `rough_plastic` (GGX coating over the base colour)");
-            textured_alpha = roughness_texture;
-            let spec = Colour::Constant(Triple::Splat(num(specular)));
-            MaterialKind::RoughPlastic { albedo: base, specular: spec, ior: num(ior), nonlinear: false, roughness: ggx }
-        }
+        let (kind, alpha) = dielectric(&mut w);
+        textured_alpha = alpha;
+        kind
     } else {
         if metallic < 1.0 {
             w("metallic between 0 and 1 is rendered as a metal");
         }
-        w("the metal BRDF is approximated by `rough_conductor` (a perfect mirror metal tinted by the base colour)");
-        textured_alpha = roughness_texture;
-        MaterialKind::RoughConductor { metal: MetalDef::Named(MetalName("none")), reflectance: base, roughness: ggx }
+        textured_alpha = roughness_texture.clone();
+        metal(&mut w)
     };
     let strength = m.and_then(|m| m.emissive_strength()).unwrap_or(1.0);
     let e = m.map_or([0.0; 3], |m| m.emissive_factor()).map(|c| c * strength);
@@ -168,8 +211,8 @@ fn alpha_opacity(
 /// A `normalTexture` as a native normal map: glTF's tangent space (+x along increasing u, +y
 /// towards decreasing v, the image's up) is the base frame's (s = ∂p/∂u, t = n × s) wherever the
 /// texture coordinates are not mirrored; `scale` scales x and y, as the glTF specification says.
-/// Tangents come from the texture coordinates (a mesh's TANGENT attribute is not read); glTF has
-/// no terminator shadowing.
+/// A mesh's TANGENT attribute, where it has one, replaces s and the sign of t (see
+/// `geometry.rs` and `SurfacePoint::vertex_tangent`); glTF has no terminator shadowing.
 fn normal_map(
     n: &gltf::material::NormalTexture,
     file_name: &str,

@@ -105,9 +105,12 @@ impl Converter<'_> {
             m.as_ref().and_then(|m| m.index()).map_or_else(|| "gltf-default".to_string(), |i| format!("gltf-{i}"));
         if !self.file.materials.contains_key(&name) {
             let mut warnings = Vec::new();
-            let def: MaterialDef = material::convert(m.as_ref(), self.file_name, &mut |w| warnings.push(w));
+            let mut models = std::collections::BTreeMap::new();
+            let def: MaterialDef =
+                material::convert(m.as_ref(), self.file_name, &name, &mut models, &mut |w| warnings.push(w));
             warnings.into_iter().for_each(|w| self.warn(w));
             self.file.materials.insert(name.clone(), def);
+            self.file.materials.extend(models);
         }
         name
     }
@@ -121,14 +124,6 @@ impl Converter<'_> {
                 continue;
             }
             let material = self.material_name(Some(prim.material()).filter(|m| m.index().is_some()));
-            if prim.get(&gltf::Semantic::Tangents).is_some() && prim.material().normal_texture().is_some() {
-                self.warn(format!(
-                    "meshes[{}].primitives[{}]: the TANGENT attribute is not read: the normal map's tangents come \
-                     from the texture coordinates",
-                    mesh.index(),
-                    prim.index()
-                ));
-            }
             // glTF: without NORMAL, flat normals.
             let normals =
                 if prim.get(&gltf::Semantic::Normals).is_some() { MeshNormals::File } else { MeshNormals::Face };

@@ -116,7 +116,7 @@ fn shape(bytes: &[u8], offset: usize, end: usize) -> Result<TriangleMesh, String
         }
         indices.push(tri);
     }
-    let mesh = TriangleMesh { positions, indices, normals, uvs };
+    let mesh = TriangleMesh { positions, indices, normals, uvs, tangents: None };
     mesh.validate().map_err(|e| e.to_string())?;
     Ok(mesh)
 }

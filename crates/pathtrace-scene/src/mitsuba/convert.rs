@@ -14,6 +14,7 @@ use pathtrace::sampling::SamplerKind;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+mod blend;
 mod bsdf;
 mod instance;
 mod medium;
@@ -642,6 +643,7 @@ impl<'a> Conv<'a, '_> {
             | MaterialKind::RoughConductor { .. }
             | MaterialKind::Plastic { .. }
             | MaterialKind::RoughPlastic { .. }
+            | MaterialKind::Blend { .. }
                 if !maps.two_sided =>
             {
                 MaterialKind::OneSided(Box::new(kind))
@@ -659,6 +661,7 @@ impl<'a> Conv<'a, '_> {
             | MaterialKind::RoughDielectric { .. }
             | MaterialKind::Emissive
             | MaterialKind::Null
+            | MaterialKind::Blend { .. }
             | MaterialKind::OneSided(_) => kind,
         };
         Ok((kind, maps))
@@ -703,6 +706,7 @@ impl<'a> Conv<'a, '_> {
                 }
             }
             "null" => MaterialKind::Null,
+            "blendbsdf" => self.blend_bsdf(e, depth)?,
             "dielectric" => {
                 let int = self.ior(e, "int_ior", 1.5046)?;
                 let ext = self.ior(e, "ext_ior", 1.000277)?;

@@ -17,8 +17,8 @@ use pathtrace::film::Image;
 use pathtrace::film::{GaussianFilter, PixelFilter};
 use pathtrace::light::{DirectionalLight, Emission, EnvMap, EnvironmentLight, PointLight, SpotLight};
 use pathtrace::material::{
-    metal, Conductor, Dielectric, Diffuse, Glossy, Lambertian, Material, Microfacet, Mirror, Plastic, RoughConductor,
-    RoughDielectric, RoughPlastic, ThinDielectric,
+    metal, Blend, Conductor, Dielectric, Diffuse, Glossy, Lambertian, Material, Microfacet, Mirror, Plastic,
+    RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric,
 };
 use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::medium::MediumId;
@@ -43,7 +43,11 @@ pub fn build(file: &SceneFile, src: &impl Locate) -> Result<LoadedScene, SceneEr
         materials: &file.materials,
         group: None,
     };
-    for (name, def) in &file.materials {
+    // Blends last: they name the materials they mix (which cannot be blends themselves).
+    let is_blend = |d: &MaterialDef| matches!(d.kind.sides().0, MaterialKind::Blend { .. });
+    let in_order =
+        file.materials.iter().filter(|(_, d)| !is_blend(d)).chain(file.materials.iter().filter(|(_, d)| is_blend(d)));
+    for (name, def) in in_order {
         let id = ctx.add_material(name, def)?;
         ctx.ids.insert(name.clone(), id);
     }
@@ -311,6 +315,44 @@ impl<L: Locate> Ctx<'_, L> {
             }
             MaterialKind::OneSided(_) => {
                 return Err(self.src.error_at(&at, format!("material `{name}`: `one_sided` is given twice")));
+            }
+            MaterialKind::Blend { weight, bsdfs } => {
+                let mut ids = [0; 2];
+                for (k, model) in bsdfs.iter().enumerate() {
+                    let bad = |why: &str| {
+                        self.src
+                            .error_at(&at.field("bsdfs"), format!("material `{name}`: blend model {k} `{model}` {why}"))
+                    };
+                    let def = self.materials.get(model).ok_or_else(|| {
+                        let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
+                        bad(&format!("is not a material of this file (materials: {})", known.join(", ")))
+                    })?;
+                    if def.kind.sides().1 {
+                        return Err(bad("is `one_sided`: give `one_sided` to the blend instead"));
+                    }
+                    if def.normal.is_some() || def.opacity.is_some() {
+                        return Err(bad("has a normal map or opacity: give those to the blend instead"));
+                    }
+                    let accepted = matches!(
+                        def.kind,
+                        MaterialKind::Diffuse { .. }
+                            | MaterialKind::Lambertian { .. }
+                            | MaterialKind::Glossy { .. }
+                            | MaterialKind::RoughConductor { .. }
+                            | MaterialKind::RoughPlastic { .. }
+                    );
+                    if !accepted {
+                        return Err(bad(
+                            "cannot be blended: a blend mixes opaque models without mirror-like lobes (diffuse, \
+                             lambertian, glossy, rough_conductor, rough_plastic)",
+                        ));
+                    }
+                    ids[k] = self.material_id(model, &at.field("bsdfs"))?.0;
+                }
+                // The luminance of a grey w can round a hair past 1 (its weights sum to 1 in f32
+                // only approximately); the file's range was checked when it was read.
+                let weight = col(weight, base, "weight")?.luminance().clamp(0.0, 1.0);
+                Material::Blend(Blend { weight, bsdfs: ids })
             }
         };
         validate_material(&m).map_err(|e| self.src.error_at(&at, format!("material `{name}`: {e}")))?;

@@ -29,6 +29,8 @@ pub enum MaterialType {
     RoughPlastic,
     /// An index-matched boundary of a medium (Mitsuba's `null`).
     Null,
+    /// A mix of two other materials of the file (Mitsuba's `blendbsdf`).
+    Blend,
 }
 
 /// A material's scattering model and parameters. Colour parameters may be textures.
@@ -65,6 +67,9 @@ pub enum MaterialKind {
     /// The inner model scattering from its front only (`one_sided = true`): black seen from
     /// behind, as Mitsuba's BSDFs outside `twosided`. Without it, opaque models shade both faces.
     OneSided(Box<MaterialKind>),
+    /// (1 − `weight`) × the material named `bsdfs[0]` + `weight` × the one named `bsdfs[1]`
+    /// (Mitsuba's `blendbsdf`); `weight` a number in [0, 1] or a texture (its luminance).
+    Blend { weight: Colour, bsdfs: [String; 2] },
 }
 
 impl MaterialKind {
@@ -95,6 +100,7 @@ impl MaterialKind {
             }
             MaterialKind::Emissive | MaterialKind::Null => Vec::new(),
             MaterialKind::OneSided(inner) => inner.colours_mut(),
+            MaterialKind::Blend { weight, .. } => vec![weight],
         }
     }
 }
@@ -167,6 +173,11 @@ pub struct MaterialDef {
 }
 
 impl MaterialDef {
+    /// A material of scattering model `kind` alone: no emission, maps or textured roughness.
+    pub fn plain(kind: MaterialKind) -> Self {
+        MaterialDef { kind, emission: None, normal: None, opacity: None, roughness: None }
+    }
+
     /// Every colour parameter and map, for edits that apply to every texture (e.g. rebasing file
     /// paths).
     pub fn textures_mut(&mut self) -> Vec<&mut Colour> {
@@ -247,6 +258,10 @@ pub struct RawMaterial {
     alpha_cutoff: Option<Num>,
     #[serde(skip_serializing_if = "Option::is_none")]
     alpha_texture: Option<Colour>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    weight: Option<Colour>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bsdfs: Option<Vec<String>>,
 }
 
 /// The fields each type accepts besides `type`, `emission` and `two_sided`.
@@ -269,6 +284,7 @@ fn allowed(t: MaterialType) -> &'static [&'static str] {
         MaterialType::RoughPlastic => {
             &["albedo", "specular", "ior", "nonlinear", "distribution", "alpha", "alpha_texture"]
         }
+        MaterialType::Blend => &["weight", "bsdfs"],
     }
 }
 
@@ -291,6 +307,8 @@ impl RawMaterial {
             ("alpha_u", self.alpha_u.is_some()),
             ("alpha_v", self.alpha_v.is_some()),
             ("alpha_texture", self.alpha_texture.is_some()),
+            ("weight", self.weight.is_some()),
+            ("bsdfs", self.bsdfs.is_some()),
         ];
         fields.iter().filter(|f| f.1).map(|f| f.0).collect()
     }
@@ -345,7 +363,7 @@ impl TryFrom<RawMaterial> for MaterialDef {
     fn try_from(r: RawMaterial) -> Result<Self, String> {
         let t = r.kind.ok_or(
             "a material needs a `type` (diffuse, lambertian, mirror, glossy, dielectric, thindielectric, emissive, \
-             conductor, rough_conductor, rough_dielectric, plastic, rough_plastic, null)",
+             conductor, rough_conductor, rough_dielectric, plastic, rough_plastic, null, blend)",
         )?;
         let name = serde_json::to_value(t).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
         if let Some(extra) = r.present().into_iter().find(|f| !allowed(t).contains(f)) {
@@ -405,6 +423,20 @@ impl TryFrom<RawMaterial> for MaterialDef {
                 nonlinear: r.nonlinear.unwrap_or(false),
                 roughness: r.roughness()?,
             },
+            MaterialType::Blend => {
+                let weight = required(r.weight.clone(), &name, "weight")?;
+                if let Colour::Constant(w) = &weight {
+                    let w = w.vec3();
+                    if !(w.min_element() >= 0.0 && w.max_element() <= 1.0) {
+                        return Err(format!("a blend's `weight` must be from 0 to 1 (found {:?})", w.to_array()));
+                    }
+                }
+                let bsdfs = required(r.bsdfs.clone(), &name, "bsdfs")?;
+                let bsdfs: [String; 2] = bsdfs.try_into().map_err(|v: Vec<String>| {
+                    format!("a blend's `bsdfs` names two materials (model 0, model 1), not {}", v.len())
+                })?;
+                MaterialKind::Blend { weight, bsdfs }
+            }
         };
         let radiance = match t {
             MaterialType::Emissive => {
@@ -542,6 +574,9 @@ impl From<MaterialDef> for RawMaterial {
                 (r.albedo, r.specular, r.ior, r.nonlinear) =
                     (Some(albedo), Some(specular), Some(Ior(ior)), Some(nonlinear));
                 r.set_roughness(roughness);
+            }
+            MaterialKind::Blend { weight, bsdfs } => {
+                (r.kind, r.weight, r.bsdfs) = (Some(MaterialType::Blend), Some(weight), Some(bsdfs.to_vec()));
             }
             // Unwrapped above.
             MaterialKind::OneSided(_) => {}

@@ -72,6 +72,7 @@ fn every_encoding_gives_the_same_mesh() {
         indices: vec![[0, 1, 2], [0, 2, 3], [0, 2, 3]],
         normals: Some(vec![Vec3::Z; 4]),
         uvs: Some(vec![Vec2::ZERO, Vec2::new(0.5, 0.0), Vec2::new(0.5, 0.25), Vec2::new(0.0, 0.25)]),
+        tangents: None,
     };
     for enc in ENCODINGS {
         assert_eq!(load(&rich(enc)).unwrap(), expected, "{enc:?}");

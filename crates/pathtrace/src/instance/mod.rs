@@ -133,7 +133,13 @@ impl Instances {
         }
         // ∂p/∂u is a tangent vector: it moves with the matrix (zero stays zero, the fallback).
         let (dpdu, dpdv) = (m.vector(local.dpdu), m.vector(local.dpdv));
-        let surface = SurfacePoint { p: m.point(local.p), n_geometric, n_shading, uv: local.uv, dpdu, dpdv };
+        // The mesh's own tangent moves with the matrix too; a mirror reverses the handedness
+        // of (n, tangent, bitangent), so the bitangent's sign turns over with it.
+        let t = local.vertex_tangent;
+        let vertex_tangent =
+            if t.w == 0.0 { t } else { m.vector(t.truncate()).extend(if inst.mirrors { -t.w } else { t.w }) };
+        let surface =
+            SurfacePoint { p: m.point(local.p), n_geometric, n_shading, uv: local.uv, dpdu, dpdv, vertex_tangent };
         let material = if inst.material == Instance::OWN_MATERIALS { material } else { inst.material };
         (surface, material)
     }

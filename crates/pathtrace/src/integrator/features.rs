@@ -17,7 +17,7 @@
 
 use super::lanes::{Paths, Surfaces};
 use super::regenerate::LaneJob;
-use crate::material::Material;
+use crate::material::{Material, Scattering};
 use crate::math::{Frame, Rgb, Vec2, Vec3};
 use crate::scene::Interaction;
 use crate::wide::simd::{Ms, Vec3s};
@@ -58,6 +58,10 @@ pub(super) fn record_features<const N: usize>(job: &LaneJob, paths: &mut Paths<N
             // A Lambertian surface's directional albedo is its albedo (the common case: no
             // BSDF sampling needed).
             Material::Lambertian(l) => l.albedo,
+            // A blend: its mixture's own sampling (which mixes the two models' weights).
+            Material::Blend(b) => {
+                directional_albedo(&scene.mixture(&b, &it.surface), Frame::from_normal(n).to_local(wo))
+            }
             _ => directional_albedo(&material, Frame::from_normal(n).to_local(wo)),
         };
         let tint = paths.feature_tint[i];
@@ -78,7 +82,7 @@ pub(super) fn record_features<const N: usize>(job: &LaneJob, paths: &mut Paths<N
 /// ρ(wo) = ∫ f(wo, wi)|cos θi| dwi, estimated as the mean BSDF sample weight f·|cos|/pdf over a
 /// fixed stratified grid (the Monte Carlo estimator of the BSDF's own sampling routine, so it
 /// serves every material, and is exact for cosine-sampled Lambertian surfaces and for mirrors).
-fn directional_albedo(material: &Material, wo: Vec3) -> Rgb {
+fn directional_albedo<M: Scattering>(material: &M, wo: Vec3) -> Rgb {
     let n = ALBEDO_GRID;
     let mut sum = Rgb::BLACK;
     for j in 0..n {

@@ -6,7 +6,7 @@
 
 use crate::film::{FeaturePixel, FeatureSample, PixelStats};
 use crate::integrator::PathStats;
-use crate::math::{Ray, Rgb, Vec2, Vec3};
+use crate::math::{Ray, Rgb, Vec2, Vec3, Vec4};
 use crate::medium::MediumId;
 use crate::scene::{Interaction, Primitive};
 use crate::shape::SurfacePoint;
@@ -168,6 +168,8 @@ pub(crate) struct Surfaces<const N: usize> {
     pub uv: [Vec2; N],
     pub dpdu: [Vec3; N],
     pub dpdv: [Vec3; N],
+    /// The mesh's own tangent and bitangent sign (zero where it has none).
+    pub vertex_tangent: [Vec4; N],
     pub material: [u32; N],
     pub light: [u32; N],
 }
@@ -184,6 +186,7 @@ impl<const N: usize> Surfaces<N> {
             uv: [Vec2::ZERO; N],
             dpdu: [Vec3::ZERO; N],
             dpdv: [Vec3::ZERO; N],
+            vertex_tangent: [Vec4::ZERO; N],
             material: [0; N],
             light: [Primitive::NO_LIGHT; N],
         }
@@ -199,6 +202,7 @@ impl<const N: usize> Surfaces<N> {
         self.uv[i] = it.surface.uv;
         self.dpdu[i] = it.surface.dpdu;
         self.dpdv[i] = it.surface.dpdv;
+        self.vertex_tangent[i] = it.surface.vertex_tangent;
         self.material[i] = it.material_id;
         self.light[i] = it.light;
     }
@@ -213,6 +217,7 @@ impl<const N: usize> Surfaces<N> {
             uv: self.uv[i],
             dpdu: self.dpdu[i],
             dpdv: self.dpdv[i],
+            vertex_tangent: self.vertex_tangent[i],
         }
     }
 }

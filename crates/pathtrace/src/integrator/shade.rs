@@ -9,7 +9,7 @@
 
 use super::shading_frame::ShadingFrame;
 use super::Strategy;
-use crate::material::Material;
+use crate::material::{Material, Scattering};
 use crate::math::{offset_ray_origin, Frame, Rgb, Vec2, Vec3};
 use crate::scene::{Interaction, Scene};
 
@@ -65,8 +65,6 @@ pub(crate) fn shade(
     u: VertexNumbers,
     nee: bool,
 ) -> Shading {
-    let lights = &scene.lights;
-    let p = it.surface.p;
     // Textured colours at this hit (untextured materials are used as they are).
     let textured: Material;
     let material = if scene.is_textured(it) {
@@ -75,6 +73,28 @@ pub(crate) fn shade(
     } else {
         it.material
     };
+    match material {
+        // A blend: its two models at this hit, mixed by its (textured) weight.
+        Material::Blend(b) => shade_with(scene, strategy, it, &scene.mixture(b, &it.surface), wo_world, beta, u, nee),
+        _ => shade_with(scene, strategy, it, material, wo_world, beta, u, nee),
+    }
+}
+
+/// [`shade`] with the model at the hit resolved (textures applied, a blend's models mixed).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn shade_with<M: Scattering>(
+    scene: &Scene,
+    strategy: Strategy,
+    it: &Interaction,
+    material: &M,
+    wo_world: Vec3,
+    beta: Rgb,
+    u: VertexNumbers,
+    nee: bool,
+) -> Shading {
+    let lights = &scene.lights;
+    let p = it.surface.p;
 
     // Shading frame, flipped to the viewer's side for two-sided materials. A one-sided one
     // reaches here only with its shading normal facing the viewer (path.rs), which is its
@@ -138,10 +158,10 @@ pub(crate) fn shade(
 /// One light sample and its shadow ray, weighted by MIS against the material's density.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn light_sample(
+fn light_sample<M: Scattering>(
     scene: &Scene,
     strategy: Strategy,
-    material: &Material,
+    material: &M,
     frame: &ShadingFrame,
     n_g: Vec3,
     p: Vec3,
@@ -187,9 +207,9 @@ fn same_side(n: Vec3, a: Vec3, b: Vec3) -> bool {
 
 /// The `light` strategy: continue towards a light point; pdf of the direction summed over all
 /// lights (point lights excepted).
-fn sample_towards_lights(
+fn sample_towards_lights<M: Scattering>(
     scene: &Scene,
-    material: &Material,
+    material: &M,
     frame: &ShadingFrame,
     p: Vec3,
     wo: Vec3,
@@ -204,9 +224,9 @@ fn sample_towards_lights(
 
 /// The `mixture` strategy: half the time towards a light, half by the material; weighted by the
 /// mixture density 0.5·p_light + 0.5·p_bsdf of the chosen direction.
-fn sample_mixture(
+fn sample_mixture<M: Scattering>(
     scene: &Scene,
-    material: &Material,
+    material: &M,
     frame: &ShadingFrame,
     p: Vec3,
     wo: Vec3,

@@ -14,7 +14,7 @@
 //! Two-sided materials seen from the back are shaded, as in Mitsuba's `twosided`, with the base
 //! frame's normal reversed and its tangents kept: (s, t, −n).
 
-use crate::material::{BsdfSample, Material};
+use crate::material::{BsdfSample, Scattering};
 use crate::math::{Frame, Rgb, Vec2, Vec3};
 use crate::scene::{Interaction, Scene};
 use crate::texture::{shadow_terminator, NormalPerturbation};
@@ -66,7 +66,7 @@ impl ShadingFrame {
 
     /// The material's value for light arriving from `wi_world`, seen along local `wo`.
     #[inline(always)]
-    pub fn eval(&self, material: &Material, wo: Vec3, wi_world: Vec3) -> Rgb {
+    pub fn eval<M: Scattering>(&self, material: &M, wo: Vec3, wi_world: Vec3) -> Rgb {
         let wi = self.frame.to_local(wi_world);
         match &self.perturbed {
             None => material.eval(wo, wi),
@@ -82,7 +82,7 @@ impl ShadingFrame {
 
     /// The material's density of `wi_world`, seen along local `wo`.
     #[inline(always)]
-    pub fn pdf(&self, material: &Material, wo: Vec3, wi_world: Vec3) -> f32 {
+    pub fn pdf<M: Scattering>(&self, material: &M, wo: Vec3, wi_world: Vec3) -> f32 {
         let wi = self.frame.to_local(wi_world);
         match &self.perturbed {
             None => material.pdf(wo, wi),
@@ -98,7 +98,7 @@ impl ShadingFrame {
     /// [`ShadingFrame::eval`] and [`ShadingFrame::pdf`] of one direction (see
     /// [`Material::eval_pdf`]).
     #[inline(always)]
-    pub fn eval_pdf(&self, material: &Material, wo: Vec3, wi_world: Vec3) -> (Rgb, f32) {
+    pub fn eval_pdf<M: Scattering>(&self, material: &M, wo: Vec3, wi_world: Vec3) -> (Rgb, f32) {
         match &self.perturbed {
             None => material.eval_pdf(wo, self.frame.to_local(wi_world)),
             Some(_) => (self.eval(material, wo, wi_world), self.pdf(material, wo, wi_world)),
@@ -108,7 +108,7 @@ impl ShadingFrame {
     /// A direction sampled by the material, seen along local `wo`, with its direction in world
     /// space; `None` where the material has none or it crosses the base surface the wrong way.
     #[inline(always)]
-    pub fn sample(&self, material: &Material, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<(BsdfSample, Vec3)> {
+    pub fn sample<M: Scattering>(&self, material: &M, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<(BsdfSample, Vec3)> {
         let s = material.sample(wo, u_lobe, u)?;
         let wi_world = self.frame.to_world(s.wi);
         match &self.perturbed {

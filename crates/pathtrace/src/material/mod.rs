@@ -7,6 +7,7 @@
 //! dielectric sees both sides (z > 0 is outside, where the geometric normal points); the thin
 //! dielectric is symmetric, so it is two-sided too.
 
+mod blend;
 mod conductor;
 mod dielectric;
 mod diffuse;
@@ -22,8 +23,10 @@ mod rough_conductor;
 mod rough_dielectric;
 mod rough_plastic;
 mod rough_plastic_alpha;
+mod scattering;
 mod thin_dielectric;
 
+pub use blend::{Blend, Mixture};
 pub use conductor::Conductor;
 pub use dielectric::{fresnel_dielectric, Dielectric};
 pub use diffuse::Diffuse;
@@ -39,6 +42,7 @@ pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
 pub use rough_plastic_alpha::RoughPlasticAlphaTable;
+pub use scattering::Scattering;
 pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Rgb, Vec2, Vec3};
@@ -84,6 +88,9 @@ pub enum Material {
     Plastic(Plastic),
     RoughPlastic(RoughPlastic),
     ThinDielectric(ThinDielectric),
+    /// A mix of two other materials of the scene (see [`Blend`]); shaded as the [`Mixture`] the
+    /// scene makes of it at a hit (`Scene::mixture`): on its own it scatters nothing.
+    Blend(Blend),
 }
 
 impl Material {
@@ -105,6 +112,7 @@ impl Material {
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
             Material::RoughPlastic(m) => m.sample(wo, u_lobe, u),
             Material::ThinDielectric(m) => m.sample(wo, u_lobe),
+            Material::Blend(_) => None,
         }
     }
 
@@ -124,7 +132,8 @@ impl Material {
             | Material::Mirror(_)
             | Material::Dielectric(_)
             | Material::Conductor(_)
-            | Material::ThinDielectric(_) => Rgb::BLACK,
+            | Material::ThinDielectric(_)
+            | Material::Blend(_) => Rgb::BLACK,
         }
     }
 
@@ -144,7 +153,8 @@ impl Material {
             | Material::Mirror(_)
             | Material::Dielectric(_)
             | Material::Conductor(_)
-            | Material::ThinDielectric(_) => 0.0,
+            | Material::ThinDielectric(_)
+            | Material::Blend(_) => 0.0,
         }
     }
 
@@ -166,7 +176,8 @@ impl Material {
             | Material::Conductor(_)
             | Material::RoughDielectric(_)
             | Material::RoughPlastic(_)
-            | Material::ThinDielectric(_) => (self.eval(wo, wi), self.pdf(wo, wi)),
+            | Material::ThinDielectric(_)
+            | Material::Blend(_) => (self.eval(wo, wi), self.pdf(wo, wi)),
         }
     }
 
@@ -219,6 +230,13 @@ impl Material {
                 ColourSlot::Specular => p.specular = c,
                 ColourSlot::Roughness => {}
             },
+            // A blend's one colour is its weight (the value's luminance, as Mitsuba's
+            // `blendbsdf` reads its `weight` texture with `eval_1`).
+            Material::Blend(b) => {
+                if base {
+                    b.weight = c.luminance().clamp(0.0, 1.0)
+                }
+            }
         }
         m
     }
@@ -269,7 +287,8 @@ impl Material {
             | Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::Plastic(_)
-            | Material::ThinDielectric(_) => false,
+            | Material::ThinDielectric(_)
+            | Material::Blend(_) => false,
         }
     }
 
@@ -304,6 +323,7 @@ impl Material {
             Material::Plastic(_) => "plastic",
             Material::RoughPlastic(_) => "rough_plastic",
             Material::ThinDielectric(_) => "thindielectric",
+            Material::Blend(_) => "blend",
         }
     }
 }

@@ -9,7 +9,7 @@ mod transform;
 
 pub use aabb::Aabb;
 pub use frame::Frame;
-pub use glam::{Mat3, Mat4, Vec2, Vec3};
+pub use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 pub use ray::{offset_ray_origin, offset_ray_origin_lanes, Ray};
 pub use rgb::Rgb;
 pub use transform::{InvalidTransform, Transform};

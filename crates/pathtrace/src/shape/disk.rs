@@ -9,7 +9,7 @@
 
 use super::triangle::EDGE_SLACK;
 use super::{PrimHit, SurfacePoint};
-use crate::math::{Aabb, Frame, Ray, Transform, Vec2, Vec3, INV_2PI, PI};
+use crate::math::{Aabb, Frame, Ray, Transform, Vec2, Vec3, Vec4, INV_2PI, PI};
 use crate::sampling::warp;
 
 /// An elliptical disk with its intersection data precomputed.
@@ -82,6 +82,7 @@ impl Disk {
             dpdu,
             // v is the angle over 2π: ∂p/∂v = 2π·r·(−sin φ·u + cos φ·v).
             dpdv: (a * self.v - b * self.u) * (2.0 * PI),
+            vertex_tangent: Vec4::ZERO,
         }
     }
 

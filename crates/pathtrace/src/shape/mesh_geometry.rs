@@ -5,7 +5,7 @@
 //! the BVH's packets, for shading a hit, for the brute-force reference).
 
 use super::{MeshError, PrimHit, SurfacePoint, Triangle, TriangleMesh};
-use crate::math::{Aabb, Ray, Transform, Vec2, Vec3};
+use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, Vec4};
 
 /// A placed mesh without degenerate triangles.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -13,6 +13,8 @@ pub struct MeshGeometry {
     positions: Vec<Vec3>,
     normals: Option<Vec<Vec3>>,
     uvs: Option<Vec<Vec2>>,
+    /// The mesh's own tangents (xyz placed as vectors, w the bitangent's sign in the world).
+    tangents: Option<Vec<Vec4>>,
     indices: Vec<[u32; 3]>,
 }
 
@@ -25,6 +27,12 @@ impl MeshGeometry {
         let positions: Vec<Vec3> = mesh.positions.iter().map(|&p| transform.point(p)).collect();
         let normals: Option<Vec<Vec3>> =
             mesh.normals.as_ref().map(|ns| ns.iter().map(|&n| transform.normal(n)).collect());
+        // A tangent moves with the surface (a vector); a mirroring transform reverses the
+        // handedness of (normal, tangent, bitangent), so the bitangent's sign turns over.
+        let mirror = transform.matrix.determinant() < 0.0;
+        let tangents: Option<Vec<Vec4>> = mesh.tangents.as_ref().map(|ts| {
+            ts.iter().map(|&t| transform.vector(t.truncate()).extend(if mirror { -t.w } else { t.w })).collect()
+        });
         let corners = |tri: &[u32; 3]| tri.map(|i| positions[i as usize]);
         // The same test (and arithmetic) as `Triangle::new`, so the kept triangles are exactly
         // those the per-triangle storage kept.
@@ -38,7 +46,7 @@ impl MeshGeometry {
             .copied()
             .collect();
         let skipped = mesh.indices.len() - indices.len();
-        let mut geometry = MeshGeometry { positions, normals, uvs: mesh.uvs.clone(), indices };
+        let mut geometry = MeshGeometry { positions, normals, uvs: mesh.uvs.clone(), tangents, indices };
         geometry.shrink_to_fit();
         Ok((geometry, skipped))
     }
@@ -108,7 +116,11 @@ impl MeshGeometry {
         let tri = self.indices[i as usize];
         let normals = self.normals.as_ref().map(|ns| tri.map(|v| ns[v as usize]));
         let uvs = self.uvs.as_ref().map(|uv| tri.map(|v| uv[v as usize]));
-        self.triangle(i).surface_with(hit, normals, uvs)
+        let mut surface = self.triangle(i).surface_with(hit, normals, uvs);
+        if let Some(ts) = &self.tangents {
+            surface.vertex_tangent = interpolated_tangent(tri.map(|v| ts[v as usize]), hit);
+        }
+        surface
     }
 
     /// The texture coordinates at triangle `i`'s corners; without them on the mesh, those that
@@ -131,6 +143,9 @@ impl MeshGeometry {
         if let Some(uv) = &mut self.uvs {
             uv.shrink_to_fit();
         }
+        if let Some(t) = &mut self.tangents {
+            t.shrink_to_fit();
+        }
     }
 
     /// Heap bytes, from the vectors' capacities.
@@ -139,7 +154,23 @@ impl MeshGeometry {
         self.positions.capacity() * size_of::<Vec3>()
             + self.normals.as_ref().map_or(0, |n| n.capacity() * size_of::<Vec3>())
             + self.uvs.as_ref().map_or(0, |n| n.capacity() * size_of::<Vec2>())
+            + self.tangents.as_ref().map_or(0, |n| n.capacity() * size_of::<Vec4>())
             + self.indices.capacity() * size_of::<[u32; 3]>()
+    }
+}
+
+/// The corners' tangents interpolated at a hit (barycentrics as [`Triangle::surface_with`]
+/// takes them), with the first corner's bitangent sign (glTF gives one per vertex, the same
+/// over a face unless the texture space folds there); zero, so that the texture coordinates'
+/// tangent is used, where they cancel.
+#[inline(always)]
+fn interpolated_tangent([t0, t1, t2]: [Vec4; 3], hit: &PrimHit) -> Vec4 {
+    let (b1, b2) = (hit.u.max(0.0), hit.v.max(0.0));
+    let t = (1.0 - b1 - b2) * t0.truncate() + b1 * t1.truncate() + b2 * t2.truncate();
+    if t.length_squared() > 0.0 && t.is_finite() {
+        t.extend(t0.w)
+    } else {
+        Vec4::ZERO
     }
 }
 
@@ -163,6 +194,7 @@ mod tests {
             indices: vec![[0, 1, 2], [0, 2, 3], [0, 1, 4]],
             normals: Some(vec![Vec3::Z, Vec3::Z, Vec3::new(0.0, 0.6, 0.8), Vec3::Z, Vec3::Z]),
             uvs: Some(vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y, Vec2::X]),
+            tangents: None,
         }
     }
 

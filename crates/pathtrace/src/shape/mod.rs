@@ -21,7 +21,7 @@ pub use triangle::Triangle;
 pub(crate) use triangle::EDGE_SLACK;
 pub use vertex_normals::angle_weighted_normals;
 
-use crate::math::{Aabb, Ray, Transform, Vec2, Vec3};
+use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, Vec4};
 
 /// Where a ray met a primitive: the distance and two shape-specific parameters (barycentrics
 /// for triangles, edge coordinates for quads) from which the surface is rebuilt on demand.
@@ -52,17 +52,37 @@ pub struct SurfacePoint {
     /// ∂p/∂v, the direction of increasing `v` (not normalised): with `dpdu` it spans the
     /// tangent plane that bump maps tilt (Mitsuba 3's `dp_dv`); zero where `dpdu` is.
     pub dpdv: Vec3,
+    /// The mesh's own tangent at the hit (glTF's `TANGENT` attribute, interpolated): xyz the
+    /// tangent, w the bitangent's sign (±1, bitangent = w · n × tangent, glTF 2.0 §3.7.2.1);
+    /// all zero where the mesh has none (every other shape), and the tangent then comes from
+    /// the texture coordinates ([`SurfacePoint::tangent`]).
+    pub vertex_tangent: Vec4,
 }
 
 impl SurfacePoint {
-    /// The tangent that anisotropic materials align their first roughness axis with: `dpdu`, or
-    /// when it is zero the first axis of the geometric normal's Duff et al. basis (Mitsuba 3's
+    /// The tangent that normal maps and anisotropic materials align their frame's first axis
+    /// with: the mesh's own tangent where it has one, else `dpdu`, or when that is zero the
+    /// first axis of the geometric normal's Duff et al. basis (Mitsuba 3's
     /// `coordinate_system(n)` for meshes without texture coordinates).
+    #[inline(always)]
     pub fn tangent(&self) -> Vec3 {
-        if self.dpdu == Vec3::ZERO {
+        if self.vertex_tangent.w != 0.0 {
+            self.vertex_tangent.truncate()
+        } else if self.dpdu == Vec3::ZERO {
             crate::math::Frame::from_normal(self.n_geometric).s
         } else {
             self.dpdu
+        }
+    }
+
+    /// The sign of the bitangent relative to n × tangent: −1 where the mesh's own tangents say
+    /// its texture space is mirrored (a tangent's w < 0), else +1.
+    #[inline(always)]
+    pub fn bitangent_sign(&self) -> f32 {
+        if self.vertex_tangent.w < 0.0 {
+            -1.0
+        } else {
+            1.0
         }
     }
 }

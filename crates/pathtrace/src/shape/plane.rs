@@ -1,7 +1,7 @@
 //! Infinite planes `n · p = d`. Unbounded, so the BVH tests them separately; they cannot emit.
 
 use super::{PrimHit, SurfacePoint};
-use crate::math::{Frame, Ray, Transform, Vec2, Vec3};
+use crate::math::{Frame, Ray, Transform, Vec2, Vec3, Vec4};
 
 /// An infinite plane through `point` with unit `normal` (its front side).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,6 +38,7 @@ impl Plane {
             uv: Vec2::new(d.dot(f.s), d.dot(f.t)),
             dpdu: f.s,
             dpdv: f.t,
+            vertex_tangent: Vec4::ZERO,
         }
     }
 

@@ -8,7 +8,7 @@
 
 use super::triangle::EDGE_SLACK;
 use super::{PrimHit, SurfacePoint};
-use crate::math::{Aabb, Ray, Transform, Vec2, Vec3};
+use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, Vec4};
 
 /// A parallelogram (with its intersection data precomputed).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -69,6 +69,7 @@ impl Quad {
             uv: Vec2::new(a, b),
             dpdu: self.u,
             dpdv: self.v,
+            vertex_tangent: Vec4::ZERO,
         }
     }
 

@@ -2,7 +2,7 @@
 //! in object space).
 
 use super::{PrimHit, Shape, SurfacePoint};
-use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, PI};
+use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, Vec4, PI};
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// A sphere with outward normals.
@@ -50,6 +50,7 @@ impl Sphere {
             uv: sphere_uv(n),
             dpdu: dpdu * self.radius,
             dpdv: dpdv * self.radius,
+            vertex_tangent: Vec4::ZERO,
         }
     }
 
@@ -164,6 +165,7 @@ impl Ellipsoid {
             uv: local.uv,
             dpdu: self.to_world.vector(local.dpdu),
             dpdv: self.to_world.vector(local.dpdv),
+            vertex_tangent: Vec4::ZERO,
         }
     }
 

@@ -2,7 +2,7 @@
 //! Ray/Triangle Intersection", JGT 1997).
 
 use super::{PrimHit, SurfacePoint};
-use crate::math::{Aabb, Ray, Vec2, Vec3};
+use crate::math::{Aabb, Ray, Vec2, Vec3, Vec4};
 
 /// Barycentric slack: edges are tested against `-EDGE_SLACK` rather than 0 so that a ray through
 /// an edge shared by two triangles hits at least one of them despite rounding (both may
@@ -93,7 +93,7 @@ impl Triangle {
             None => Vec2::new(b1, b2),
         };
         let (dpdu, dpdv) = dp_duv(self.e1, self.e2, uvs);
-        SurfacePoint { p, n_geometric: n, n_shading, uv, dpdu, dpdv }
+        SurfacePoint { p, n_geometric: n, n_shading, uv, dpdu, dpdv, vertex_tangent: Vec4::ZERO }
     }
 
     pub fn bounds(&self) -> Aabb {

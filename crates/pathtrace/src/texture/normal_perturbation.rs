@@ -55,7 +55,10 @@ impl NormalPerturbation {
         let n = match self.kind {
             PerturbationKind::NormalMap { texture, strength } => {
                 let c = textures[texture.0 as usize].eval(surface.uv);
-                let n = Vec3::new(2.0 * c.r - 1.0, 2.0 * c.g - 1.0, 2.0 * c.b - 1.0);
+                // A mesh's own tangents may say the bitangent is −(n × tangent) (glTF's w = −1):
+                // the texel's y then points against the base frame's t.
+                let y = surface.bitangent_sign() * (2.0 * c.g - 1.0);
+                let n = Vec3::new(2.0 * c.r - 1.0, y, 2.0 * c.b - 1.0);
                 Vec3::new(n.x * strength, n.y * strength, n.z).normalize_or_zero()
             }
             PerturbationKind::BumpMap { texture, scale } => {
@@ -117,6 +120,7 @@ mod tests {
             uv: Vec2::new(0.3, 0.4),
             dpdu: Vec3::X * 2.0,
             dpdv: -Vec3::Y * 2.0,
+            vertex_tangent: crate::math::Vec4::ZERO,
         }
     }
 
