@@ -140,3 +140,35 @@ fn lanes_and_one_lane_give_every_sample_the_same_value() {
         assert!(lit, "{rel}: black images prove nothing");
     }
 }
+
+/// Filters wider than the pixel splat every sample into its neighbours (film/splat.rs): the
+/// splatted sums are exact integers too, so lanes and one lane (and hence any order in which a
+/// tile's samples finish) give the same film, sums and image, at several samples per pixel.
+#[test]
+fn splatting_filters_give_the_same_film_with_lanes_and_one_lane() {
+    use pathtrace::film::PixelFilter;
+    let filters = [PixelFilter::by_name("gaussian").unwrap(), PixelFilter::Tent { radius: 1.5 }];
+    for (k, rel) in ["scenes/cornell-box.toml", "scenes/gallery/08-sky-point-thin-glass.toml"].iter().enumerate() {
+        let scene = repo_scene(rel);
+        let film = |kernel: Kernel| {
+            let mut s = RenderSettings {
+                width: 30,
+                height: 22,
+                spp: 3,
+                seed: 4,
+                sampler: [SamplerKind::Sobol, SamplerKind::Independent][k],
+                kernel,
+                threads: 1,
+                tile_size: 8,
+                filter: filters[k].clone(),
+                ..Default::default()
+            };
+            s.path.max_depth = 8;
+            render(Arc::clone(&scene), s).unwrap().film
+        };
+        let (wide, one) = (film(Kernel::Wide), film(Kernel::Scalar));
+        assert!(wide.splat_pixels().is_some(), "{rel}: a splatting film");
+        assert_eq!(wide, one, "{rel}: the films differ");
+        assert!(wide.image().pixels.iter().any(|p| p.r > 0.0), "{rel}: black images prove nothing");
+    }
+}

@@ -10,15 +10,20 @@
 //! ranges   u32 count + (start u32, end u32) × count
 //! dropped  u64      NaN/Inf samples dropped
 //! features u32      1 if the film carries feature buffers, else 0
+//! splat    u32      1 if the film carries splatted sums (a filter wider than the pixel), else 0
 //! pixels   width × height × (count u32, sum i128 ×3, sum_sq u128 ×3), row by row
+//! splat pixels (only with splat = 1)
+//!          width × height × (weight i128, sum i128 ×3), row by row
 //! feature pixels (only with features = 1)
 //!          width × height × (count u32, albedo i128 ×3, normal i128 ×3, depth i128), row by row
 //! check    u64      FNV-1a 64 of every byte before it
 //! ```
 //!
-//! 100 bytes per pixel: 6.6 MB for 256², 830 MB for 3840×2160; 116 more with feature buffers.
-//! Version 1 was the same without the `features` field and the feature pixels: it is still read
-//! (as a film without features).
+//! 100 bytes per pixel: 6.6 MB for 256², 830 MB for 3840×2160; 64 more with splatted sums, 116
+//! more with feature buffers. Version 2 was the same without the `splat` field and the splat
+//! pixels, version 1 also without the `features` field and the feature pixels: both are still
+//! read (as films without splatted sums; a film of either cannot merge with a version 3 film, as
+//! the engine builds differ).
 
 use super::accumulator::PixelStats;
 use super::allocation::try_pixels;
@@ -26,21 +31,28 @@ use super::features::{FeatureBuffers, FeaturePixel};
 use super::film::Film;
 use super::fingerprint::Fnv64;
 use super::ranged::RangedFilm;
+use super::splat::SplatPixel;
 use crate::render::SampleRange;
 
 const MAGIC: &[u8; 8] = b"PTFILM\n\0";
 
 /// The version of the layout above, which this build writes; it reads this one and version 1.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 
 /// The version before feature buffers, still read.
 const VERSION_WITHOUT_FEATURES: u32 = 1;
+
+/// The version before splatted sums, still read.
+const VERSION_WITHOUT_SPLAT: u32 = 2;
 
 /// Bytes per pixel in the file.
 pub const FILE_BYTES_PER_PIXEL: usize = 4 + 3 * 16 + 3 * 16;
 
 /// Bytes per pixel of the feature buffers in the file.
 pub const FILE_FEATURE_BYTES_PER_PIXEL: usize = 4 + 7 * 16;
+
+/// Bytes per pixel of the splatted sums in the file.
+pub const FILE_SPLAT_BYTES_PER_PIXEL: usize = 4 * 16;
 
 /// Why bytes are not a film.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -61,7 +73,10 @@ impl RangedFilm {
     /// The film file's bytes.
     pub fn to_bytes(&self) -> Vec<u8> {
         let pixels = self.film.pixels();
-        let per_pixel = FILE_BYTES_PER_PIXEL + if self.features.is_some() { FILE_FEATURE_BYTES_PER_PIXEL } else { 0 };
+        let splat = self.film.splat_pixels();
+        let per_pixel = FILE_BYTES_PER_PIXEL
+            + if self.features.is_some() { FILE_FEATURE_BYTES_PER_PIXEL } else { 0 }
+            + if splat.is_some() { FILE_SPLAT_BYTES_PER_PIXEL } else { 0 };
         let mut out = Vec::with_capacity(64 + self.build.len() + 8 * self.ranges.len() + pixels.len() * per_pixel);
         out.extend_from_slice(MAGIC);
         for v in [FORMAT_VERSION, self.film.width(), self.film.height(), self.spp] {
@@ -77,10 +92,16 @@ impl RangedFilm {
         }
         out.extend_from_slice(&self.film.dropped_samples.to_le_bytes());
         out.extend_from_slice(&u32::from(self.features.is_some()).to_le_bytes());
+        out.extend_from_slice(&u32::from(splat.is_some()).to_le_bytes());
         for p in pixels {
             out.extend_from_slice(&p.count.to_le_bytes());
             p.sum.iter().for_each(|s| out.extend_from_slice(&s.to_le_bytes()));
             p.sum_sq.iter().for_each(|s| out.extend_from_slice(&s.to_le_bytes()));
+        }
+        for p in splat.into_iter().flatten() {
+            for s in [&p.weight].into_iter().chain(&p.sum) {
+                out.extend_from_slice(&s.to_le_bytes());
+            }
         }
         for p in self.features.iter().flat_map(|f| f.pixels()) {
             out.extend_from_slice(&p.count.to_le_bytes());
@@ -130,18 +151,29 @@ impl RangedFilm {
             ranges.push(range);
         }
         let dropped = r.u64("header")?;
-        let has_features = match version {
-            VERSION_WITHOUT_FEATURES => false,
-            _ => match r.u32("header")? {
-                0 => false,
-                1 => true,
-                other => return Err(FilmFileError::Invalid(format!("feature flag {other} (expected 0 or 1)"))),
-            },
+        let mut flag = |since: u32, what: &str| -> Result<bool, FilmFileError> {
+            if version < since {
+                return Ok(false);
+            }
+            match r.u32("header")? {
+                0 => Ok(false),
+                1 => Ok(true),
+                other => Err(FilmFileError::Invalid(format!("{what} flag {other} (expected 0 or 1)"))),
+            }
         };
+        let has_features = flag(VERSION_WITHOUT_FEATURES + 1, "feature")?;
+        let has_splat = flag(VERSION_WITHOUT_SPLAT + 1, "splat")?;
         let len = u64::from(width) * u64::from(height);
-        let per_pixel = FILE_BYTES_PER_PIXEL + if has_features { FILE_FEATURE_BYTES_PER_PIXEL } else { 0 };
+        let per_pixel = FILE_BYTES_PER_PIXEL
+            + if has_features { FILE_FEATURE_BYTES_PER_PIXEL } else { 0 }
+            + if has_splat { FILE_SPLAT_BYTES_PER_PIXEL } else { 0 };
         if (body.len() - r.at) as u64 != len * per_pixel as u64 {
-            let with = if has_features { " with feature buffers" } else { "" };
+            let with = match (has_features, has_splat) {
+                (false, false) => "",
+                (true, false) => " with feature buffers",
+                (false, true) => " with splatted sums",
+                (true, true) => " with splatted sums and feature buffers",
+            };
             return Err(FilmFileError::Invalid(format!(
                 "{} bytes of pixels for a {width}x{height} film{with}, which needs {}",
                 body.len() - r.at,
@@ -157,7 +189,22 @@ impl RangedFilm {
                 sum_sq: [r.u128("pixels")?, r.u128("pixels")?, r.u128("pixels")?],
             };
         }
-        let mut film = Film::from_pixels(width, height, pixels);
+        let splat = match has_splat {
+            false => None,
+            true => {
+                let mut pixels: Vec<SplatPixel> = try_pixels(len).ok_or_else(|| {
+                    FilmFileError::Invalid(format!("{width}x{height} splatted sums do not fit in memory"))
+                })?;
+                for p in &mut pixels {
+                    p.weight = r.i128("splat pixels")?;
+                    for s in &mut p.sum {
+                        *s = r.i128("splat pixels")?;
+                    }
+                }
+                Some(pixels)
+            }
+        };
+        let mut film = Film::from_pixels(width, height, pixels, splat);
         film.dropped_samples = dropped;
         let features = match has_features {
             false => None,
@@ -233,7 +280,7 @@ mod tests {
     fn round_trips_and_refuses_damaged_bytes() {
         let f = sample_film();
         let bytes = f.to_bytes();
-        assert_eq!(bytes.len(), 8 + 16 + 8 + 4 + 14 + 4 + 8 + 8 + 4 + 6 * FILE_BYTES_PER_PIXEL + 8);
+        assert_eq!(bytes.len(), 8 + 16 + 8 + 4 + 14 + 4 + 8 + 8 + 4 + 4 + 6 * FILE_BYTES_PER_PIXEL + 8);
         assert_eq!(RangedFilm::from_bytes(&bytes), Ok(f));
         assert_eq!(RangedFilm::from_bytes(b"P3\n1 1"), Err(FilmFileError::NotAFilm));
         assert_eq!(RangedFilm::from_bytes(&bytes[..bytes.len() - 1]), Err(FilmFileError::Checksum));
@@ -242,8 +289,8 @@ mod tests {
         flipped[100] ^= 1;
         assert_eq!(RangedFilm::from_bytes(&flipped), Err(FilmFileError::Checksum));
         let mut future = bytes;
-        future[8] = 3;
-        assert_eq!(RangedFilm::from_bytes(&future), Err(FilmFileError::Version(3)));
+        future[8] = 4;
+        assert_eq!(RangedFilm::from_bytes(&future), Err(FilmFileError::Version(4)));
     }
 
     fn with_features(f: RangedFilm) -> RangedFilm {
@@ -266,7 +313,7 @@ mod tests {
         // so the size check is what answers).
         let plain = sample_film().to_bytes();
         let mut lying = plain[..plain.len() - 8].to_vec();
-        let flag_at = lying.len() - 6 * FILE_BYTES_PER_PIXEL - 4;
+        let flag_at = lying.len() - 6 * FILE_BYTES_PER_PIXEL - 8;
         lying[flag_at] = 1;
         let check = Fnv64::default().write(&lying).finish();
         lying.extend_from_slice(&check.to_le_bytes());
@@ -274,15 +321,54 @@ mod tests {
         assert!(err.to_string().contains("with feature buffers"), "{err}");
     }
 
+    /// The bytes of `sample_film()` as version `version` wrote them: version 2 is version 3
+    /// without the splat flag, version 1 also without the feature flag.
+    fn older(version: u32) -> Vec<u8> {
+        let v3 = sample_film().to_bytes();
+        let flags_at = v3.len() - 8 - 6 * FILE_BYTES_PER_PIXEL - 8;
+        let kept_flags = if version == 2 { 4 } else { 0 };
+        let mut old = [&v3[..flags_at + kept_flags], &v3[flags_at + 8..v3.len() - 8]].concat();
+        old[8..12].copy_from_slice(&version.to_le_bytes());
+        let check = Fnv64::default().write(&old).finish();
+        old.extend_from_slice(&check.to_le_bytes());
+        old
+    }
+
     #[test]
-    fn version_1_files_are_read_as_films_without_features() {
-        // Version 1 is version 2 without the feature flag.
-        let v2 = sample_film().to_bytes();
-        let flag_at = v2.len() - 8 - 6 * FILE_BYTES_PER_PIXEL - 4;
-        let mut v1 = [&v2[..flag_at], &v2[flag_at + 4..v2.len() - 8]].concat();
-        v1[8..12].copy_from_slice(&1u32.to_le_bytes());
-        let check = Fnv64::default().write(&v1).finish();
-        v1.extend_from_slice(&check.to_le_bytes());
-        assert_eq!(RangedFilm::from_bytes(&v1), Ok(sample_film()));
+    fn versions_1_and_2_are_read_as_films_without_features_or_splats() {
+        assert_eq!(RangedFilm::from_bytes(&older(1)), Ok(sample_film()));
+        assert_eq!(RangedFilm::from_bytes(&older(2)), Ok(sample_film()));
+    }
+
+    fn splatting_film() -> RangedFilm {
+        let filter = crate::film::PixelFilter::by_name("gaussian").unwrap();
+        let mut film = Film::try_new(3, 2, true).unwrap();
+        let mut block = crate::film::SplatBlock::for_tile(&filter, (0, 0, 3, 2), 3, 2);
+        block.splat(&filter, 1, 1, crate::math::Vec2::new(0.3, 0.9), Rgb::new(0.5, 1e6, -2.0));
+        block.splat(&filter, 2, 0, crate::math::Vec2::new(0.0, 0.5), Rgb::splat(1e-7));
+        film.merge_splat_block(&block);
+        film.add_sample(1, 1, Rgb::new(0.5, 1e6, -2.0));
+        film.add_sample(2, 0, Rgb::splat(1e-7));
+        RangedFilm::new(film, 1, "pathtrace test".into(), 4, SampleRange::new(0, 2))
+    }
+
+    #[test]
+    fn splatted_sums_round_trip_with_and_without_features() {
+        let f = splatting_film();
+        assert!(f.film.splat_pixels().unwrap().iter().all(|p| p.weight > 0));
+        let bytes = f.to_bytes();
+        let plain = RangedFilm { film: Film::new(3, 2), ..f.clone() }.to_bytes();
+        assert_eq!(bytes.len(), plain.len() + 6 * FILE_SPLAT_BYTES_PER_PIXEL);
+        assert_eq!(RangedFilm::from_bytes(&bytes), Ok(f.clone()));
+        let both = with_features(splatting_film());
+        assert_eq!(RangedFilm::from_bytes(&both.to_bytes()), Ok(both));
+        // The splat flag over a body without splat pixels is refused by the size check.
+        let mut lying = plain[..plain.len() - 8].to_vec();
+        let flag_at = lying.len() - 6 * FILE_BYTES_PER_PIXEL - 4;
+        lying[flag_at] = 1;
+        let check = Fnv64::default().write(&lying).finish();
+        lying.extend_from_slice(&check.to_le_bytes());
+        let err = RangedFilm::from_bytes(&lying).unwrap_err();
+        assert!(err.to_string().contains("with splatted sums"), "{err}");
     }
 }

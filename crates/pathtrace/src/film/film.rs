@@ -1,11 +1,14 @@
 //! The film: the accumulation buffer of a render. Per pixel it keeps a sample count and exact
 //! fixed-point sums of the samples and of their squares (`accumulator.rs`); the image is the mean
-//! (sum / count), tone mapped only on output. Films of the same size merge by adding their sums,
-//! which gives the same bits in any order.
+//! (sum / count), tone mapped only on output. A render whose filter is wider than the pixel also
+//! keeps the splatted sums Σw and Σw·L (`splat.rs`), and its image is their ratio; the per-pixel
+//! statistics of each pixel's own samples still drive the noise estimates (see `splat.rs`).
+//! Films of the same size merge by adding their sums, which gives the same bits in any order.
 
 use super::accumulator::PixelStats;
 use super::allocation::FilmTooLarge;
 use super::grid::{Mergeable, PixelGrid};
+use super::splat::{SplatBlock, SplatPixel};
 use super::Image;
 use crate::math::Rgb;
 
@@ -53,6 +56,8 @@ impl Mergeable for PixelStats {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     grid: PixelGrid<PixelStats>,
+    /// The splatted sums, for filters wider than the pixel (`None`: the image is the mean).
+    splat: Option<PixelGrid<SplatPixel>>,
     /// Samples rejected because they were NaN or infinite.
     pub dropped_samples: u64,
 }
@@ -60,18 +65,47 @@ pub struct Film {
 impl Film {
     pub fn new(width: u32, height: u32) -> Self {
         let pixels = vec![PixelStats::default(); width as usize * height as usize];
-        Self::from_pixels(width, height, pixels)
+        Self::from_pixels(width, height, pixels, None)
     }
 
     /// A film of `width` × `height` pixels, or an error naming the memory it needs when it cannot
     /// be allocated (renders ask for this one; [`Film::new`] aborts like any allocation).
-    pub fn try_new(width: u32, height: u32) -> Result<Self, FilmTooLarge> {
-        Ok(Self { grid: PixelGrid::try_new(width, height)?, dropped_samples: 0 })
+    /// `splat`: with splatted sums (a filter wider than the pixel: [`super::PixelFilter::splats`]).
+    pub fn try_new(width: u32, height: u32, splat: bool) -> Result<Self, FilmTooLarge> {
+        let splat = if splat { Some(PixelGrid::try_new(width, height)?) } else { None };
+        Ok(Self { grid: PixelGrid::try_new(width, height)?, splat, dropped_samples: 0 })
     }
 
-    /// A film of the given pixels (row by row; `pixels.len()` must be `width × height`).
-    pub(super) fn from_pixels(width: u32, height: u32, pixels: Vec<PixelStats>) -> Self {
-        Self { grid: PixelGrid::from_pixels(width, height, pixels), dropped_samples: 0 }
+    /// A film of the given pixels (row by row; `pixels.len()` must be `width × height`), with
+    /// splatted sums if given (as many).
+    pub(super) fn from_pixels(
+        width: u32,
+        height: u32,
+        pixels: Vec<PixelStats>,
+        splat: Option<Vec<SplatPixel>>,
+    ) -> Self {
+        let splat = splat.map(|s| PixelGrid::from_pixels(width, height, s));
+        Self { grid: PixelGrid::from_pixels(width, height, pixels), splat, dropped_samples: 0 }
+    }
+
+    /// The splatted sums, row by row (`None` unless the filter is wider than the pixel).
+    pub fn splat_pixels(&self) -> Option<&[SplatPixel]> {
+        self.splat.as_ref().map(PixelGrid::pixels)
+    }
+
+    /// Merges a tile's splatted halo block (a film without splatted sums ignores it).
+    pub fn merge_splat_block(&mut self, block: &SplatBlock) {
+        if let Some(grid) = &mut self.splat {
+            grid.merge_block(block.x0, block.y0, block.w, &block.pixels);
+        }
+    }
+
+    /// Pixel `i`'s (row by row) value in the image: the splatted ratio or the mean.
+    fn value(&self, i: usize) -> [f64; 3] {
+        match &self.splat {
+            Some(grid) => grid.pixels()[i].value(),
+            None => self.grid.pixels()[i].mean(),
+        }
     }
 
     pub fn width(&self) -> u32 {
@@ -107,17 +141,35 @@ impl Film {
 
     /// Adds every sample of another film of the same size; `false` (and nothing changes) if
     /// the sizes differ.
+    /// Films with and without splatted sums do not merge either.
     pub fn merge(&mut self, other: &Film) -> bool {
-        let merged = self.grid.merge(&other.grid);
-        if merged {
-            self.dropped_samples += other.dropped_samples;
+        let same_kind = self.splat.is_some() == other.splat.is_some();
+        let same_size = (self.width(), self.height()) == (other.width(), other.height());
+        if !(same_kind && same_size) {
+            return false;
         }
-        merged
+        self.grid.merge(&other.grid);
+        if let (Some(mine), Some(theirs)) = (&mut self.splat, &other.splat) {
+            mine.merge(theirs);
+        }
+        self.dropped_samples += other.dropped_samples;
+        true
     }
 
-    /// The current estimate: each pixel's mean (black where no sample landed yet).
+    /// The current estimate: each pixel's mean, or its splatted ratio Σw·L / Σw (black where no
+    /// sample landed yet).
     pub fn image(&self) -> Image {
-        let pixels = self.pixels().iter().map(PixelStats::mean_rgb).collect();
+        let pixels = match &self.splat {
+            None => self.pixels().iter().map(PixelStats::mean_rgb).collect(),
+            Some(grid) => grid
+                .pixels()
+                .iter()
+                .map(|p| {
+                    let v = p.value();
+                    Rgb::new(v[0] as f32, v[1] as f32, v[2] as f32)
+                })
+                .collect(),
+        };
         Image { width: self.width(), height: self.height(), pixels }
     }
 
@@ -136,7 +188,10 @@ impl Film {
 
     /// Mean radiance over the pixel rectangle `[x0, x1) × [y0, y1)` with the estimated variance
     /// of that mean per channel (pixels are independent, so variances add: Σ s²ₚ/nₚ / N²).
-    /// For statistical tests that compare renders.
+    /// For statistical tests that compare renders. With splatted sums the mean is the image's
+    /// (the ratios) and the variance that of the block's own samples, which the splat only moves
+    /// around within the block but for its edge (`splat.rs`): close for blocks much wider than
+    /// the filter.
     pub fn region_estimate(&self, x0: u32, y0: u32, x1: u32, y1: u32) -> RegionEstimate {
         let (x1, y1) = (x1.min(self.width()), y1.min(self.height()));
         let mut mean = [0.0f64; 3];
@@ -144,8 +199,8 @@ impl Film {
         let mut n = 0usize;
         for y in y0..y1 {
             for x in x0..x1 {
-                let p = self.pixel(x, y);
-                let (m, v) = (p.mean(), p.variance_of_mean());
+                let i = (y * self.width() + x) as usize;
+                let (m, v) = (self.value(i), self.pixels()[i].variance_of_mean());
                 for k in 0..3 {
                     mean[k] += m[k];
                     var[k] += v[k];

@@ -37,6 +37,9 @@ pub enum MergeError {
     #[error("its samples {0} overlap samples {1} already merged")]
     Overlap(SampleRange, SampleRange),
     /// `true`: the film has feature buffers and the others have none; `false`: the reverse.
+    /// `true`: the film has splatted sums and the others have none; `false`: the reverse.
+    #[error("{}: render every part with the same pixel filter", if *.0 { "it has splatted sums (a filter wider than the pixel) but the others have none" } else { "it has no splatted sums but the others have (a filter wider than the pixel)" })]
+    Splat(bool),
     #[error("{}: render every part with the feature buffers (--aov or --denoise; aov=True in Python) or every part without", if *.0 { "it has feature buffers but the others have none" } else { "it has no feature buffers but the others have" })]
     Features(bool),
 }
@@ -66,6 +69,9 @@ impl RangedFilm {
         }
         if self.spp != other.spp {
             return Err(MergeError::Spp(other.spp, self.spp));
+        }
+        if a.splat_pixels().is_some() != b.splat_pixels().is_some() {
+            return Err(MergeError::Splat(b.splat_pixels().is_some()));
         }
         if self.features.is_some() != other.features.is_some() {
             return Err(MergeError::Features(other.features.is_some()));

@@ -4,7 +4,7 @@
 //! `N` is 8 with AVX2 (and in the portable build), 16 with AVX-512, and 1 for the one-lane
 //! instance of the same estimator (`Kernel::Scalar`, kept for debugging and tests).
 
-use crate::film::{FeaturePixel, FeatureSample, PixelStats};
+use crate::film::{FeaturePixel, FeatureSample, PixelFilter, PixelStats, SplatBlock};
 use crate::integrator::PathStats;
 use crate::math::{Ray, Rgb, Vec2, Vec3, Vec4};
 use crate::medium::MediumId;
@@ -26,8 +26,9 @@ pub(crate) struct Paths<const N: usize> {
     pub prev_pdf: F32s<N>,
     /// The direction came from a Dirac lobe or the camera: emission found counts in full.
     pub prev_specular: Ms<N>,
-    /// Pixel-filter weight of the camera sample.
-    pub filter_weight: F32s<N>,
+    /// Where in its pixel each lane's camera sample is (`[0, 1)²` from the corner), for
+    /// splatting filters (`film/splat.rs`).
+    pub jitter: [Vec2; N],
     /// Path segments so far (Mitsuba's depth convention).
     pub segments: [u32; N],
     /// The medium each lane's ray travels in (`MediumId::NONE`: vacuum; always so in scenes
@@ -58,6 +59,27 @@ pub(crate) struct Output {
     pub dropped: u64,
     /// Per-pixel feature sums, when the render records features.
     pub features: Option<Vec<FeaturePixel>>,
+    /// The tile's splatted sums, when the filter is wider than the pixel.
+    pub splat: Option<TileSplat>,
+}
+
+/// Where a tile's samples are splatted: its halo block, and what places a tile pixel on the film.
+pub(crate) struct TileSplat {
+    pub block: SplatBlock,
+    pub filter: PixelFilter,
+    /// The tile's corner and width, to turn a tile pixel index into film coordinates.
+    pub x0: u32,
+    pub y0: u32,
+    pub w: u32,
+}
+
+impl TileSplat {
+    /// Splats a finished sample of tile pixel `pixel` at `jitter` within it.
+    #[inline]
+    pub fn add(&mut self, pixel: u32, jitter: Vec2, l: Rgb) {
+        let (x, y) = (self.x0 + pixel % self.w, self.y0 + pixel / self.w);
+        self.block.splat(&self.filter, x, y, jitter, l);
+    }
 }
 
 impl<const N: usize> Paths<N> {
@@ -76,7 +98,7 @@ impl<const N: usize> Paths<N> {
             prev_p: Vec3s::default(),
             prev_pdf: F32s::default(),
             prev_specular: Ms::default(),
-            filter_weight: F32s::default(),
+            jitter: [Vec2::ZERO; N],
             segments: [0; N],
             medium: [MediumId::NONE; N],
             hero: [Self::NO_CHANNEL; N],
@@ -91,7 +113,7 @@ impl<const N: usize> Paths<N> {
     /// Starts a camera path in lane `i` for pixel `pixel` of the tile, its ray in `medium`;
     /// `features`: the path records a feature sample.
     #[inline(always)]
-    pub fn start(&mut self, i: usize, pixel: u32, ray: Ray, medium: u32, filter_weight: f32, features: bool) {
+    pub fn start(&mut self, i: usize, pixel: u32, ray: Ray, medium: u32, jitter: Vec2, features: bool) {
         self.active.0[i] = u32::MAX;
         self.origin.set(i, ray.origin);
         self.dir.set(i, ray.dir);
@@ -103,7 +125,7 @@ impl<const N: usize> Paths<N> {
         self.prev_p.set(i, ray.origin);
         self.prev_pdf.0[i] = 0.0;
         self.prev_specular.0[i] = u32::MAX;
-        self.filter_weight.0[i] = filter_weight;
+        self.jitter[i] = jitter;
         self.segments[i] = 1;
         self.medium[i] = medium;
         self.hero[i] = Self::NO_CHANNEL;
@@ -136,12 +158,14 @@ impl<const N: usize> Paths<N> {
     pub fn finish(&mut self, i: usize, out: &mut Output) {
         self.active.0[i] = 0;
         self.feature_pending.0[i] = 0;
-        let w = self.filter_weight.0[i];
-        let l = Rgb::new(self.radiance[0].0[i] * w, self.radiance[1].0[i] * w, self.radiance[2].0[i] * w);
+        let l = Rgb::new(self.radiance[0].0[i], self.radiance[1].0[i], self.radiance[2].0[i]);
         if l.is_finite() {
             out.pixels[self.pixel[i] as usize].add(l);
             if let Some(features) = &mut out.features {
-                features[self.pixel[i] as usize].add(&self.feature[i], w);
+                features[self.pixel[i] as usize].add(&self.feature[i], 1.0);
+            }
+            if let Some(splat) = &mut out.splat {
+                splat.add(self.pixel[i], self.jitter[i], l);
             }
         } else {
             out.dropped += 1;

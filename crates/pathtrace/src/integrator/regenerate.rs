@@ -3,10 +3,10 @@
 //! waiting for the longest path of a batch (as wavefront renderers and Mitsuba 3's vectorised
 //! variants do).
 
-use super::lanes::{Output, Paths};
+use super::lanes::{Output, Paths, TileSplat};
 use super::path::vertex;
 use crate::camera::Camera;
-use crate::film::{FeaturePixel, PixelFilter, PixelStats};
+use crate::film::{FeaturePixel, PixelFilter, PixelStats, SplatBlock};
 use crate::integrator::PathStats;
 use crate::render::tile::{Tile, TileResult, WaveSamples};
 use crate::sampling::Sampler;
@@ -97,6 +97,18 @@ pub(crate) fn render_tile_lanes<const N: usize>(
         stats: PathStats::default(),
         dropped: 0,
         features: job.features.then(|| vec![FeaturePixel::default(); tile_pixels]),
+        splat: job.filter.splats().then(|| TileSplat {
+            block: SplatBlock::for_tile(
+                job.filter,
+                (tile.x0, tile.y0, tile.w, tile.h),
+                job.camera.width,
+                job.camera.height,
+            ),
+            filter: job.filter.clone(),
+            x0: tile.x0,
+            y0: tile.y0,
+            w: tile.w,
+        }),
     };
     let mut queue = Queue::new(tile, samples);
     let mut paths = Paths::<N>::new();
@@ -104,14 +116,14 @@ pub(crate) fn render_tile_lanes<const N: usize>(
     loop {
         for i in (!paths.active).lanes() {
             let Some(next) = queue.pop() else { break };
-            // The filter picks where in (or around) the pixel the ray goes and weights the
-            // sample by f/pdf (exactly 1 for box and tent): see film/filter.rs.
+            // Where in the pixel the ray goes (film/filter.rs); filters wider than the pixel
+            // weight the sample when it is splatted (film/splat.rs).
             let (u_filter, u_aperture) =
                 samplers.start_camera(i, next.x, next.y, next.sample, job.camera.needs_aperture_sample());
-            let fs = job.filter.sample(u_filter);
-            let ray = job.camera.generate_ray(next.x, next.y, fs.jitter, u_aperture);
+            let jitter = job.filter.sample(u_filter);
+            let ray = job.camera.generate_ray(next.x, next.y, jitter, u_aperture);
             out.stats.camera_rays += 1;
-            paths.start(i, next.pixel, ray, job.scene.camera_medium(), fs.weight, job.features);
+            paths.start(i, next.pixel, ray, job.scene.camera_medium(), jitter, job.features);
             if max_depth == 0 {
                 paths.finish(i, &mut out);
             }
@@ -121,5 +133,12 @@ pub(crate) fn render_tile_lanes<const N: usize>(
         }
         vertex(job, &mut paths, &mut samplers, &mut out);
     }
-    TileResult { tile, pixels: out.pixels, stats: out.stats, dropped: out.dropped, features: out.features }
+    TileResult {
+        tile,
+        pixels: out.pixels,
+        stats: out.stats,
+        dropped: out.dropped,
+        features: out.features,
+        splat: out.splat.map(|s| s.block),
+    }
 }

@@ -122,7 +122,12 @@ impl Shared {
     }
 
     fn record(&self, r: &TileResult) {
-        self.lock_film().merge_block(r.tile.x0, r.tile.y0, r.tile.w, &r.pixels);
+        let mut film = self.lock_film();
+        film.merge_block(r.tile.x0, r.tile.y0, r.tile.w, &r.pixels);
+        if let Some(block) = &r.splat {
+            film.merge_splat_block(block);
+        }
+        drop(film);
         if let (Some(buffers), Some(block)) = (self.lock_features().as_mut(), &r.features) {
             buffers.merge_block(r.tile.x0, r.tile.y0, r.tile.w, block);
         }
@@ -202,7 +207,7 @@ impl RenderSession {
         }
         let camera = Camera::new(camera, settings.width, settings.height)?;
         let prep = Prepared { camera, lanes: WideScene::new(&scene, &settings.path) };
-        let film = Film::try_new(settings.width, settings.height)?;
+        let film = Film::try_new(settings.width, settings.height, settings.filter.splats())?;
         let features =
             if settings.features { Some(FeatureBuffers::try_new(settings.width, settings.height)?) } else { None };
         let pool = rayon::ThreadPoolBuilder::new()

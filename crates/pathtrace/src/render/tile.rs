@@ -1,7 +1,7 @@
 //! Rendering one tile for one wave of samples.
 
 use crate::camera::Camera;
-use crate::film::{FeaturePixel, PixelFilter, PixelStats};
+use crate::film::{FeaturePixel, PixelFilter, PixelStats, SplatBlock};
 use crate::integrator::{render_tile_lanes, LaneJob, PathStats};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -76,6 +76,8 @@ pub(crate) struct TileResult {
     pub dropped: u64,
     /// The tile's feature sums, when the render records features.
     pub features: Option<Vec<FeaturePixel>>,
+    /// The tile's splatted sums over its halo, when the filter is wider than the pixel.
+    pub splat: Option<SplatBlock>,
 }
 
 /// Renders the wave's samples (`samples`) of every pixel in `tile`, filtered by the job's pixel
