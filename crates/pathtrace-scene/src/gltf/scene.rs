@@ -135,6 +135,7 @@ impl Converter<'_> {
                 transform: vec![matrix_step(world)],
                 interior: None,
                 exterior: None,
+                flip_normals: false,
             });
         }
     }

@@ -492,6 +492,9 @@ impl<'a> Conv<'a, '_> {
             match s.attr("type").unwrap_or("independent") {
                 "independent" => {}
                 "stratified" => render.sampler = Some(SamplerName(SamplerKind::Stratified)),
+                // Mitsuba 0.6's Sobol' sampler (the default of Bitterli's scenes): ours is an
+                // Owen-scrambled Sobol' sequence; the expected image is the same.
+                "sobol" => render.sampler = Some(SamplerName(SamplerKind::Sobol)),
                 other => self.warn(s, &format!("sampler `{other}` is not supported: using independent")),
             }
             if let Some(n) = self.integer_in(s, "sample_count", 1..=i64::from(u32::MAX))? {
@@ -849,9 +852,6 @@ impl<'a> Conv<'a, '_> {
                 let Some(file) = self.string(e, "filename")? else {
                     return Err(self.src.error(e.offset, format!("a {ty} shape needs a `filename` string")));
                 };
-                if self.boolean(e, "flip_normals")? == Some(true) {
-                    self.warn(e, "flip_normals is not supported and is ignored");
-                }
                 // Mitsuba flips v of OBJ texture coordinates unless told not to (not PLY's).
                 let flip_v = ty == "obj" && self.boolean(e, "flip_tex_coords")?.unwrap_or(true);
                 let normals = self.mesh_normals(e)?;
@@ -888,9 +888,26 @@ impl<'a> Conv<'a, '_> {
                 return Ok(());
             }
         };
+        // Every Mitsuba shape takes `flip_normals`; the native box (Mitsuba's cube) does not.
+        let mut flip_normals = self.boolean(e, "flip_normals")?.unwrap_or(false);
+        if flip_normals && matches!(shape, ShapeDef::Box { .. }) {
+            self.warn(e, "flip_normals on a `cube` is not supported and is ignored");
+            flip_normals = false;
+        }
         let transform = self.to_world(e)?;
         let material = self.shape_material(e, &label)?;
         let textured_light = self.materials[&material].emission.as_ref().is_some_and(|m| m.texture.is_some());
+        // A turned-over quad or disk is re-parameterised (docs/scene-format.md, `flip_normals`);
+        // Mitsuba turns only the normal, so a texture on it would be read mirrored.
+        if flip_normals && matches!(shape, ShapeDef::Quad { .. } | ShapeDef::Disk { .. }) {
+            let textured = self
+                .materials
+                .get_mut(&material)
+                .is_some_and(|m| m.textures_mut().iter().any(|c| matches!(c, Colour::Texture(_))));
+            if textured {
+                self.warn(e, &format!("flip_normals on a textured `{ty}` mirrors its texture (Mitsuba's does not)"));
+            }
+        }
         if textured_light && !matches!(shape, ShapeDef::Mesh { .. } | ShapeDef::Quad { .. }) {
             return Err(self.src.error(
                 e.offset,
@@ -910,7 +927,7 @@ impl<'a> Conv<'a, '_> {
             }
         }
         let (interior, exterior) = self.shape_media(e)?;
-        self.objects.push(ObjectDef { shape, material, transform, interior, exterior });
+        self.objects.push(ObjectDef { shape, material, transform, interior, exterior, flip_normals });
         Ok(())
     }
 

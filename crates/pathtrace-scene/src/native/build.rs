@@ -690,27 +690,40 @@ impl<L: Locate> Ctx<'_, L> {
                 if emits && t.uniform_scale().is_none() {
                     return Err(err(&BuildError::EmissiveEllipsoid));
                 }
-                let sphere = Sphere::new(vec3(center), radius.f32());
-                Shape::Sphere(sphere.ok_or_else(|| degenerate("sphere: the radius must be positive"))?)
+                let sphere = Sphere::new(vec3(center), radius.f32())
+                    .ok_or_else(|| degenerate("sphere: the radius must be positive"))?;
+                Shape::Sphere(Sphere { inward: o.flip_normals, ..sphere })
             }
             ShapeDef::Plane { point, normal } => {
                 if emits {
                     return Err(err(&BuildError::EmissivePlane));
                 }
-                Shape::Plane(Plane::new(vec3(point), vec3(normal)).ok_or_else(|| degenerate("plane: zero normal"))?)
+                let normal = if o.flip_normals { -vec3(normal) } else { vec3(normal) };
+                Shape::Plane(Plane::new(vec3(point), normal).ok_or_else(|| degenerate("plane: zero normal"))?)
             }
-            ShapeDef::Quad { q, u, v } => Shape::Quad(Quad::new(vec3(q), vec3(u), vec3(v)).ok_or_else(|| {
-                if vec3(u).cross(vec3(v)).is_finite() {
-                    degenerate("quad: u and v must span an area")
-                } else {
-                    degenerate("quad: its area |u × v| overflows single precision (3.4e38)")
-                }
-            })?),
-            ShapeDef::Disk { center, normal, radius } => Shape::Disk(
-                Disk::round(vec3(center), vec3(normal), radius.f32())
-                    .ok_or_else(|| degenerate("disk: the radius must be positive and the normal non-zero"))?,
-            ),
+            ShapeDef::Quad { q, u, v } => {
+                // Turned over as the same parallelogram from the opposite corner along v
+                // (q + v, u, −v): its v coordinate then runs the other way.
+                let (q, u, v) = (vec3(q), vec3(u), vec3(v));
+                let (q, v) = if o.flip_normals { (q + v, -v) } else { (q, v) };
+                Shape::Quad(Quad::new(q, u, v).ok_or_else(|| {
+                    if u.cross(v).is_finite() {
+                        degenerate("quad: u and v must span an area")
+                    } else {
+                        degenerate("quad: its area |u × v| overflows single precision (3.4e38)")
+                    }
+                })?)
+            }
+            ShapeDef::Disk { center, normal, radius } => {
+                let normal = if o.flip_normals { -vec3(normal) } else { vec3(normal) };
+                Shape::Disk(
+                    Disk::round(vec3(center), normal, radius.f32())
+                        .ok_or_else(|| degenerate("disk: the radius must be positive and the normal non-zero"))?,
+                )
+            }
             ShapeDef::Triangle { a, b, c } => {
+                // Turned over by its winding (the front is along (b − a) × (c − a)).
+                let (b, c) = if o.flip_normals { (c, b) } else { (b, c) };
                 Shape::Triangle(Triangle::new(vec3(a), vec3(b), vec3(c), Triangle::FLAT).ok_or_else(|| {
                     if (vec3(b) - vec3(a)).cross(vec3(c) - vec3(a)).is_finite() {
                         degenerate("triangle: its corners are on one line")
@@ -719,13 +732,17 @@ impl<L: Locate> Ctx<'_, L> {
                     }
                 })?)
             }
+            ShapeDef::Box { .. } if o.flip_normals => {
+                let msg = "`flip_normals` is not supported on a box (use six quads, or a mesh)";
+                return Err(self.src.error_at(&at.field("flip_normals"), msg));
+            }
             ShapeDef::Box { min, max } => {
                 return self.put_box(vec3(min), vec3(max), id, &t).map_err(|_| {
                     degenerate("box: `max` must exceed `min` on every axis and the transform keep it solid")
                 });
             }
             ShapeDef::Mesh { file, part, flip_v, normals } => {
-                return self.add_mesh(file, *part, (*flip_v, *normals), id, &t, at)
+                return self.add_mesh(file, *part, (*flip_v, *normals, o.flip_normals), id, &t, at)
             }
         };
         self.put_shape(shape, id, &t).map_err(|e| err(&e))
@@ -735,7 +752,7 @@ impl<L: Locate> Ctx<'_, L> {
         &mut self,
         file: &str,
         part: Option<u32>,
-        (flip_v, normals): (bool, MeshNormals),
+        (flip_v, normals, flip_normals): (bool, MeshNormals, bool),
         id: MaterialId,
         t: &Transform,
         object: &ItemPath,
@@ -764,10 +781,14 @@ impl<L: Locate> Ctx<'_, L> {
                 MeshNormals::Face => mesh.normals.is_some(),
                 MeshNormals::File => false,
             };
-            let mesh = if flip || recompute {
+            let mesh = if flip || recompute || flip_normals {
                 let mut m = mesh.clone();
                 if let (Some(uvs), true) = (&mut m.uvs, flip) {
                     uvs.iter_mut().for_each(|uv| uv.y = 1.0 - uv.y);
+                }
+                // Before smooth normals are computed: they follow the reversed winding.
+                if flip_normals {
+                    m.flip_normals();
                 }
                 if recompute {
                     m.normals = (normals != MeshNormals::Face).then(|| m.smooth_normals(t));

@@ -75,6 +75,9 @@ pub struct ObjectDef {
     pub interior: Option<String>,
     /// The `[media.NAME]` outside the object (in front of its normals), if any.
     pub exterior: Option<String>,
+    /// Turn the surface normals over (Mitsuba's `flip_normals`): the front of one-sided
+    /// materials and lights, and the side media call exterior, become the other side.
+    pub flip_normals: bool,
 }
 
 /// A group: its transform list applies to everything inside it, after their own transforms.
@@ -105,6 +108,8 @@ pub struct RawObject {
     interior: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     exterior: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    flip_normals: Option<bool>,
     #[serde(skip_serializing_if = "Option::is_none")]
     center: Option<Num3>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -199,7 +204,7 @@ impl TryFrom<RawObject> for ObjectDef {
         if let Some(extra) = r.present().into_iter().find(|f| !wanted.contains(f)) {
             let ok = wanted.iter().map(|f| format!("`{f}`")).collect::<Vec<_>>().join(", ");
             return Err(format!(
-                "`{extra}` is not a field of a {name} (it takes {ok}, `material`, `transform`, `interior`, `exterior`)"
+                "`{extra}` is not a field of a {name} (it takes {ok}, `material`, `transform`, `interior`, `exterior`, `flip_normals`)"
             ));
         }
         let missing = |f: &str| format!("a {name} needs `{f}`");
@@ -227,7 +232,15 @@ impl TryFrom<RawObject> for ObjectDef {
         };
         let material =
             r.material.ok_or_else(|| format!("a {name} needs a `material` (the name of a [materials.NAME])"))?;
-        Ok(ObjectDef { shape, material, transform: r.transform, interior: r.interior, exterior: r.exterior })
+        let flip_normals = r.flip_normals.unwrap_or(false);
+        Ok(ObjectDef {
+            shape,
+            material,
+            transform: r.transform,
+            interior: r.interior,
+            exterior: r.exterior,
+            flip_normals,
+        })
     }
 }
 
@@ -238,6 +251,7 @@ impl From<ObjectDef> for RawObject {
             transform: o.transform,
             interior: o.interior,
             exterior: o.exterior,
+            flip_normals: o.flip_normals.then_some(true),
             ..Default::default()
         };
         r.kind = Some(match o.shape {

@@ -120,12 +120,14 @@ pub(crate) fn sample_flat_lanes<const N: usize>(
 pub(crate) struct SphereLights<const N: usize> {
     pub center: Vec3s<N>,
     pub radius: F32s<N>,
+    /// Spheres whose normals point inward ([`Sphere::inward`]).
+    pub inward: Ms<N>,
 }
 
 /// Points sampled on sphere lights, seen from reference points.
 pub(crate) struct SphereSamples<const N: usize> {
     pub point: Vec3s<N>,
-    /// Outward unit normal at `point`.
+    /// Unit normal at `point` (outward, or inward on an inward sphere).
     pub normal: Vec3s<N>,
     /// Unit direction from the reference point to `point`, and the distance.
     pub wi: Vec3s<N>,
@@ -172,6 +174,7 @@ pub(crate) fn sample_sphere_lanes<const N: usize>(
     let dist = d.length();
     let wi = d.scale(1.0 / dist);
     let area_pdf = dist * dist / (normal.dot(&wi).abs() * (4.0 * PI * r2));
+    let normal = Vec3s::select(l.inward, &normal.neg(), &normal);
     SphereSamples { point, normal, wi, dist, pdf: F32s::select(outside, cone_pdf, area_pdf) }
 }
 
@@ -372,7 +375,8 @@ fn cone_cos_max(s: &Sphere, dist2: f32) -> f32 {
 
 /// A sphere light: the one-lane instance of [`sample_sphere_lanes`].
 fn sample_sphere(s: &Sphere, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
-    let l = SphereLights { center: Vec3s::splat(s.center), radius: F32s([s.radius]) };
+    let inward = if s.inward { Ms::ALL } else { Ms::NONE };
+    let l = SphereLights { center: Vec3s::splat(s.center), radius: F32s([s.radius]), inward };
     let x = sample_sphere_lanes(&l, &Vec3s::splat(ref_p), F32s([u.x]), F32s([u.y]));
     let (dist, pdf) = (x.dist.0[0], x.pdf.0[0]);
     (dist > 0.0 && pdf > 0.0 && pdf.is_finite()).then(|| ShapeSample {

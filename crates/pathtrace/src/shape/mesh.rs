@@ -39,6 +39,23 @@ pub struct TriangleMesh {
 }
 
 impl TriangleMesh {
+    /// Turns the surface over (Mitsuba's `flip_normals`): every triangle's winding is reversed,
+    /// so its face normal e1 × e2 points the other way, and stored vertex normals are negated.
+    /// Positions and texture coordinates are untouched, so the surface and its texturing stay
+    /// the same; a tangent's bitangent sign is negated too, keeping the bitangent w·(n × t) —
+    /// the texture's v direction — where it was.
+    pub fn flip_normals(&mut self) {
+        for [_, b, c] in &mut self.indices {
+            std::mem::swap(b, c);
+        }
+        for n in self.normals.iter_mut().flatten() {
+            *n = -*n;
+        }
+        for t in self.tangents.iter_mut().flatten() {
+            t.w = -t.w;
+        }
+    }
+
     /// Checks indices, normal and texture-coordinate counts and finiteness.
     pub fn validate(&self) -> Result<(), MeshError> {
         if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {

@@ -5,17 +5,19 @@ use super::{PrimHit, Shape, SurfacePoint};
 use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, Vec4, PI};
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
-/// A sphere with outward normals.
+/// A sphere, with outward normals unless `inward` (Mitsuba's `flip_normals`: the front of a
+/// one-sided material or light is then the inside, as for a sky dome around a scene).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere {
     pub center: Vec3,
     pub radius: f32,
+    pub inward: bool,
 }
 
 impl Sphere {
-    /// `None` unless the radius is positive and everything finite.
+    /// `None` unless the radius is positive and everything finite. Normals point outward.
     pub fn new(center: Vec3, radius: f32) -> Option<Self> {
-        (radius > 0.0 && radius.is_finite() && center.is_finite()).then_some(Self { center, radius })
+        (radius > 0.0 && radius.is_finite() && center.is_finite()).then_some(Self { center, radius, inward: false })
     }
 
     /// The nearest hit with t ∈ [t_min, t_max]: the one-lane instance of [`Sphere::hits`].
@@ -36,18 +38,21 @@ impl Sphere {
     /// re-projected onto the surface to cut the intersection's rounding error.
     #[inline(always)]
     pub fn point_and_normal(&self, p_raw: Vec3) -> (Vec3, Vec3) {
-        let n = ((p_raw - self.center) / self.radius).normalize_or(Vec3::Z);
-        (self.center + n * self.radius, n)
+        let out = ((p_raw - self.center) / self.radius).normalize_or(Vec3::Z);
+        (self.center + out * self.radius, if self.inward { -out } else { out })
     }
 
     pub fn surface(&self, ray: &Ray, hit: &PrimHit) -> SurfacePoint {
         let (p, n) = self.point_and_normal(ray.at(hit.t));
-        let (dpdu, dpdv) = sphere_dp_duv(n);
+        // The parameterisation is the outward direction's whichever way the normal faces (as
+        // Mitsuba's flip_normals turns only the normal).
+        let out = if self.inward { -n } else { n };
+        let (dpdu, dpdv) = sphere_dp_duv(out);
         SurfacePoint {
             p,
             n_geometric: n,
             n_shading: n,
-            uv: sphere_uv(n),
+            uv: sphere_uv(out),
             dpdu: dpdu * self.radius,
             dpdv: dpdv * self.radius,
             vertex_tangent: Vec4::ZERO,
@@ -64,7 +69,7 @@ impl Sphere {
 
     pub(super) fn transformed(&self, t: &Transform) -> Shape {
         match t.uniform_scale() {
-            Some(s) => Shape::Sphere(Sphere { center: t.point(self.center), radius: self.radius * s }),
+            Some(s) => Shape::Sphere(Sphere { center: t.point(self.center), radius: self.radius * s, ..*self }),
             None => Shape::Ellipsoid(Ellipsoid {
                 to_world: Box::new(
                     Transform::scale(Vec3::splat(self.radius))
@@ -72,6 +77,7 @@ impl Sphere {
                         .then(&Transform::translate(self.center))
                         .then(t),
                 ),
+                inward: self.inward,
             }),
         }
     }
@@ -140,10 +146,12 @@ fn sphere_dp_duv(n: Vec3) -> (Vec3, Vec3) {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ellipsoid {
     pub to_world: Box<Transform>,
+    /// Normals point inward (see [`Sphere::inward`]).
+    pub inward: bool,
 }
 
 impl Ellipsoid {
-    const UNIT: Sphere = Sphere { center: Vec3::ZERO, radius: 1.0 };
+    const UNIT: Sphere = Sphere { center: Vec3::ZERO, radius: 1.0, inward: false };
 
     fn object_ray(&self, ray: &Ray) -> Ray {
         let inv = &self.to_world.inverse;
@@ -157,7 +165,7 @@ impl Ellipsoid {
 
     pub fn surface(&self, ray: &Ray, hit: &PrimHit) -> SurfacePoint {
         let local = Self::UNIT.surface(&self.object_ray(ray), hit);
-        let n = self.to_world.normal(local.n_geometric);
+        let n = self.to_world.normal(if self.inward { -local.n_geometric } else { local.n_geometric });
         SurfacePoint {
             p: self.to_world.point(local.p),
             n_geometric: n,
@@ -182,7 +190,7 @@ impl Ellipsoid {
     }
 
     pub(super) fn transformed(&self, t: &Transform) -> Ellipsoid {
-        Ellipsoid { to_world: Box::new(self.to_world.then(t)) }
+        Ellipsoid { to_world: Box::new(self.to_world.then(t)), inward: self.inward }
     }
 }
 

@@ -112,7 +112,7 @@ impl FlatGeometry {
     }
 
     /// Where a ray met primitive `i` at `p`, if it is a sphere: the re-projected point and its
-    /// outward unit normal.
+    /// unit normal (`Sphere::point_and_normal`: outward unless the sphere is inward).
     #[inline(always)]
     pub fn sphere_hit(&self, i: u32, p: Vec3) -> Option<(Vec3, Vec3)> {
         let k = (i as usize).checked_sub(self.normals.len())?;

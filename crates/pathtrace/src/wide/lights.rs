@@ -30,6 +30,7 @@ struct FlatLight {
 struct SphereLight {
     center: Vec3,
     radius: f32,
+    inward: bool,
     radiance: Rgb,
     two_sided: bool,
 }
@@ -129,7 +130,8 @@ impl WideLights {
                     LightShape::Quad(q) => (q.q, q.u, q.v, false),
                     LightShape::Triangle(t) => (t.p0, t.e1, t.e2, true),
                     LightShape::Sphere(s) => {
-                        let sphere = SphereLight { center: s.center, radius: s.radius, radiance, two_sided };
+                        let sphere =
+                            SphereLight { center: s.center, radius: s.radius, inward: s.inward, radiance, two_sided };
                         return Some(WideLight::Sphere(sphere));
                     }
                     LightShape::Disk(_) => return None,
@@ -164,7 +166,7 @@ impl WideLights {
             normal: Vec3s::default(),
             triangle: Ms::NONE,
         };
-        let mut spheres = SphereLights { center: Vec3s::default(), radius: F32s::ZERO };
+        let mut spheres = SphereLights { center: Vec3s::default(), radius: F32s::ZERO, inward: Ms::NONE };
         let mut on_sphere = Ms::<N>::NONE;
         // The selection pmf, divided by the area for flat lights (whose density is per area).
         let mut pmf_factor = F32s::<N>::ZERO;
@@ -187,6 +189,7 @@ impl WideLights {
                 WideLight::Sphere(l) => {
                     spheres.center.set(i, l.center);
                     spheres.radius.0[i] = l.radius;
+                    spheres.inward.0[i] = u32::from(l.inward).wrapping_neg();
                     on_sphere.0[i] = u32::MAX;
                     pmf_factor.0[i] = pmf;
                     (l.radiance, l.two_sided)
