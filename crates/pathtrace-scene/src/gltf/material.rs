@@ -191,7 +191,7 @@ fn alpha_opacity(
     let texture = m.pbr_metallic_roughness().base_color_texture().and_then(|info| {
         super::texture::colour_texture(&info, file_name).ok().map(|t| match t {
             TextureDef::Bitmap { filename, nearest, clamp, to_uv, .. } => {
-                TextureDef::Bitmap { filename, raw: true, nearest, clamp, to_uv, alpha: true }
+                TextureDef::Bitmap { filename, raw: true, nearest, clamp, to_uv, alpha: true, factor: Triple::ONE }
             }
             other => other,
         })
