@@ -72,12 +72,14 @@ impl Transform {
     }
 }
 
-/// A colour texture (sRGB-decoded) from `info` of the glTF file `file_name`, or why not.
-pub fn colour_texture(info: &gltf::texture::Info, file_name: &str) -> Result<TextureDef, String> {
+/// A colour texture (sRGB-decoded) from `info` of the glTF file `file_name` times `factor`
+/// (glTF's baseColorFactor; 1 for an emissive texture, whose factor scales the radiance), or
+/// why not.
+pub fn colour_texture(info: &gltf::texture::Info, file_name: &str, factor: Triple) -> Result<TextureDef, String> {
     let t = Transform::of_info(info.texture_transform());
     t.check_set(info.tex_coord())?;
     let (filename, nearest, clamp) = image(&info.texture(), file_name);
-    Ok(TextureDef::Bitmap { filename, raw: false, nearest, clamp, to_uv: t.to_uv(), alpha: false, factor: Triple::ONE })
+    Ok(TextureDef::Bitmap { filename, raw: false, nearest, clamp, to_uv: t.to_uv(), alpha: false, factor })
 }
 
 /// One linear channel of `info`'s image times `factor` (glTF's metallic-roughness texture:
