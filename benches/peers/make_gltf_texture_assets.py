@@ -26,6 +26,15 @@ crates/pathtrace-scene/tests/data/maps/ (plain Python, no dependencies):
   Twin metallic.xml: a `twosided` `blendbsdf` whose `weight` is a nearest `bitmap` of
   metallic_weight.pfm (0.9 × blue per texel), `bsdf_0` a `diffuse` and `bsdf_1` the
   metal_rough.xml `roughconductor` (α from metal_rough_alpha.pfm), both of the base colour.
+- basecolor.gltf + basecolor.bin + basecolor.png: a Lambertian floor (specularFactor 0) whose
+  base colour is baseColorTexture (a 4 × 4 sRGB RGBA image, bilinear) × a non-white
+  baseColorFactor, alphaMode BLEND with opacity = baseColorFactor's alpha × the texture's alpha
+  (glTF 2.0 §3.9.2), lit by the standing panel of constant emission.
+  Twin basecolor.xml: a `mask` whose `opacity` is a `bitmap` of basecolor_alpha.pfm (factor ×
+  alpha per texel) around a `diffuse` whose `reflectance` is a `bitmap` of basecolor_albedo.pfm
+  (the texels sRGB-decoded and multiplied by the factor here: Mitsuba's bitmap has no scale;
+  bilinear filtering is linear, so scaling the texels equals scaling the filtered value), with
+  `volpath` and unlimited depth as cutout.xml (crates/pathtrace-scene/tests/gltf_base_colour.rs).
 
     python3 benches/peers/make_gltf_texture_assets.py
 """
@@ -154,15 +163,25 @@ def glb(doc, data):
     return out + struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(bin_), 0x004E4942) + bin_
 
 
-def twin(title, shapes, pfm_note):
-    return f"""<?xml version="1.0"?>
-<!-- The Mitsuba 3 twin of {title}, written by benches/peers/make_gltf_texture_assets.py
-     ({pfm_note}). Used by crates/pathtrace-scene/tests/gltf_textures.rs. -->
-<scene version="3.0.0">
-    <integrator type="path">
+PATH_DEPTH_4 = """    <integrator type="path">
         <integer name="max_depth" value="4"/>
     </integrator>
-{mitsuba_sensor(CAMERA)}{shapes}</scene>
+"""
+# Mitsuba's `path` counts a pass through a `mask` as a bounce and stops shadow rays at masked
+# surfaces; `volpath` passes them, as ours do (tests load the twin with -D integrator=path).
+VOLPATH_UNLIMITED = """    <default name="integrator" value="volpath"/>
+    <integrator type="$integrator">
+        <integer name="max_depth" value="-1"/>
+    </integrator>
+"""
+
+
+def twin(title, shapes, pfm_note, test="gltf_textures.rs", integrator=PATH_DEPTH_4):
+    return f"""<?xml version="1.0"?>
+<!-- The Mitsuba 3 twin of {title}, written by benches/peers/make_gltf_texture_assets.py
+     ({pfm_note}). Used by crates/pathtrace-scene/tests/{test}. -->
+<scene version="3.0.0">
+{integrator}{mitsuba_sensor(CAMERA)}{shapes}</scene>
 """
 
 
@@ -329,11 +348,70 @@ def write_metallic():
                      "α = (roughnessFactor × green)²"))
 
 
+# basecolor.png, sRGB bytes (RGBA, first row at the top), and the factor (RGB, alpha).
+BASE_SRGBA = [
+    [(230, 200, 90, 255), (90, 160, 230, 204), (200, 90, 140, 153), (250, 250, 250, 255)],
+    [(120, 230, 120, 128), (240, 140, 60, 255), (60, 60, 60, 230), (180, 210, 240, 179)],
+    [(255, 255, 255, 179), (150, 90, 200, 255), (220, 180, 130, 102), (90, 200, 190, 255)],
+    [(200, 60, 60, 255), (130, 130, 220, 153), (245, 225, 170, 255), (160, 240, 90, 204)],
+]
+BASE_FACTOR = [0.9, 0.6, 0.3, 0.7]
+
+
+def write_basecolor():
+    data, views, accessors = geometry()
+    with open(os.path.join(OUT, "basecolor.bin"), "wb") as f:
+        f.write(data)
+    with open(os.path.join(OUT, "basecolor.png"), "wb") as f:
+        f.write(png([[c for texel in row for c in texel] for row in BASE_SRGBA], 4))
+    floor = {"pbrMetallicRoughness": {"baseColorFactor": BASE_FACTOR, "metallicFactor": 0.0,
+                                      "baseColorTexture": {"index": 0}},
+             "alphaMode": "BLEND",
+             "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}
+    panel = {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0.0},
+             "emissiveFactor": [1.0, 1.0, 1.0],
+             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": PANEL_RADIANCE}}}
+    doc = document("basecolor", data, views, accessors, panel, {"uri": "basecolor.png"}, floor)
+    with open(os.path.join(OUT, "basecolor.gltf"), "w") as f:
+        json.dump(doc, f, indent=1)
+    albedo = [[tuple(srgb_decode(t[k] / 255) * BASE_FACTOR[k] for k in range(3)) for t in row] for row in BASE_SRGBA]
+    write_pfm(os.path.join(OUT, "basecolor_albedo.pfm"), albedo)
+    alpha = [[(BASE_FACTOR[3] * t[3] / 255,) * 3 for t in row] for row in BASE_SRGBA]
+    write_pfm(os.path.join(OUT, "basecolor_alpha.pfm"), alpha)
+    shapes = f"""    <shape type="obj">
+        <string name="filename" value="emissive_floor.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <boolean name="flip_tex_coords" value="false"/>
+        <bsdf type="mask">
+            <texture name="opacity" type="bitmap">
+                <string name="filename" value="basecolor_alpha.pfm"/>
+            </texture>
+            <bsdf type="diffuse">
+                <texture name="reflectance" type="bitmap">
+                    <string name="filename" value="basecolor_albedo.pfm"/>
+                </texture>
+            </bsdf>
+        </bsdf>
+    </shape>
+    <shape type="obj">
+        <string name="filename" value="emissive_panel.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="{rgb([PANEL_RADIANCE] * 3)}"/></emitter>
+    </shape>
+"""
+    with open(os.path.join(OUT, "basecolor.xml"), "w") as f:
+        f.write(twin("basecolor.gltf (same floor, uv, base colour and alpha texels × factor, panel, camera)", shapes,
+                     "basecolor_albedo.pfm: basecolor.png sRGB-decoded × baseColorFactor.rgb; basecolor_alpha.pfm: "
+                     "baseColorFactor.a × the texture's alpha", "gltf_base_colour.rs", VOLPATH_UNLIMITED))
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     write_emissive()
     write_metal_rough()
     write_metallic()
+    write_basecolor()
 
 
 if __name__ == "__main__":

@@ -152,7 +152,8 @@ fn damaged_glb_never_panics() {
 }
 
 /// A base colour texture stored as a file becomes an image texture with the sampler's wrap and
-/// filter and `KHR_texture_transform`'s matrix; an embedded one is named inside the glTF file.
+/// filter and `KHR_texture_transform`'s matrix; an embedded one is named inside the glTF file. A
+/// non-white baseColorFactor is the texture's factor (glTF 2.0 §3.9.2), without a warning.
 #[test]
 fn base_colour_textures_and_their_transform_convert() {
     use pathtrace_scene::native::model::{Colour, MaterialKind, TextureDef};
@@ -172,16 +173,16 @@ fn base_colour_textures_and_their_transform_convert() {
     let path = dir.path().join("scene.gltf");
     std::fs::write(&path, serde_json::to_vec(&v).unwrap()).unwrap();
     let (file, warnings) = convert_file(&path, &[]).unwrap();
-    // Material 1's colour factor is not white: only that is warned about.
-    assert_eq!(warnings.len(), 1, "{warnings:#?}");
-    assert!(warnings[0].contains("materials[1]") && warnings[0].contains("baseColorFactor"), "{warnings:?}");
+    // Material 1's colour factor is not white: it multiplies the texture, nothing is warned.
+    assert!(warnings.is_empty(), "{warnings:#?}");
     let MaterialKind::Lambertian {
-        albedo: Colour::Texture(TextureDef::Bitmap { filename, nearest, clamp, to_uv, .. }),
+        albedo: Colour::Texture(TextureDef::Bitmap { filename, nearest, clamp, to_uv, factor, .. }),
     } = &file.materials["gltf-0"].kind
     else {
         panic!("{:?}", file.materials["gltf-0"]);
     };
     assert_eq!((filename.as_str(), *nearest, *clamp), ("wood grain.png", true, true));
+    assert_eq!(*factor, pathtrace_scene::native::model::Triple::ONE);
     // M = T·R(90°)·S(2, 3): [[0, 3, 0.5], [−2, 0, 0.25]].
     let rows: Vec<Vec<f64>> = to_uv.iter().map(|r| r.iter().map(|x| x.get()).collect()).collect();
     let expected = [[0.0, 3.0, 0.5], [-2.0, 0.0, 0.25]];
@@ -191,12 +192,13 @@ fn base_colour_textures_and_their_transform_convert() {
         }
     }
     // The data: URI image is named inside the glTF; its bytes (not a PNG) fail at the build.
-    let MaterialKind::Lambertian { albedo: Colour::Texture(TextureDef::Bitmap { filename, .. }) } =
+    let MaterialKind::Lambertian { albedo: Colour::Texture(TextureDef::Bitmap { filename, factor, .. }) } =
         &file.materials["gltf-1"].kind
     else {
         panic!("{:?}", file.materials["gltf-1"]);
     };
     assert_eq!(filename, "scene.gltf#images[1]");
+    assert_eq!(factor.vec3().to_array(), [0.2, 0.4, 0.7]);
     let image = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/maps/emissive.png");
     std::fs::copy(image, dir.path().join("wood grain.png")).unwrap();
     let e = load_gltf(&path, &[]).map(|_| ()).expect_err("an error").to_string();

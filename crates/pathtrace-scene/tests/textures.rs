@@ -112,6 +112,8 @@ fn a_textured_square_under_a_white_sky_reflects_the_texture_mean() {
         ),
         (r#"{ type = "bitmap", filename = "grey.png" }"#, [0.21586; 3]),
         (r#"{ type = "bitmap", filename = "grey.png", raw = true, scale = 3 }"#, [128.0 / 255.0; 3]),
+        // `factor` multiplies the decoded texels (glTF's baseColorFactor × baseColorTexture).
+        (r#"{ type = "bitmap", filename = "grey.png", factor = [1, 0.5, 0.25] }"#, [0.21586, 0.10793, 0.053965]),
     ];
     for (albedo, expected) in cases {
         let mean = rendered_mean(&square_scene(albedo), &dir);
@@ -137,6 +139,13 @@ fn bad_texture_tables_are_errors_at_their_line_and_column() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("s.toml:15:") && e.contains("cannot load texture") && e.contains("nope.png"), "{e}");
+    // A bad bitmap `factor` is pointed at: the texture for a value the texture checks, the
+    // number itself for one that is not a number.
+    for (factor, at, what) in [("-1", "s.toml:15:10:", "≥ 0"), ("[1, 2]", "s.toml:15:", "three numbers")] {
+        let t = format!(r#"{{ type = "bitmap", filename = "grey.png", factor = {factor} }}"#);
+        let e = load_str(&square_scene(&t), Format::Toml, &dir.join("s.toml")).unwrap_err().to_string();
+        assert!(e.contains(at) && e.contains(what), "{factor}: {e}");
+    }
     // A texture where a plain colour is required (a light's radiance) is a type error.
     let bad = square_scene("0.5").replace("radiance = 1", r#"radiance = { type = "checkerboard" }"#);
     assert!(load_str(&bad, Format::Toml, &dir.join("s.toml")).is_err());

@@ -7,7 +7,8 @@
 //! Substituted, with a warning: other dielectrics become `rough_plastic` (GGX, same α and ior),
 //! metals a `rough_conductor` of a perfect mirror metal tinted by the base colour (no Schlick
 //! edge brightening), partial `metallic` the nearer of the two, transmission a `rough_dielectric`.
-//! A base colour texture becomes an image texture (see `texture.rs`), an emissive texture the
+//! A base colour texture becomes an image texture times baseColorFactor (see `texture.rs`), an
+//! emissive texture the
 //! texture the emitted radiance is multiplied by, the metallic-roughness texture's green channel
 //! (times roughnessFactor, squared after filtering) the α of the rough conductor, dielectric or
 //! plastic; its blue channel (metallic, times metallicFactor) makes the material a `blend` of the
@@ -70,14 +71,10 @@ pub fn convert(
         }
     });
     let factor = [base_factor[0], base_factor[1], base_factor[2]];
+    // glTF 2.0 §3.9.2: the base colour is baseColorFactor × the (sRGB-decoded) texture.
     let base = match pbr.as_ref().and_then(|p| p.base_color_texture()) {
-        Some(info) => match super::texture::colour_texture(&info, file_name) {
-            Ok(t) => {
-                if factor != [1.0; 3] {
-                    w("baseColorFactor times a texture is not supported: using the texture alone");
-                }
-                Colour::Texture(t)
-            }
+        Some(info) => match super::texture::colour_texture(&info, file_name, triple(factor)) {
+            Ok(t) => Colour::Texture(t),
             Err(e) => {
                 w(&format!("base colour texture: {e}: using baseColorFactor"));
                 Colour::Constant(triple(factor))
@@ -152,7 +149,7 @@ pub fn convert(
         texture: m.and_then(|m| emissive_texture(m, file_name, &mut w)),
     });
     let normal = m.and_then(|m| m.normal_texture()).and_then(|n| normal_map(&n, file_name, &mut w));
-    let mut opacity = m.and_then(|m| alpha_opacity(m, base_factor[3], file_name, &mut w));
+    let mut opacity = m.and_then(|m| alpha_opacity(m, base_factor[3], file_name));
     if opacity.is_some() && emission.is_some() {
         w("an emissive material cannot be cut out: alphaMode ignored");
         opacity = None;
@@ -164,7 +161,7 @@ pub fn convert(
 /// (`emissiveFactor` × `emissive_strength`) is multiplied by.
 fn emissive_texture(m: &gltf::Material, file_name: &str, w: &mut dyn FnMut(&str)) -> Option<Colour> {
     let info = m.emissive_texture()?;
-    match super::texture::colour_texture(&info, file_name) {
+    match super::texture::colour_texture(&info, file_name, Triple::ONE) {
         Ok(t) => Some(Colour::Texture(t)),
         Err(e) => {
             w(&format!("emissive texture: {e}: using emissiveFactor alone"));
@@ -175,35 +172,27 @@ fn emissive_texture(m: &gltf::Material, file_name: &str, w: &mut dyn FnMut(&str)
 
 /// `alphaMode` `MASK` (opaque where alpha ≥ `alphaCutoff`, default 0.5) or `BLEND` (alpha as
 /// the opacity: the surface is there with that probability, which is how a path tracer sees a
-/// blended surface) as a native opacity: the base colour texture's alpha channel, or
-/// `baseColorFactor`'s alpha without a texture.
-fn alpha_opacity(
-    m: &gltf::Material,
-    factor_alpha: f32,
-    file_name: &str,
-    w: &mut dyn FnMut(&str),
-) -> Option<OpacityDef> {
+/// blended surface) as a native opacity: the base colour texture's alpha channel times
+/// `baseColorFactor`'s alpha, or that alpha alone without a texture (glTF 2.0 §3.9.2; MASK
+/// compares the product with the cutoff, as the specification's alpha coverage says).
+fn alpha_opacity(m: &gltf::Material, factor_alpha: f32, file_name: &str) -> Option<OpacityDef> {
     let cutoff = match m.alpha_mode() {
         gltf::material::AlphaMode::Opaque => return None,
         gltf::material::AlphaMode::Mask => Some(num(m.alpha_cutoff().unwrap_or(0.5))),
         gltf::material::AlphaMode::Blend => None,
     };
+    let factor = Triple::Splat(num(factor_alpha));
     let texture = m.pbr_metallic_roughness().base_color_texture().and_then(|info| {
-        super::texture::colour_texture(&info, file_name).ok().map(|t| match t {
-            TextureDef::Bitmap { filename, nearest, clamp, to_uv, .. } => {
-                TextureDef::Bitmap { filename, raw: true, nearest, clamp, to_uv, alpha: true }
+        super::texture::colour_texture(&info, file_name, factor).ok().map(|t| match t {
+            TextureDef::Bitmap { filename, nearest, clamp, to_uv, factor, .. } => {
+                TextureDef::Bitmap { filename, raw: true, nearest, clamp, to_uv, alpha: true, factor }
             }
             other => other,
         })
     });
     let texture = match texture {
-        Some(t) => {
-            if factor_alpha != 1.0 {
-                w("baseColorFactor's alpha times the texture's alpha is not supported: using the texture's alpha");
-            }
-            Colour::Texture(t)
-        }
-        None => Colour::Constant(Triple::Splat(num(factor_alpha))),
+        Some(t) => Colour::Texture(t),
+        None => Colour::Constant(factor),
     };
     Some(OpacityDef { texture, cutoff })
 }

@@ -6,7 +6,7 @@
 
 use super::images::reference;
 use super::num;
-use crate::native::model::{TextureDef, UvRows};
+use crate::native::model::{TextureDef, Triple, UvRows};
 
 /// `KHR_texture_transform`'s parameters (the extension's defaults when absent).
 struct Transform {
@@ -72,12 +72,14 @@ impl Transform {
     }
 }
 
-/// A colour texture (sRGB-decoded) from `info` of the glTF file `file_name`, or why not.
-pub fn colour_texture(info: &gltf::texture::Info, file_name: &str) -> Result<TextureDef, String> {
+/// A colour texture (sRGB-decoded) from `info` of the glTF file `file_name` times `factor`
+/// (glTF's baseColorFactor; 1 for an emissive texture, whose factor scales the radiance), or
+/// why not.
+pub fn colour_texture(info: &gltf::texture::Info, file_name: &str, factor: Triple) -> Result<TextureDef, String> {
     let t = Transform::of_info(info.texture_transform());
     t.check_set(info.tex_coord())?;
     let (filename, nearest, clamp) = image(&info.texture(), file_name);
-    Ok(TextureDef::Bitmap { filename, raw: false, nearest, clamp, to_uv: t.to_uv(), alpha: false })
+    Ok(TextureDef::Bitmap { filename, raw: false, nearest, clamp, to_uv: t.to_uv(), alpha: false, factor })
 }
 
 /// One linear channel of `info`'s image times `factor` (glTF's metallic-roughness texture:
@@ -101,7 +103,7 @@ pub fn normal_texture(n: &gltf::material::NormalTexture, file_name: &str) -> Res
     let t = Transform::of_json(n.extension_value("KHR_texture_transform"))?;
     t.check_set(n.tex_coord())?;
     let (filename, nearest, clamp) = image(&n.texture(), file_name);
-    Ok(TextureDef::Bitmap { filename, raw: true, nearest, clamp, to_uv: t.to_uv(), alpha: false })
+    Ok(TextureDef::Bitmap { filename, raw: true, nearest, clamp, to_uv: t.to_uv(), alpha: false, factor: Triple::ONE })
 }
 
 /// The image's native filename (a file next to the glTF, or a reference to the embedded image)

@@ -11,7 +11,7 @@ use super::model::{
     RoughnessDef, SceneFile, ShapeDef, TextureDef, UvRows,
 };
 use super::transform::compose;
-use super::values::vec3;
+use super::values::{vec3, Triple};
 use crate::{LoadedScene, RenderDefaults};
 use pathtrace::film::Image;
 use pathtrace::film::{GaussianFilter, PixelFilter};
@@ -417,15 +417,11 @@ impl<L: Locate> Ctx<'_, L> {
         let texture = |ctx: &Self, c: &Colour, field: &str, force_raw: bool| -> Result<Texture, SceneError> {
             match c {
                 Colour::Constant(t) => Ok(Texture::Constant(t.rgb())),
-                Colour::Texture(TextureDef::Bitmap { filename, nearest, clamp, to_uv, alpha, .. }) if force_raw => {
-                    let raw = TextureDef::Bitmap {
-                        filename: filename.clone(),
-                        raw: true,
-                        nearest: *nearest,
-                        clamp: *clamp,
-                        to_uv: *to_uv,
-                        alpha: *alpha,
-                    };
+                Colour::Texture(t @ TextureDef::Bitmap { .. }) if force_raw => {
+                    let mut raw = t.clone();
+                    if let TextureDef::Bitmap { raw: r, .. } = &mut raw {
+                        *r = true;
+                    }
                     ctx.texture(&raw, &at.field(field))
                 }
                 Colour::Texture(t) => ctx.texture(t, &at.field(field)),
@@ -454,8 +450,15 @@ impl<L: Locate> Ctx<'_, L> {
             TextureDef::Checkerboard { color0, color1, to_uv } => {
                 Ok(Texture::Checkerboard(Checkerboard { color0: color0.rgb(), color1: color1.rgb(), to_uv: uv(to_uv) }))
             }
-            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha } => {
-                let image = self.texture_image(filename, *raw, *alpha, at)?;
+            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha, factor } => {
+                let mut image = self.texture_image(filename, *raw, *alpha, at)?;
+                // glTF 2.0 §3.9.2: base colour = factor × texture (sRGB-decoded), alpha = factor ×
+                // texture alpha. Bilinear and nearest lookups are linear in the texels, so scaling
+                // every decoded texel once here equals scaling each filtered value.
+                if *factor != Triple::ONE {
+                    let f = factor.rgb();
+                    image.pixels.iter_mut().for_each(|p| *p *= f);
+                }
                 let mut b = Bitmap::new(image.width, image.height, image.pixels).ok_or_else(|| {
                     self.src.error_at(at, format!("texture `{filename}` has negative or non-finite texels"))
                 })?;

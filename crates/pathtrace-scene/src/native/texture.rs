@@ -4,6 +4,7 @@
 //! ```toml
 //! albedo = { type = "checkerboard", color0 = 0.4, color1 = 0.2, scale = 8 }
 //! albedo = { type = "bitmap", filename = "textures/wood.jpg", raw = false, to_uv = [[2, 0, 0], [0, 2, 0]] }
+//! albedo = { type = "bitmap", filename = "base.png", factor = [0.9, 0.6, 0.3] }
 //! alpha_texture = { type = "channel", filename = "mr.png", channel = "g", factor = 0.8, squared = true }
 //! ```
 //!
@@ -66,7 +67,9 @@ pub enum TextureDef {
     /// An image file (PNG, JPEG, EXR, HDR, PFM) relative to the scene file. 8-bit images are
     /// sRGB-decoded unless `raw`; float images are linear. `alpha`: the image's alpha channel
     /// (PNG, JPEG; 1 without one) as a grey texture (`channel = "alpha"`), for opacities.
-    Bitmap { filename: String, raw: bool, nearest: bool, clamp: bool, to_uv: UvRows, alpha: bool },
+    /// `factor` (default 1) multiplies every decoded texel: a colour, or one number for an
+    /// alpha texture (glTF's baseColorFactor × baseColorTexture, glTF 2.0 §3.9.2).
+    Bitmap { filename: String, raw: bool, nearest: bool, clamp: bool, to_uv: UvRows, alpha: bool, factor: Triple },
     /// One channel (`channel` 0, 1, 2 for r, g, b) of an image read raw (linear data, as glTF's
     /// metallic-roughness texture), as a grey texture times `factor`; `squared`: the filtered
     /// value is squared (glTF's roughness r gives α = r²).
@@ -143,8 +146,9 @@ pub struct RawTexture {
     wrap_mode: Option<WrapMode>,
     #[serde(skip_serializing_if = "Option::is_none")]
     channel: Option<Channel>,
+    /// One number, or `[r, g, b]` for a colour bitmap.
     #[serde(skip_serializing_if = "Option::is_none")]
-    factor: Option<Num>,
+    factor: Option<Triple>,
     #[serde(skip_serializing_if = "Option::is_none")]
     squared: Option<bool>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -179,9 +183,10 @@ impl TryFrom<RawTexture> for TextureDef {
             }
         };
         match kind {
-            TextureType::Checkerboard | TextureType::Bitmap if r.factor.is_some() || r.squared.is_some() => {
-                Err("`factor` and `squared` are parameters of a channel texture".into())
+            TextureType::Checkerboard if r.factor.is_some() || r.squared.is_some() => {
+                Err("`factor` and `squared` are parameters of bitmap and channel textures".into())
             }
+            TextureType::Bitmap if r.squared.is_some() => Err("`squared` is a parameter of a channel texture".into()),
             TextureType::Checkerboard => {
                 if let Some(f) = [("filename", r.filename.is_some()), ("raw", r.raw.is_some())]
                     .iter()
@@ -207,13 +212,19 @@ impl TryFrom<RawTexture> for TextureDef {
                     return Err("a single colour channel is a `channel` texture, not a bitmap".into());
                 }
                 let filename = r.filename.ok_or("a bitmap texture needs a `filename`")?;
+                let alpha = r.channel == Some(Channel::Alpha);
+                if alpha && matches!(r.factor, Some(Triple::Each(_))) {
+                    return Err("an alpha texture's `factor` is one number (it multiplies the alpha)".into());
+                }
+                non_negative(r.factor, "factor")?;
                 Ok(TextureDef::Bitmap {
                     filename,
                     raw: r.raw.unwrap_or(false),
                     nearest: r.filter_type == Some(FilterType::Nearest),
                     clamp: r.wrap_mode == Some(WrapMode::Clamp),
                     to_uv,
-                    alpha: r.channel == Some(Channel::Alpha),
+                    alpha,
+                    factor: r.factor.unwrap_or(Triple::ONE),
                 })
             }
             TextureType::Channel => {
@@ -227,7 +238,11 @@ impl TryFrom<RawTexture> for TextureDef {
                     Some(Channel::B) => 2,
                     _ => return Err("a channel texture needs `channel` = \"r\", \"g\" or \"b\"".into()),
                 };
-                let factor = r.factor.unwrap_or(Num::from(1.0));
+                let factor = match r.factor {
+                    None => Num::from(1.0),
+                    Some(Triple::Splat(x)) => x,
+                    Some(Triple::Each(_)) => return Err("a channel texture's `factor` is one number".into()),
+                };
                 if factor.get() < 0.0 {
                     return Err("`factor` must be ≥ 0".into());
                 }
@@ -253,9 +268,10 @@ impl From<&TextureDef> for RawTexture {
                 (r.kind, r.color0, r.color1) = (Some(TextureType::Checkerboard), Some(*color0), Some(*color1));
                 to_uv
             }
-            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha } => {
+            TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha, factor } => {
                 (r.kind, r.filename) = (Some(TextureType::Bitmap), Some(filename.clone()));
                 r.channel = alpha.then_some(Channel::Alpha);
+                r.factor = (*factor != Triple::ONE).then_some(*factor);
                 r.raw = raw.then_some(true);
                 r.filter_type = nearest.then_some(FilterType::Nearest);
                 r.wrap_mode = clamp.then_some(WrapMode::Clamp);
@@ -264,7 +280,7 @@ impl From<&TextureDef> for RawTexture {
             TextureDef::Channel { filename, channel, factor, squared, nearest, clamp, to_uv } => {
                 (r.kind, r.filename) = (Some(TextureType::Channel), Some(filename.clone()));
                 r.channel = Some([Channel::R, Channel::G, Channel::B][(*channel).min(2) as usize]);
-                r.factor = (factor.get() != 1.0).then_some(*factor);
+                r.factor = (factor.get() != 1.0).then_some(Triple::Splat(*factor));
                 r.squared = squared.then_some(true);
                 r.filter_type = nearest.then_some(FilterType::Nearest);
                 r.wrap_mode = clamp.then_some(WrapMode::Clamp);
@@ -364,10 +380,53 @@ mod tests {
         assert!(parse("c = { type = \"bitmap\", filename = \"a.png\", channel = \"g\" }")
             .unwrap_err()
             .contains("channel` texture"));
-        assert!(parse("c = { type = \"bitmap\", filename = \"a.png\", factor = 2 }").unwrap_err().contains("factor"));
+        assert!(parse("c = { type = \"checkerboard\", factor = 2 }").unwrap_err().contains("factor"));
+        assert!(parse("c = { type = \"bitmap\", filename = \"a.png\", squared = true }")
+            .unwrap_err()
+            .contains("`squared`"));
+        assert!(parse("c = { type = \"channel\", filename = \"a.png\", channel = \"r\", factor = [1, 1, 1] }")
+            .unwrap_err()
+            .contains("one number"));
         assert!(parse("c = { type = \"channel\", filename = \"a.png\", channel = \"r\", factor = -1 }")
             .unwrap_err()
             .contains("≥ 0"));
+    }
+
+    #[test]
+    fn bitmap_factors_parse_with_default_one() {
+        let factor = |text: &str| match parse(text) {
+            Ok(Colour::Texture(TextureDef::Bitmap { factor, alpha, .. })) => (factor, alpha),
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(factor("c = { type = \"bitmap\", filename = \"a.png\" }"), (Triple::ONE, false));
+        let (f, _) = factor("c = { type = \"bitmap\", filename = \"a.png\", factor = [0.9, 0.6, 0.3] }");
+        assert_eq!(f.vec3().to_array(), [0.9, 0.6, 0.3]);
+        let (f, alpha) = factor("c = { type = \"bitmap\", filename = \"a.png\", channel = \"alpha\", factor = 0.7 }");
+        assert!(matches!(f, Triple::Splat(x) if x.get() == 0.7) && alpha, "{f:?}");
+        // 1 is the default: not written back.
+        let t = factor("c = { type = \"bitmap\", filename = \"a.png\", factor = 1 }").0;
+        assert_eq!(t, Triple::ONE);
+        let Colour::Texture(def) = parse("c = { type = \"bitmap\", filename = \"a.png\", factor = 1 }").unwrap() else {
+            panic!()
+        };
+        assert!(!serde_json::to_string(&RawTexture::from(&def)).unwrap().contains("factor"));
+    }
+
+    /// Bad factors are errors that name the line of the texture (or of the bad number).
+    #[test]
+    fn bad_bitmap_factors_are_located() {
+        for (text, expected) in [
+            ("factor = -0.5", "`factor` must be ≥ 0"),
+            ("factor = [0.5, -0.1, 1]", "`factor` must be ≥ 0"),
+            ("factor = nan", "NaN is not allowed"),
+            ("factor = [0.5, 0.5]", "three numbers"),
+            ("factor = [1, 1, 1, 1]", "three numbers"),
+            ("factor = \"red\"", "a number or an array of three numbers"),
+            ("channel = \"alpha\", factor = [1, 0.5, 1]", "one number"),
+        ] {
+            let e = parse(&format!("\n\nc = {{ type = \"bitmap\", filename = \"a.png\", {text} }}")).unwrap_err();
+            assert!(e.contains(expected) && e.contains("line 3"), "{text}: {e}");
+        }
     }
 
     #[test]
@@ -376,11 +435,15 @@ mod tests {
             "c = { type = \"checkerboard\", color0 = [1, 0, 0], scale = 8 }",
             "c = { type = \"bitmap\", filename = \"t.exr\", wrap_mode = \"clamp\", to_uv = [[1, 2, 3], [4, 5, 6]] }",
             "c = [0.1, 0.2, 0.3]",
+            "c = { type = \"bitmap\", filename = \"b.png\", factor = [0.9, 0.6, 0.3] }",
+            "c = { type = \"bitmap\", filename = \"b.png\", channel = \"alpha\", factor = 0.7, raw = true }",
             "c = { type = \"channel\", filename = \"s.glb#images[2]\", channel = \"g\", factor = 0.5, squared = true }",
         ] {
             let c = parse(text).unwrap();
             let json = serde_json::to_string(&c).unwrap();
             assert_eq!(serde_json::from_str::<Colour>(&json).unwrap(), c, "{json}");
+            let toml_text = toml::to_string(&std::collections::BTreeMap::from([("c", &c)])).unwrap();
+            assert_eq!(parse(&toml_text).unwrap(), c, "{toml_text}");
         }
     }
 }

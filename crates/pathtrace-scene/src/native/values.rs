@@ -94,6 +94,9 @@ pub enum Triple {
 }
 
 impl Triple {
+    /// One, three times: the neutral factor.
+    pub const ONE: Triple = Triple::Splat(Num(1.0));
+
     /// The three numbers as a vector.
     pub fn vec3(&self) -> Vec3 {
         match self {

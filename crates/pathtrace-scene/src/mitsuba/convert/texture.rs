@@ -97,7 +97,8 @@ impl<'a> Conv<'a, '_> {
                 self.warn(t, &format!("bitmap format `{f}` is not supported, using full precision"));
             }
         }
-        Ok(TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha: false })
+        // Mitsuba's bitmap has no scale: the factor is 1.
+        Ok(TextureDef::Bitmap { filename, raw, nearest, clamp, to_uv, alpha: false, factor: Triple::ONE })
     }
 
     /// The uv rows of a `to_uv` transform.
