@@ -113,31 +113,36 @@ impl SplatBlock {
 
     /// Splats a sample of pixel `(x, y)` (film coordinates) at `jitter` within it (`[0, 1)²`
     /// from its corner) with radiance `c`.
-    #[inline]
+    // Always inlined: it runs for every sample of a splatting render, inside the render loop's
+    // AVX2/AVX-512 code (out of line, compiled for baseline x86-64, `floor` is a library call
+    // and the whole splat was 14% of cbox's time, 18% of veach-mis's).
+    #[inline(always)]
     pub fn splat(&mut self, filter: &PixelFilter, x: u32, y: u32, jitter: Vec2, c: Rgb) {
         let m = self.margin as i64;
         // Film-plane position in f64: exact from the f32 jitter, a pure function of the sample.
         let (px, py) = (x as f64 + jitter.x as f64, y as f64 + jitter.y as f64);
         let (fx, fy) = (px.floor() as i64 - m, py.floor() as i64 - m);
-        for (i, w) in self.wx.iter_mut().enumerate() {
-            *w = filter.profile((fx + i as i64) as f64 + 0.5 - px);
-        }
-        for (j, w) in self.wy.iter_mut().enumerate() {
-            *w = filter.profile((fy + j as i64) as f64 + 0.5 - py);
-        }
+        // Offsets of the footprint's first pixel centres (exact: small integers, halves and the
+        // position all fit f64's 53 bits); the row's others follow at +1, +2, ….
+        filter.profile_row(fx as f64 + 0.5 - px, &mut self.wx);
+        filter.profile_row(fy as f64 + 0.5 - py, &mut self.wy);
+        // The footprint clipped to the block once, rather than tested pixel by pixel.
+        let n = self.wx.len() as i64;
         let (bx0, by0) = (self.x0 as i64, self.y0 as i64);
         let (bw, bh) = (self.w as i64, self.h as i64);
-        for (j, &wy) in self.wy.iter().enumerate() {
-            let by = fy + j as i64 - by0;
-            if wy == 0.0 || by < 0 || by >= bh {
+        let (i0, i1) = ((bx0 - fx).max(0), (bx0 + bw - fx).min(n));
+        let (j0, j1) = ((by0 - fy).max(0), (by0 + bh - fy).min(n));
+        for j in j0..j1 {
+            let wy = self.wy[j as usize];
+            if wy == 0.0 {
                 continue;
             }
-            for (i, &wx) in self.wx.iter().enumerate() {
-                let bx = fx + i as i64 - bx0;
-                if wx == 0.0 || bx < 0 || bx >= bw {
-                    continue;
+            let row = (fy + j - by0) * bw - bx0 + fx;
+            for i in i0..i1 {
+                let wx = self.wx[i as usize];
+                if wx != 0.0 {
+                    self.pixels[(row + i) as usize].add(wx * wy, c);
                 }
-                self.pixels[(by * bw + bx) as usize].add(wx * wy, c);
             }
         }
     }
@@ -167,11 +172,14 @@ mod tests {
         assert_eq!((block.x0, block.y0, block.w, block.h), (0, 0, 4, 4));
         block.splat(&f, 0, 0, Vec2::new(0.5, 0.5), Rgb::splat(2.0));
         // Pixel (0,0) gets f₁(0)², (1,0) f₁(1)·f₁(0), (2,0) f₁(2)·f₁(0) = 0 (the cut-off).
+        // The row recurrence of `profile_row` agrees with f₁ to a few ulps: within two quanta
+        // of the fixed-point grid (2⁻⁴⁰ each) for weights near 1.
         let w = |x: f64, y: f64| fixed(f.profile(x) * f.profile(y));
-        assert_eq!(block.pixels[0].weight, w(0.0, 0.0));
-        assert_eq!(block.pixels[1].weight, w(1.0, 0.0));
+        let near = |a: i128, b: i128| (a - b).abs() <= 2;
+        assert!(near(block.pixels[0].weight, w(0.0, 0.0)), "{} vs {}", block.pixels[0].weight, w(0.0, 0.0));
+        assert!(near(block.pixels[1].weight, w(1.0, 0.0)));
         assert_eq!(block.pixels[2].weight, 0);
-        assert_eq!(block.pixels[4 + 1].weight, w(1.0, 1.0));
+        assert!(near(block.pixels[4 + 1].weight, w(1.0, 1.0)));
         // The ratio is the radiance up to the fixed-point quantum.
         assert!(block.pixels[0].value().iter().all(|v| (v - 2.0).abs() < 1e-11));
         // Nothing landed outside the 2-pixel radius.

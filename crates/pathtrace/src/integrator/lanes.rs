@@ -75,7 +75,7 @@ pub(crate) struct TileSplat {
 
 impl TileSplat {
     /// Splats a finished sample of tile pixel `pixel` at `jitter` within it.
-    #[inline]
+    #[inline(always)]
     pub fn add(&mut self, pixel: u32, jitter: Vec2, l: Rgb) {
         let (x, y) = (self.x0 + pixel % self.w, self.y0 + pixel / self.w);
         self.block.splat(&self.filter, x, y, jitter, l);
