@@ -93,13 +93,13 @@ fn an_inward_emitting_sphere_lights_what_it_encloses() {
     let radiance = [1.0, 2.0, 3.0];
     for (x, y) in [(0, 0), (15, 0), (0, 15), (15, 15)] {
         let seen = image.get(x, y).to_array();
-        for c in 0..3 {
-            assert!((seen[c] as f64 - radiance[c]).abs() < 1e-5, "dome pixel ({x}, {y}): {seen:?}");
+        for (s, l) in seen.into_iter().zip(radiance) {
+            assert!((s as f64 - l).abs() < 1e-5, "dome pixel ({x}, {y}): {seen:?}");
         }
     }
     let ball = film.region_estimate(6, 6, 10, 10);
-    for c in 0..3 {
-        let expected = 0.5 * radiance[c];
+    for (c, l) in radiance.into_iter().enumerate() {
+        let expected = 0.5 * l;
         let z = (ball.mean[c] - expected) / ball.variance_of_mean[c].sqrt();
         assert!(z.abs() < 4.0 && (ball.mean[c] / expected - 1.0).abs() < 0.02, "ball: {ball:?}, z {z}");
     }
@@ -180,7 +180,8 @@ fn flip_normals_round_trips_and_a_box_refuses_it() {
         "type = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"grey\"",
         "type = \"box\"\nmin = [-1, -1, -1]\nmax = [1, 1, 1]\nmaterial = \"grey\"\nflip_normals = true",
     );
-    let e = load_str(&boxed, Format::Toml, Path::new("box.toml")).err().expect("a flipped box is refused").to_string();
+    let Err(e) = load_str(&boxed, Format::Toml, Path::new("box.toml")) else { panic!("a flipped box is refused") };
+    let e = e.to_string();
     assert!(e.starts_with("box.toml:") && e.contains("flip_normals") && e.contains("box"), "{e}");
 }
 
