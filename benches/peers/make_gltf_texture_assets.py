@@ -241,6 +241,17 @@ def write_emissive():
                      "emissive_radiance.pfm: emissive.png sRGB-decoded × emissiveFactor × emissiveStrength"))
 
 
+def constant_panel():
+    """The twins' panel of constant radiance PANEL_RADIANCE (metal_rough, metallic, basecolor)."""
+    return f"""    <shape type="obj">
+        <string name="filename" value="emissive_panel.obj"/>
+        <boolean name="face_normals" value="true"/>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
+        <emitter type="area"><rgb name="radiance" value="{rgb([PANEL_RADIANCE] * 3)}"/></emitter>
+    </shape>
+"""
+
+
 def write_metal_rough():
     data, views, accessors = geometry()
     with open(os.path.join(OUT, "metal_rough.bin"), "wb") as f:
@@ -273,13 +284,7 @@ def write_metal_rough():
             <rgb name="specular_reflectance" value="{rgb(METAL_COLOUR)}"/>
         </bsdf>
     </shape>
-    <shape type="obj">
-        <string name="filename" value="emissive_panel.obj"/>
-        <boolean name="face_normals" value="true"/>
-        <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
-        <emitter type="area"><rgb name="radiance" value="{rgb([PANEL_RADIANCE] * 3)}"/></emitter>
-    </shape>
-"""
+{constant_panel()}"""
     with open(os.path.join(OUT, "metal_rough.xml"), "w") as f:
         f.write(twin("metal_rough.gltf (same floor, uv, roughness texels, panel, camera)", shapes,
                      "metal_rough_alpha.pfm: α = (roughnessFactor × the texture's green)² per texel"))
@@ -335,13 +340,7 @@ def write_metallic():
             </bsdf>
         </bsdf>
     </shape>
-    <shape type="obj">
-        <string name="filename" value="emissive_panel.obj"/>
-        <boolean name="face_normals" value="true"/>
-        <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
-        <emitter type="area"><rgb name="radiance" value="{rgb([PANEL_RADIANCE] * 3)}"/></emitter>
-    </shape>
-"""
+{constant_panel()}"""
     with open(os.path.join(OUT, "metallic.xml"), "w") as f:
         f.write(twin("metallic.gltf (same floor, uv, metallic and roughness texels, panel, camera)", shapes,
                      "metallic_weight.pfm: metallicFactor × the texture's blue per texel; metal_rough_alpha.pfm: "
@@ -393,13 +392,7 @@ def write_basecolor():
             </bsdf>
         </bsdf>
     </shape>
-    <shape type="obj">
-        <string name="filename" value="emissive_panel.obj"/>
-        <boolean name="face_normals" value="true"/>
-        <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf>
-        <emitter type="area"><rgb name="radiance" value="{rgb([PANEL_RADIANCE] * 3)}"/></emitter>
-    </shape>
-"""
+{constant_panel()}"""
     with open(os.path.join(OUT, "basecolor.xml"), "w") as f:
         f.write(twin("basecolor.gltf (same floor, uv, base colour and alpha texels × factor, panel, camera)", shapes,
                      "basecolor_albedo.pfm: basecolor.png sRGB-decoded × baseColorFactor.rgb; basecolor_alpha.pfm: "
