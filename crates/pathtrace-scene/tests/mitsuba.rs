@@ -2,7 +2,7 @@
 //! the Cornell box rendered from XML against the built-in one, and the public test scenes.
 
 use pathtrace::film::{Film, RegionEstimate};
-use pathtrace::light::Light;
+use pathtrace::light::{Light, LightSelection};
 use pathtrace::math::Vec3;
 use pathtrace::{render, RenderSettings, Scene};
 use pathtrace_scene::mitsuba::{convert_str, load_mitsuba, load_str};
@@ -159,6 +159,28 @@ fn disk_thindielectric_constant_point_and_filters_map_without_warnings() {
     let (loaded, _) = load_str(&xml, Path::new("t.xml"), &[]).unwrap();
     assert_eq!(loaded.scene.lights.lights().iter().filter(|l| matches!(l, Light::Point(_))).count(), 1);
     assert!(loaded.scene.lights.environment().is_some());
+}
+
+#[test]
+fn emitters_are_picked_uniformly_like_mitsuba() {
+    // Mitsuba picks emitters in proportion to `sampling_weight` (1 unless given): the import
+    // selects lights uniformly, a sphere light and a point light equally often however bright.
+    let two = r#"<emitter type="point"><point name="position" value="0, 3, 0"/><rgb name="intensity" value="1000"/></emitter>
+        <shape type="sphere"><float name="radius" value="0.1"/><emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>"#;
+    let (f, w) = conv(&scene(two), &[]);
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!(f.render.light_selection.map(|s| s.0), Some(LightSelection::Uniform));
+    let (loaded, _) = load_str(&scene(two), Path::new("t.xml"), &[]).unwrap();
+    let lights = &loaded.scene.lights;
+    assert_eq!(lights.selection(), LightSelection::Uniform);
+    assert!((0..lights.count()).all(|i| (lights.index_pmf(i) - 0.5).abs() < 1e-6));
+    // A weight of 1 is the default; any other is warned about, at the property.
+    let weighted =
+        two.replace("value=\"1000\"/>", "value=\"1000\"/><float name=\"sampling_weight\" value=\"WEIGHT\"/>");
+    let (_, w) = conv(&scene(&weighted.replace("WEIGHT", "1")), &[]);
+    assert!(w.is_empty(), "{w:?}");
+    let (_, w) = conv(&scene(&weighted.replace("WEIGHT", "4")), &[]);
+    assert!(w.len() == 1 && w[0].contains("sampling_weight") && w[0].starts_with("t.xml:"), "{w:?}");
 }
 
 #[test]

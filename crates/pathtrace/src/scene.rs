@@ -859,6 +859,10 @@ impl SceneBuilder {
         let mut meshes = Vec::new();
         let mut unbounded = Vec::new();
         let mut lights = Vec::new();
+        // Per area light, the emitter it is part of: each shape entry is one, an emissive mesh's
+        // triangles together are one (uniform light selection picks emitters, Mitsuba's rule).
+        let mut emitters: Vec<u32> = Vec::new();
+        let mut next_emitter = 0u32;
         // One shared copy of each emission texture.
         let emission_texture = |m: u32| -> Option<Arc<Texture>> {
             let id = (*self.emission_textures.get(m as usize)?)?;
@@ -898,6 +902,10 @@ impl SceneBuilder {
                         }
                         None => Primitive::NO_LIGHT,
                     };
+                    if light != Primitive::NO_LIGHT {
+                        emitters.push(next_emitter);
+                        next_emitter += 1;
+                    }
                     let prim = Primitive { shape, material, light };
                     if prim.shape.bounds().is_some() {
                         shapes.push(prim);
@@ -910,6 +918,8 @@ impl SceneBuilder {
                     let first_light = match emission {
                         Some(e) => {
                             let first = lights.len() as u32;
+                            emitters.resize(lights.len() + geometry.len(), next_emitter);
+                            next_emitter += 1;
                             for i in 0..geometry.len() as u32 {
                                 let light = AreaLight::new(LightShape::Triangle(geometry.triangle(i)), e);
                                 lights.push(match &emission_textures[material as usize] {
@@ -938,13 +948,15 @@ impl SceneBuilder {
         }
         let scene_radius = scene_box.map_or(1.0, |b| 0.5 * b.extent().length());
         // Area lights first, so that a primitive's light id indexes the set.
-        let lights = lights
+        let lights: Vec<Light> = lights
             .into_iter()
             .map(Light::Area)
             .chain(self.lights_in_space)
             .chain(self.environment.map(Light::Environment))
             .collect();
-        let lights = LightSet::new(lights, scene_radius);
+        // Lights in space and the environment are each an emitter of their own.
+        emitters.extend(next_emitter..next_emitter + (lights.len() - emitters.len()) as u32);
+        let lights = LightSet::with_emitters(lights, emitters, scene_radius);
         if lights.is_empty() && !self.allow_no_lights {
             return Err(BuildError::NoLights);
         }

@@ -2,7 +2,8 @@
 //! definitions; the directions the `light`/`mixture` strategies draw follow
 //! `LightSet::pdf_direction` under both (chi-square); both render the same image within
 //! confidence intervals. And emissive meshes: one light per triangle, picked by power (so by
-//! area within a mesh) and sampled uniformly by area on the triangle.
+//! area within a mesh) and sampled uniformly by area on the triangle; uniform selection picks
+//! the whole mesh as one emitter (Mitsuba's rule), its triangles by area.
 
 use pathtrace::light::{
     AreaLight, Emission, EnvironmentLight, Light, LightSelection, LightSet, LightShape, PointLight, SpotLight,
@@ -178,4 +179,30 @@ fn emissive_meshes_are_one_light_per_triangle_picked_by_area_and_sampled_by_area
         let got = lights.pdf_direction(p, d.normalize());
         assert!((got / expected - 1.0).abs() < 1e-3, "{target}: {got} vs {expected}");
     }
+}
+
+#[test]
+fn uniform_selection_picks_an_emissive_mesh_as_one_emitter_and_its_triangles_by_area() {
+    let mut b = SceneBuilder::new();
+    let glow = b.emissive(lamp(3.0));
+    let bright = b.emissive(lamp(50.0));
+    b.mesh(&fan(), glow, &Transform::IDENTITY).unwrap();
+    let lamp_quad = Quad::new(Vec3::new(2.0, 2.0, 0.0), Vec3::new(0.3, 0.0, 0.0), Vec3::new(0.0, 0.0, 0.3)).unwrap();
+    b.shape(Shape::Quad(lamp_quad), bright, &Transform::IDENTITY).unwrap();
+    b.point_light(PointLight { position: Vec3::new(0.0, 3.0, 0.0), intensity: Rgb::splat(5.0) }).unwrap();
+    let mut scene = b.build().unwrap();
+    scene.lights.set_selection(LightSelection::Uniform);
+    let lights = &scene.lights;
+    // Lights: the fan's four triangles, the quad, the point light. Three emitters: 1/3 each.
+    assert_eq!(lights.count(), 6);
+    let fan_area: f32 = lights.area_lights().take(4).map(AreaLight::area).sum();
+    for (i, l) in lights.area_lights().take(4).enumerate() {
+        let expected = l.area() / fan_area / 3.0;
+        assert!((lights.index_pmf(i) - expected).abs() < 1e-6, "triangle {i}: {} vs {expected}", lights.index_pmf(i));
+    }
+    for i in [4, 5] {
+        assert!((lights.index_pmf(i) - 1.0 / 3.0).abs() < 1e-6, "light {i}: {}", lights.index_pmf(i));
+    }
+    let sum: f64 = (0..lights.count()).map(|i| lights.index_pmf(i) as f64).sum();
+    assert!((sum - 1.0).abs() < 1e-6, "pmfs sum to {sum}");
 }

@@ -39,8 +39,10 @@ pub enum LightSelection {
     /// In proportion to each light's emitted power (the default): bright lights get the samples.
     #[default]
     Power,
-    /// Every light with nonzero power equally likely (each triangle of an emissive mesh counts
-    /// as one light), Mitsuba's default.
+    /// Every emitter with nonzero power equally likely, Mitsuba's default: an emitter is what the
+    /// scene declared as one (a shape or a whole emissive mesh, a point, spot or directional
+    /// light, the environment); within an emissive mesh, its triangles are picked by area, as
+    /// Mitsuba samples a point on the mesh by area.
     Uniform,
 }
 
@@ -85,6 +87,9 @@ pub struct LightSet {
     environment: Option<usize>,
     /// Every light's power, in index order (lights at infinity measured over the scene).
     powers: Vec<f64>,
+    /// Per light, the emitter it belongs to (the lights of one emissive mesh share one; see
+    /// [`LightSelection::Uniform`]).
+    emitters: Vec<u32>,
     mode: LightSelection,
     selection: Option<Distribution1D>,
     continuous: Option<Distribution1D>,
@@ -102,13 +107,53 @@ impl LightSet {
     /// of radius `scene_radius`. A scene has at most one environment (the scene builder keeps
     /// the last one set); were two given, the first would be the one seen by escaping paths.
     /// Selection is by power until [`LightSet::set_selection`] says otherwise.
+    /// Every light is its own emitter (see [`LightSet::with_emitters`]).
     pub fn new(lights: Vec<Light>, scene_radius: f32) -> Self {
+        let emitters = (0..lights.len() as u32).collect();
+        Self::with_emitters(lights, emitters, scene_radius)
+    }
+
+    /// [`LightSet::new`] with each light's emitter: `emitters[i]` names the emitter light `i` is
+    /// part of (the triangles of one emissive mesh share one), which uniform selection picks
+    /// as a whole.
+    ///
+    /// # Panics
+    /// If `emitters` and `lights` differ in length (a scene builder's bug).
+    pub fn with_emitters(lights: Vec<Light>, emitters: Vec<u32>, scene_radius: f32) -> Self {
+        assert_eq!(lights.len(), emitters.len(), "one emitter id per light");
         let radius = scene_radius.max(1e-3);
         let powers: Vec<f64> = lights.iter().map(|l| l.power(radius)).collect();
         let environment = lights.iter().position(|l| matches!(l, Light::Environment(_)));
-        let mut set = Self { lights, environment, powers, ..Default::default() };
+        let mut set = Self { lights, environment, powers, emitters, ..Default::default() };
         set.set_selection(LightSelection::Power);
         set
+    }
+
+    /// Uniform selection's weights: each emitter with power sums to 1, shared among its lights
+    /// by area (a single light, or one that is not an area light, takes all of it).
+    fn uniform_weights(&self) -> Vec<f32> {
+        let lit = |i: usize| self.powers[i] > 0.0;
+        let share = |i: usize| match &self.lights[i] {
+            Light::Area(a) => f64::from(a.area()),
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => 1.0,
+        };
+        let groups = self.emitters.iter().copied().max().map_or(0, |m| m as usize + 1);
+        let mut total = vec![0.0f64; groups];
+        for i in (0..self.lights.len()).filter(|&i| lit(i)) {
+            total[self.emitters[i] as usize] += share(i);
+        }
+        (0..self.lights.len())
+            .map(|i| {
+                let t = total[self.emitters[i] as usize];
+                if !lit(i) || t <= 0.0 {
+                    0.0
+                } else {
+                    // An emitter's lights of zero area (degenerate) would otherwise never be
+                    // picked; they are kept selectable at the smallest weight, as power does.
+                    ((share(i) / t) as f32).max(f32::MIN_POSITIVE)
+                }
+            })
+            .collect()
     }
 
     /// Rebuilds the selection distributions for `mode`. Both modes give every light with power a
@@ -117,18 +162,14 @@ impl LightSet {
         // Powers are f64 (bright lights overflow f32); the distribution takes them relative to the
         // brightest, a light with any power keeping a nonzero chance.
         let brightest = self.powers.iter().copied().filter(|p| p.is_finite()).fold(0.0, f64::max);
-        let weight = |p: f64| match mode {
-            LightSelection::Power if p > 0.0 && p.is_finite() => ((p / brightest) as f32).max(f32::MIN_POSITIVE),
-            LightSelection::Power => 0.0,
-            LightSelection::Uniform => {
-                if p > 0.0 {
-                    1.0
-                } else {
-                    0.0
-                }
-            }
+        let all: Vec<f32> = match mode {
+            LightSelection::Power => self
+                .powers
+                .iter()
+                .map(|&p| if p > 0.0 && p.is_finite() { ((p / brightest) as f32).max(f32::MIN_POSITIVE) } else { 0.0 })
+                .collect(),
+            LightSelection::Uniform => self.uniform_weights(),
         };
-        let all: Vec<f32> = self.powers.iter().map(|&p| weight(p)).collect();
         self.selection = Distribution1D::new(&all);
         self.continuous = if self.has_delta() {
             // Same indices, with the delta lights' weight zeroed.
