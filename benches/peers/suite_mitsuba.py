@@ -132,10 +132,11 @@ class Mitsuba:
         return timed_render(self.mi, self.dr, np, self.variant, self.scene, spp, seed)
 
 
-def ours(np, binary, path, defines, spp, seed, threads, tmp):
+def ours(np, binary, path, defines, spp, seed, threads, tmp, extra=()):
     out, stats = os.path.join(tmp, "pt.pfm"), os.path.join(tmp, "pt.json")
     cmd = shlex.split(binary) + ["render", path, "--spp", str(spp), "--seed", str(seed),
                                  "--threads", str(threads), "--quiet", "--stats-json", stats, "-o", out]
+    cmd += list(extra)
     for k, v in defines.items():
         cmd += ["-D", f"{k}={v}"]
     return run_pathtrace(np, cmd, stats, out)
@@ -170,6 +171,9 @@ def main(argv=None):
     p.add_argument("--only", default=None, help="only scenes whose label contains this text")
     p.add_argument("--spp-scale", type=float, default=1.0, help="multiply every scene's spp")
     p.add_argument("--json", metavar="FILE", help="also write the table as JSON")
+    p.add_argument("--pathtrace-arg", action="append", default=[], metavar="ARG",
+                   help="an extra argument for our renders (repeat for several), e.g. "
+                        "--pathtrace-arg=--light-selection --pathtrace-arg=power")
     args = p.parse_args(argv)
     if "llvm" in args.variant + args.ref_variant and "DRJIT_LIBLLVM_PATH" not in os.environ:
         lib = cm.find_libllvm()
@@ -200,14 +204,15 @@ def main(argv=None):
             theirs = Mitsuba(mi, dr, args.variant, path, defines)
             w, h = theirs.size
             theirs.render(np, spp, 0)  # warm-up: kernels compiled, files cached
-            ours(np, args.pathtrace, path, defines, 1, 0, args.threads, tmp)
+            ours(np, args.pathtrace, path, defines, 1, 0, args.threads, tmp, args.pathtrace_arg)
             r = {"scene": label, "size": f"{w}x{h}", "spp": spp, "mitsuba": [], "ours": []}
             for run in range(args.runs):
                 for who in ("mitsuba", "ours"):
                     if who == "mitsuba":
                         seconds, img = theirs.render(np, spp, 1 + run)
                     else:
-                        seconds, img = ours(np, args.pathtrace, path, defines, spp, 1 + run, args.threads, tmp)
+                        seconds, img = ours(np, args.pathtrace, path, defines, spp, 1 + run, args.threads, tmp,
+                                            args.pathtrace_arg)
                     err = rel_mse(np, img, ref)
                     r[who].append({"seconds": seconds, "samples_per_s": w * h * spp / seconds, "rel_mse": err,
                                    "time_to_target": seconds * err / args.target})
@@ -219,7 +224,8 @@ def main(argv=None):
                   f"{med['ours']['samples_per_s'] / med['mitsuba']['samples_per_s']:5.2f}x   "
                   f"time to {args.target:g}: ours {med['ours']['time_to_target']:.3f} s, "
                   f"mitsuba {med['mitsuba']['time_to_target']:.3f} s, ratio "
-                  f"{med['ours']['time_to_target'] / med['mitsuba']['time_to_target']:5.2f}x", flush=True)
+                  f"{med['ours']['time_to_target'] / med['mitsuba']['time_to_target']:5.2f}x   "
+                  f"relMSE: ours {med['ours']['rel_mse']:.4f}, mitsuba {med['mitsuba']['rel_mse']:.4f}", flush=True)
 
     print()
     print("| scene | size, spp | ours M samples/s | Mitsuba M samples/s | ours ÷ Mitsuba speed "
