@@ -66,6 +66,35 @@ pub(super) fn fixed(x: f64) -> i128 {
     to_fixed(x.clamp(-SAMPLE_LIMIT, SAMPLE_LIMIT))
 }
 
+/// [`fixed`] of a value below [`EXACT_SMALL`] = 2¹¹ in magnitude, as an `i64` (the same
+/// integer: no clamp applies, and truncation toward zero is what `to_fixed`'s conversion does).
+///
+/// Written without an `as` conversion so that it vectorises and has no branches: Rust's
+/// saturating `f64 as i64` compiles to one scalar conversion per value with NaN and range
+/// fix-ups, while an integer below 2⁵¹ in magnitude plus 1.5·2⁵² is exact and its bits are
+/// 1.5·2⁵²'s plus the integer (the usual floating-point conversion trick, as in Hacker's
+/// Delight); `trunc` and the add are packed instructions.
+#[inline(always)]
+pub(super) fn fixed_small(x: f64) -> i64 {
+    const MAGIC: f64 = (3u64 << 51) as f64;
+    let t = (x * SCALE).trunc();
+    (t + MAGIC).to_bits() as i64 - MAGIC.to_bits() as i64
+}
+
+/// Magnitude below which [`fixed_small`] is exact: 2¹¹, a grid value below 2⁵¹.
+pub(super) const EXACT_SMALL: f64 = 2048.0;
+
+/// Terms below this magnitude (2⁶, so below 2⁴⁶ on the grid) may be summed in `i64`: up to 2¹⁶
+/// of them stay below 2⁶³ (the splat's partial sums, `splat.rs`).
+pub(super) const SMALL_LIMIT: f64 = 64.0;
+
+/// Samples below this magnitude in every channel (their squares below 2¹⁰) take
+/// [`fixed_small`] for the value and its square in [`PixelStats::add`].
+const SMALL_SAMPLE: f64 = 32.0;
+
+// Every value the fast paths convert is within `fixed_small`'s exact range.
+const _: () = assert!(SMALL_LIMIT < EXACT_SMALL && SMALL_SAMPLE * SMALL_SAMPLE < EXACT_SMALL);
+
 /// The mean of `count` values (1 if there are none) whose fixed-point sum is `sum`.
 #[inline]
 pub(super) fn fixed_mean(sum: i128, count: u32) -> f64 {
@@ -91,6 +120,15 @@ impl PixelStats {
     #[inline(always)]
     pub fn add(&mut self, c: Rgb) {
         self.count += 1;
+        let x = c.to_array().map(f64::from);
+        // Nearly every sample: branch-free conversions, the same integers (NaN fails the test).
+        if x.iter().all(|v| v.abs() < SMALL_SAMPLE) {
+            for (k, &v) in x.iter().enumerate() {
+                self.sum[k] += i128::from(fixed_small(v));
+                self.sum_sq[k] = self.sum_sq[k].saturating_add(fixed_small(v * v) as u128);
+            }
+            return;
+        }
         for (k, x) in c.to_array().into_iter().enumerate() {
             // f32 → f64 is exact, so is the scaling by a power of two; x² of an f32 fits f64's
             // 53 bits exactly: the only rounding is the truncation to the grid.
@@ -151,6 +189,25 @@ impl PixelStats {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The vectorisable conversion gives `fixed`'s integers for every value it is used for.
+    #[test]
+    fn small_values_convert_as_the_exact_path_does() {
+        let mut rng = crate::sampling::Pcg32::new(5, 9);
+        let mut values = vec![0.0, -0.0, 1e-13, -1e-13, 9.1e-13, 63.999_999, -63.999_999, 1.0, -1.0];
+        for _ in 0..200_000 {
+            let m = rng.next_f32() as f64 * 2.0 - 1.0;
+            let e = (rng.next_f32() * 56.0) as i32 - 44;
+            values.push(m * 2f64.powi(e).min(EXACT_SMALL));
+        }
+        values.extend([2_047.999_999, -2_047.999_999, 1e3 + 1e-9]);
+        for x in values.into_iter().filter(|x: &f64| x.abs() < EXACT_SMALL) {
+            assert_eq!(i128::from(fixed_small(x)), fixed(x), "{x:e}");
+            // Squares of samples below SMALL_SAMPLE, as `PixelStats::add` takes them.
+            let y = (x / 64.0) * (x / 64.0);
+            assert_eq!(fixed_small(y) as u128, square_to_fixed(x / 64.0), "{x:e}");
+        }
+    }
 
     #[test]
     fn mean_and_variance_match_the_two_pass_formulas() {

@@ -96,7 +96,7 @@ impl Film {
     /// Merges a tile's splatted halo block (a film without splatted sums ignores it).
     pub fn merge_splat_block(&mut self, block: &SplatBlock) {
         if let Some(grid) = &mut self.splat {
-            grid.merge_block(block.x0, block.y0, block.w, &block.pixels);
+            grid.merge_block(block.x0, block.y0, block.w, &block.sums());
         }
     }
 
