@@ -166,30 +166,9 @@ impl SplatBlock {
         let w_max = self.wx[i0 as usize..i1 as usize].iter().fold(0.0f64, |a, &b| a.max(b))
             * self.wy[j0 as usize..j1 as usize].iter().fold(0.0f64, |a, &b| a.max(b));
         let l_max = c.to_array().iter().fold(0.0f32, |a, &x| a.max(x.abs())) as f64;
-        if c.is_finite() && w_max < SMALL_LIMIT && w_max * l_max < SMALL_LIMIT {
-            let l = c.to_array().map(f64::from);
-            for j in j0..j1 {
-                let wy = self.wy[j as usize];
-                if wy == 0.0 {
-                    continue;
-                }
-                let row = (fy + j - by0) * bw - bx0 + fx;
-                for i in i0..i1 {
-                    // A zero weight adds zeros: no branch, so the four sums go as one vector.
-                    let w = self.wx[i as usize] * wy;
-                    let terms = [w, w * l[0], w * l[1], w * l[2]];
-                    let sums = &mut self.small[(row + i) as usize];
-                    for k in 0..4 {
-                        sums[k] += fixed_small(terms[k]);
-                    }
-                }
-            }
-            self.pending += 1;
-            if self.pending == SMALL_SPLATS {
-                self.flush();
-            }
-            return;
-        }
+        // Small terms go to the `i64` partial sums, the others straight to the exact sums.
+        let small = c.is_finite() && w_max < SMALL_LIMIT && w_max * l_max < SMALL_LIMIT;
+        let l = c.to_array().map(f64::from);
         for j in j0..j1 {
             let wy = self.wy[j as usize];
             if wy == 0.0 {
@@ -198,9 +177,23 @@ impl SplatBlock {
             let row = (fy + j - by0) * bw - bx0 + fx;
             for i in i0..i1 {
                 let wx = self.wx[i as usize];
-                if wx != 0.0 {
-                    self.pixels[(row + i) as usize].add(wx * wy, c);
+                let p = (row + i) as usize;
+                if small {
+                    // A zero weight adds zeros: no branch, so the four sums go as one vector.
+                    let w = wx * wy;
+                    let terms = [w, w * l[0], w * l[1], w * l[2]];
+                    for (sum, term) in self.small[p].iter_mut().zip(terms) {
+                        *sum += fixed_small(term);
+                    }
+                } else if wx != 0.0 {
+                    self.pixels[p].add(wx * wy, c);
                 }
+            }
+        }
+        if small {
+            self.pending += 1;
+            if self.pending == SMALL_SPLATS {
+                self.flush();
             }
         }
     }
