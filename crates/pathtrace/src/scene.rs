@@ -156,7 +156,9 @@ impl Scene {
 
     /// [`Scene::intersect`] for the rays of `active` (lane `i`: from `origin[i]` along
     /// `dir[i]`), bit for bit the same hits, with the BVH traversed by the group of rays
-    /// together (see [`Bvh::intersect_lanes`]).
+    /// together (see [`Bvh::intersect_lanes`]); `found(i, hit)` is called for each lane that
+    /// hits, lowest lane first. (A visitor, not an array of hits: building sixteen `Option<Hit>`s
+    /// per group cost 5% of the teapot's render.)
     #[inline(always)]
     pub fn intersect_lanes<const N: usize>(
         &self,
@@ -164,15 +166,21 @@ impl Scene {
         dir: &Vec3s<N>,
         active: Ms<N>,
         t_max: f32,
-    ) -> [Option<Hit>; N] {
-        let found = self.bvh.intersect_lanes(&self.prims, origin, dir, active, 0.0, t_max);
-        std::array::from_fn(|i| {
-            let best = found[i].map(|(hit, i)| Hit { prim: PrimRef::Bounded(i), hit });
-            if !active.lane(i) || (self.unbounded.is_empty() && self.instances.is_empty()) {
-                return best;
+        mut found: impl FnMut(usize, Hit),
+    ) {
+        let nearest = self.bvh.intersect_lanes(&self.prims, origin, dir, active, 0.0, t_max);
+        let bvh_only = self.unbounded.is_empty() && self.instances.is_empty();
+        for i in active.lanes() {
+            let best = nearest[i].map(|(hit, i)| Hit { prim: PrimRef::Bounded(i), hit });
+            let best = if bvh_only {
+                best
+            } else {
+                self.nearer_outside_bvh(&Ray::new(origin.lane(i), dir.lane(i)), best, t_max)
+            };
+            if let Some(hit) = best {
+                found(i, hit);
             }
-            self.nearer_outside_bvh(&Ray::new(origin.lane(i), dir.lane(i)), best, t_max)
-        })
+        }
     }
 
     /// [`Scene::occluded`] for the rays of `active` (lane `i`: from `origin[i]` along `dir[i]`,

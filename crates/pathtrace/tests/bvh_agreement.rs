@@ -453,7 +453,13 @@ fn ray_groups_find_what_single_rays_find() {
                 }
             }
             let t_max = if g % 2 == 0 { f32::INFINITY } else { uniform(&mut rng, 1.0, 12.0) };
-            let together = scene.intersect_lanes(&origin, &dir, active, t_max);
+            let mut together = [None; N];
+            let mut order = Vec::new();
+            scene.intersect_lanes(&origin, &dir, active, t_max, |i, hit| {
+                together[i] = Some(hit);
+                order.push(i);
+            });
+            assert!(order.is_sorted(), "lanes visited lowest first: {order:?}");
             // Shadow-ray lengths: some end before the closest hit, some after.
             let lengths = pathtrace::wide::simd::F32s::<N>::from_fn(|_| uniform(&mut rng, 0.5, 14.0));
             let blocked = scene.occluded_lanes(&origin, &dir, active, lengths);

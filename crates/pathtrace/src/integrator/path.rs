@@ -586,11 +586,13 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
     // cut-outs trace every ray alone, passing the cut-out surfaces.
     let mut s = Surfaces::none();
     let camera = if job.scene.has_cutouts() { Ms::NONE } else { active & Ms::from_fn(|i| paths.segments[i] == 1) };
-    let hits = job.scene.intersect_lanes(&paths.origin, &paths.dir, camera, f32::INFINITY);
-    for i in active.lanes() {
+    job.scene.intersect_lanes(&paths.origin, &paths.dir, camera, f32::INFINITY, |i, hit| {
         let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
-        let found = if camera.lane(i) { hits[i].map(|hit| (ray, hit)) } else { job.scene.intersect_opaque(&ray) };
-        if let Some((ray, hit)) = found {
+        s.set_hit(i, &job.scene.interaction(&ray, &hit));
+    });
+    for i in (active & !camera).lanes() {
+        let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
+        if let Some((ray, hit)) = job.scene.intersect_opaque(&ray) {
             s.set_hit(i, &job.scene.interaction(&ray, &hit));
         }
     }
