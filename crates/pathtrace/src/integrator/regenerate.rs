@@ -8,9 +8,11 @@ use super::path::vertex;
 use crate::camera::Camera;
 use crate::film::{FeaturePixel, PixelFilter, PixelStats, SplatBlock};
 use crate::integrator::PathStats;
+use crate::math::{Ray, Vec2};
 use crate::render::tile::{Tile, TileResult, WaveSamples};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::wide::simd::{F32s, Ms};
 use crate::wide::{LaneSamplers, WideScene};
 
 /// What every tile of a render shares.
@@ -113,20 +115,38 @@ pub(crate) fn render_tile_lanes<const N: usize>(
     let mut queue = Queue::new(tile, samples);
     let mut paths = Paths::<N>::new();
     let max_depth = job.lanes.settings.max_depth;
+    let aperture = job.camera.needs_aperture_sample();
     loop {
+        // Lanes whose path ended take the tile's next samples: their random numbers and pixel
+        // offsets lane by lane, their camera rays together.
+        let mut fresh = Ms::<N>::NONE;
+        let mut pixel = [0u32; N];
+        let mut at = [F32s::<N>::ZERO; 2];
+        let mut jitter = [F32s::<N>::ZERO; 2];
+        let mut lens = [F32s::<N>::ZERO; 2];
         for i in (!paths.active).lanes() {
             let Some(next) = queue.pop() else { break };
             // Where in the pixel the ray goes (film/filter.rs); filters wider than the pixel
             // weight the sample when it is splatted (film/splat.rs).
-            let (u_filter, u_aperture) =
-                samplers.start_camera(i, next.x, next.y, next.sample, job.camera.needs_aperture_sample());
-            let jitter = job.filter.sample(u_filter);
-            let ray = job.camera.generate_ray(next.x, next.y, jitter, u_aperture);
-            out.stats.camera_rays += 1;
-            paths.start(i, next.pixel, ray, job.scene.camera_medium(), jitter, job.features);
-            if max_depth == 0 {
-                paths.finish(i, &mut out);
+            let (u_filter, u_aperture) = samplers.start_camera(i, next.x, next.y, next.sample, aperture);
+            let offset = job.filter.sample(u_filter);
+            fresh.0[i] = u32::MAX;
+            pixel[i] = next.pixel;
+            (at[0].0[i], at[1].0[i]) = (next.x as f32, next.y as f32);
+            (jitter[0].0[i], jitter[1].0[i]) = (offset.x, offset.y);
+            (lens[0].0[i], lens[1].0[i]) = (u_aperture.x, u_aperture.y);
+        }
+        if fresh.any() {
+            let (origin, dir) = job.camera.generate_rays(at, jitter, lens);
+            for i in fresh.lanes() {
+                let ray = Ray::new(origin.lane(i), dir.lane(i));
+                let offset = Vec2::new(jitter[0].0[i], jitter[1].0[i]);
+                paths.start(i, pixel[i], ray, job.scene.camera_medium(), offset, job.features);
+                if max_depth == 0 {
+                    paths.finish(i, &mut out);
+                }
             }
+            out.stats.camera_rays += u64::from(fresh.bitmask().count_ones());
         }
         if !paths.active.any() {
             break;
