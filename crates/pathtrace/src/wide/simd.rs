@@ -241,30 +241,35 @@ impl<const N: usize> Ms<N> {
     #[inline(always)]
     pub fn bitmask(self) -> u32 {
         #[cfg(target_arch = "x86_64")]
-        {
-            if (N == LANES_512 || N == LANES_256) && std::arch::is_x86_feature_detected!("avx") {
+        if N == LANES_512 || N == LANES_256 {
+            if std::arch::is_x86_feature_detected!("avx") {
                 // SAFETY: the CPU was just checked to have AVX.
                 #[allow(unsafe_code)]
                 return unsafe { x86::sign_bits(&self.0) };
             }
-            if N > 4 {
-                // Out of line, so that the compare feeding the mask stays whole above.
-                return portable_bitmask(&self.0);
-            }
+            // Out of line, so that the compare feeding the mask stays whole above.
+            return bitmask_out_of_line(&self.0);
         }
-        portable_bitmask(&self.0)
+        bitmask_loop(&self.0)
     }
 }
 
-/// [`Ms::bitmask`] as a loop (other lane counts, and CPUs without AVX).
-#[cfg_attr(target_arch = "x86_64", inline(never), cold)]
-#[cfg_attr(not(target_arch = "x86_64"), inline(always))]
-fn portable_bitmask<const N: usize>(lanes: &[u32; N]) -> u32 {
+/// [`Ms::bitmask`] as a loop (lane counts other than 8 and 16, and CPUs without AVX).
+#[inline(always)]
+fn bitmask_loop<const N: usize>(lanes: &[u32; N]) -> u32 {
     let mut bits = 0;
     for (i, &m) in lanes.iter().enumerate() {
         bits |= (m & 1) << i;
     }
     bits
+}
+
+/// [`bitmask_loop`] kept out of the SIMD code that calls [`Ms::bitmask`].
+#[cfg(target_arch = "x86_64")]
+#[cold]
+#[inline(never)]
+fn bitmask_out_of_line<const N: usize>(lanes: &[u32; N]) -> u32 {
+    bitmask_loop(lanes)
 }
 
 /// The sign bits of the lanes, 8 at a time (`vmovmskps`), for 8 or 16 lanes (chunks that cover
@@ -440,7 +445,7 @@ mod tests {
     fn bitmasks_of_every_width_agree_with_the_loop() {
         fn check<const W: usize>(bits: u32) {
             let m = Ms::<W>::from_fn(|i| bits >> i & 1 == 1);
-            assert_eq!(m.bitmask(), portable_bitmask(&m.0), "{W} lanes, {bits:#b}");
+            assert_eq!(m.bitmask(), bitmask_loop(&m.0), "{W} lanes, {bits:#b}");
             assert_eq!(m.bitmask(), bits & ((1u64 << W) - 1) as u32);
             assert_eq!(m.any(), m.bitmask() != 0);
         }
