@@ -16,9 +16,11 @@
 //! Masking-Shadowing Function", §5 for the anisotropic forms); GGX visible normals by Heitz
 //! 2018 ("Sampling the GGX Distribution of Visible Normals", JCGT 7(4), listing 1); Beckmann
 //! visible slopes by Jakob's numerical inversion (2014, "An Improved Visible Normal Sampling
-//! Routine for the Beckmann Distribution"), here bracketed and iterated to convergence.
+//! Routine for the Beckmann Distribution"), here bracketed and iterated to convergence (see
+//! `beckmann_slopes.rs`).
 
-use crate::math::special::{erf_fast, erfinv_fast, exp_flushed, exp_flushed_f32};
+use super::beckmann_slopes::visible_slopes_11;
+use crate::math::special::{erf_and_gaussian_fast, exp_flushed_f32};
 use crate::math::{Vec2, Vec3, PI};
 
 /// Which normal distribution.
@@ -94,7 +96,8 @@ impl Microfacet {
             MicrofacetKind::Beckmann => {
                 let a = 1.0 / f64::from(a2t2).sqrt();
                 // erf to single precision: Λ is returned as f32 anyway.
-                let l = 0.5 * (erf_fast(a) - 1.0) + exp_flushed(-a * a) / (2.0 * a * std::f64::consts::PI.sqrt());
+                let (erf_a, gaussian) = erf_and_gaussian_fast(a);
+                let l = 0.5 * (erf_a - 1.0) + gaussian / (2.0 * a * std::f64::consts::PI.sqrt());
                 l as f32
             }
         }
@@ -150,7 +153,7 @@ impl Microfacet {
     /// α = 1 Beckmann visible slopes drawn by inverting their marginal CDF in x (Jakob 2014).
     fn sample_visible_beckmann(&self, v: Vec3, u: Vec2) -> Vec3 {
         let vs = Vec3::new(self.alpha_u * v.x, self.alpha_v * v.y, v.z).normalize();
-        let (sx, sy) = beckmann_visible_slopes_11(f64::from(vs.z), f64::from(u.x), f64::from(u.y));
+        let (sx, sy) = visible_slopes_11(f64::from(vs.z), f64::from(u.x), f64::from(u.y));
         // Rotate from the frame where the (stretched) view direction has azimuth 0.
         let len = (vs.x * vs.x + vs.y * vs.y).sqrt();
         let (cos_phi, sin_phi) = if len > 0.0 { (f64::from(vs.x / len), f64::from(vs.y / len)) } else { (1.0, 0.0) };
@@ -161,52 +164,6 @@ impl Microfacet {
         let n = (mx * mx + my * my + 1.0).sqrt();
         Vec3::new((mx / n) as f32, (my / n) as f32, (1.0 / n) as f32)
     }
-}
-
-/// Visible slopes of the α = 1 Beckmann distribution seen from elevation cos θ = `cos_theta`
-/// at azimuth 0 (Jakob 2014). With b = erf(x), the marginal CDF of the slope x is, up to its
-/// normalisation, C(b) = 1 + b + tanθ/√π · exp(−erfinv(b)²) for b ∈ [−1, erf(cot θ)], and
-/// dC/db = 1 − x tanθ; solved by Newton's method kept inside a shrinking bracket, to 10⁻⁷ of
-/// the CDF (below f32 resolution), with Giles' single-precision erfinv. The y slope is
-/// independent and Gaussian: y = erfinv(2u₂ − 1).
-fn beckmann_visible_slopes_11(cos_theta: f64, u1: f64, u2: f64) -> (f64, f64) {
-    let u1 = u1.clamp(1e-9, 1.0 - 1e-9);
-    let u2 = u2.clamp(1e-9, 1.0 - 1e-9);
-    let sy = erfinv_fast(2.0 * u2 - 1.0);
-    if cos_theta > 0.99999 {
-        // Normal incidence: the visible slopes are the plain Gaussian ones.
-        return (erfinv_fast(2.0 * u1 - 1.0), sy);
-    }
-    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-    let tan_theta = sin_theta / cos_theta;
-    let cot_theta = cos_theta / sin_theta;
-    let inv_sqrt_pi = 1.0 / std::f64::consts::PI.sqrt();
-    let (mut lo, mut hi) = (-1.0, erf_fast(cot_theta));
-    let target = u1 * (1.0 + hi + inv_sqrt_pi * tan_theta * exp_flushed(-cot_theta * cot_theta));
-    // Initial guess: the exact solution at grazing incidence (Jakob 2014).
-    let mut b = hi - (hi + 1.0) * erf_fast((-u1.ln()).sqrt());
-    for _ in 0..64 {
-        if !(b > lo && b < hi) {
-            b = 0.5 * (lo + hi);
-        }
-        let x = erfinv_fast(b);
-        let value = 1.0 + b + inv_sqrt_pi * tan_theta * exp_flushed(-x * x) - target;
-        if value.abs() < 1e-7 {
-            break;
-        }
-        // C is increasing in b: a positive residual means the root is below b.
-        if value > 0.0 {
-            hi = b;
-        } else {
-            lo = b;
-        }
-        let derivative = 1.0 - x * tan_theta;
-        b -= value / derivative;
-        if hi - lo < 1e-12 {
-            break;
-        }
-    }
-    (erfinv_fast(b.clamp(-1.0 + 1e-16, 1.0 - 1e-16)), sy)
 }
 
 /// D_v(m) = G1(v, m) max(0, v·m) D(m) / cos θv from its parts (Heitz & d'Eon 2014 eq. 2), for

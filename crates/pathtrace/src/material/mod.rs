@@ -7,6 +7,7 @@
 //! dielectric sees both sides (z > 0 is outside, where the geometric normal points); the thin
 //! dielectric is symmetric, so it is two-sided too.
 
+mod beckmann_slopes;
 mod blend;
 mod conductor;
 mod dielectric;
@@ -166,6 +167,7 @@ impl Material {
         match self {
             Material::RoughConductor(m) => m.eval_pdf(wo, wi),
             Material::Plastic(m) => m.eval_pdf(wo, wi),
+            Material::RoughPlastic(m) => m.eval_pdf(wo, wi),
             Material::Black
             | Material::Null
             | Material::Diffuse(_)
@@ -175,7 +177,6 @@ impl Material {
             | Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::RoughDielectric(_)
-            | Material::RoughPlastic(_)
             | Material::ThinDielectric(_)
             | Material::Blend(_) => (self.eval(wo, wi), self.pdf(wo, wi)),
         }

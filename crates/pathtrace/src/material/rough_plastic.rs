@@ -19,7 +19,7 @@
 //!   (`rough_plastic_alpha.rs`).
 
 use super::dielectric::fresnel_dielectric;
-use super::microfacet::{reflect_about, refract_about, Microfacet};
+use super::microfacet::{reflect_about, refract_about, visible_density, Microfacet};
 use super::plastic::{base_albedo, specular_sampling_weight};
 use super::rough_plastic_alpha::RoughPlasticAlphaTable;
 use super::BsdfSample;
@@ -176,33 +176,40 @@ impl RoughPlastic {
         if wi.z <= 0.0 {
             return None;
         }
-        let pdf = self.pdf(wo, wi);
+        let (f, pdf) = self.eval_pdf(wo, wi);
         if !pdf.is_finite() || pdf <= 0.0 {
             return None;
         }
-        Some(BsdfSample { wi, weight: self.eval(wo, wi) * (1.0 / pdf), pdf, delta: false, eta: 1.0 })
+        Some(BsdfSample { wi, weight: f * (1.0 / pdf), pdf, delta: false, eta: 1.0 })
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return Rgb::BLACK;
-        }
-        let m = (wo + wi).normalize();
-        let f = fresnel_dielectric(wo.dot(m), self.ior).0;
-        let coat = f * self.distribution.d(m) * self.distribution.g(wo, wi, m) / (4.0 * wo.z);
-        let base = self.transmittance(wo.z) * self.transmittance(wi.z) * wi.z;
-        self.specular * coat + self.base * base
+        self.eval_pdf(wo, wi).0
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_pdf(wo, wi).1
+    }
+
+    /// `eval` and `pdf` together: the half vector, D(m) and G1(wo, m) (Beckmann's is an erf and
+    /// an exp) serve both the coating's value and its visible-normal density.
+    #[inline]
+    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
         if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
+            return (Rgb::BLACK, 0.0);
         }
-        let p_coat = self.coating_probability(wo);
         let m = (wo + wi).normalize();
         let cos_om = wo.dot(m);
-        let coat = if cos_om > 0.0 { self.distribution.pdf_visible(wo, m) / (4.0 * cos_om) } else { 0.0 };
-        p_coat * coat + (1.0 - p_coat) * warp::cosine_hemisphere_pdf(wi)
+        let d = self.distribution.d(m);
+        let g1_o = self.distribution.g1(wo, m);
+        let f = fresnel_dielectric(cos_om, self.ior).0;
+        let coat = f * d * (g1_o * self.distribution.g1(wi, m)) / (4.0 * wo.z);
+        let base = self.transmittance(wo.z) * self.transmittance(wi.z) * wi.z;
+        let value = self.specular * coat + self.base * base;
+        let p_coat = self.coating_probability(wo);
+        // Jacobian of the reflection map dωm/dωi = 1/(4 wo·m) (Walter 2007 eq. 14).
+        let coat_pdf = if cos_om > 0.0 { visible_density(g1_o, cos_om, d, wo.z) / (4.0 * cos_om) } else { 0.0 };
+        (value, p_coat * coat_pdf + (1.0 - p_coat) * warp::cosine_hemisphere_pdf(wi))
     }
 }
 
