@@ -170,18 +170,19 @@ pub(crate) fn vertex<const N: usize>(
 
     // ---- Escape: the environment (if any) is seen, then the path ends ------------------
     let escaped = paths.active & !s.hit;
-    if let Some(env) = scene_lights.environment() {
-        let pick = scene_lights.environment_pmf();
-        for i in escaped.lanes() {
-            let dir = paths.dir.lane(i);
-            let seen = if strategy.is_mis() && !paths.prev_specular.lane(i) {
-                // One lookup of the map for both (LightSet::pdf_environment's product).
-                let (radiance, pdf) = env.radiance_and_pdf(dir);
-                radiance * strategy.mis_weight(paths.prev_pdf.0[i], pick * pdf)
-            } else {
-                env.radiance(dir)
-            };
-            paths.add_weighted(i, seen);
+    if escaped.any() {
+        if let Some(env) = scene_lights.environment() {
+            // The escaped lanes look the map up together; those that MIS weighs also get the
+            // density (LightSet::pdf_environment's product), from the same lookup.
+            let weighed = if strategy.is_mis() { escaped & !paths.prev_specular } else { Ms::NONE };
+            let (radiance, pdf) = env.lookup_lanes(&paths.dir, escaped, weighed);
+            let pick = scene_lights.environment_pmf();
+            let w = strategy.mis_weight_lanes(paths.prev_pdf, pick * pdf);
+            let w = F32s::select(weighed, w, F32s::ONE);
+            for c in 0..3 {
+                let seen = paths.beta[c] * (radiance[c] * w);
+                paths.radiance[c] = F32s::select(escaped, paths.radiance[c] + seen, paths.radiance[c]);
+            }
         }
     }
     paths.finish_all(escaped, out);
@@ -255,9 +256,23 @@ pub(crate) fn vertex<const N: usize>(
     let u_lobe = samplers.next_1d(alive);
     let (ud1, ud2) = samplers.next_2d(alive);
 
+    // ---- Light samples of the surface lanes, drawn together ------------------------------
+    // Every light-sampling surface lane's sample, whatever its material: in SIMD when the
+    // scene's lights have lane-parallel forms, else lane by lane from the light set. (Medium
+    // vertices sample theirs in `medium_vertex`.)
+    let surface_nee = nee & !scatter;
+    let light_samples = if surface_nee.any() {
+        match &lanes.lights {
+            Some(wide) => wide.sample(scene_lights, &s.p, surface_nee, &u_select, ul1, ul2),
+            None => LightSamples::from_set(scene_lights, &s.p, surface_nee, &u_select, &ul1, &ul2),
+        }
+    } else {
+        LightSamples::none()
+    };
+
     let mut sc = Scattered::none();
     let lambert_light = if simd.any() {
-        lambertian_lanes(job, &s, &wo, simd, one_sided, nee, [&u_select, &ul1, &ul2, &ud1, &ud2], &mut sc)
+        lambertian_lanes(job, &s, &wo, simd, one_sided, nee, &light_samples, [&ud1, &ud2], &mut sc)
     } else {
         LambertLight::none()
     };
@@ -274,7 +289,8 @@ pub(crate) fn vertex<const N: usize>(
             lobe: u_lobe.0[i],
             direction: Vec2::new(ud1.0[i], ud2.0[i]),
         };
-        let shading = shade(scene, strategy, &it, wo.lane(i), paths.beta(i), u, nee.lane(i));
+        let light = if surface_nee.lane(i) { light_samples.lane(i) } else { None };
+        let shading = shade(scene, strategy, &it, wo.lane(i), paths.beta(i), u, light);
         if let Some(shadow) = &shading.shadow {
             sc.set_shadow(i, shadow);
         }
@@ -479,8 +495,8 @@ impl<const N: usize> LambertLight<N> {
 }
 
 /// The lane-parallel form of a Lambertian vertex (f = albedo/π, cosine-weighted continuation)
-/// for the lanes of `simd`: light samples in SIMD too when every light is a flat area light, else
-/// lane by lane from the scene's light set. Queues the shadow rays and continuations in `sc`.
+/// for the lanes of `simd`, with the light samples `ls` of the lanes of `nee`. Queues the
+/// shadow rays and continuations in `sc`.
 /// `one_sided`: the lanes whose material is one-sided (their shading normal is not turned over).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
@@ -491,10 +507,11 @@ fn lambertian_lanes<const N: usize>(
     simd: Ms<N>,
     one_sided: Ms<N>,
     nee: Ms<N>,
-    [u_select, ul1, ul2, ud1, ud2]: [&F32s<N>; 5],
+    ls: &LightSamples<N>,
+    [ud1, ud2]: [&F32s<N>; 2],
     sc: &mut Scattered<N>,
 ) -> LambertLight<N> {
-    let LaneJob { scene, lanes, .. } = *job;
+    let LaneJob { lanes, .. } = *job;
     let strategy = lanes.settings.strategy;
     let zero = F32s::<N>::ZERO;
     // Face the true normal towards the viewer (the side rays must stay on). A two-sided
@@ -511,10 +528,6 @@ fn lambertian_lanes<const N: usize>(
     let mut light = LambertLight::none();
     let nee = simd & nee;
     if nee.any() {
-        let ls = match &lanes.lights {
-            Some(flat) => flat.sample(&scene.lights, &s.p, nee, u_select, *ul1, *ul2),
-            None => LightSamples::from_set(&scene.lights, &s.p, nee, u_select, ul1, ul2),
-        };
         let cos_i = n_s.dot(&ls.wi);
         // f·cos / albedo, and the material's density of the light's direction.
         let f_cos = lambertian::cosine_over_pi(wo_z, cos_i);

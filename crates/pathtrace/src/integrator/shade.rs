@@ -1,17 +1,18 @@
-//! Shading one lane's vertex through the scene's own materials and lights: the material at the
-//! hit (textures applied), its shading frame, the light sample of next-event estimation and the
-//! continuation direction by the path's strategy.
+//! Shading one lane's vertex through the scene's own materials: the material at the hit
+//! (textures applied), its shading frame, the shadow ray of the light sample drawn for the lane
+//! group (`integrator::path`) and the continuation direction by the path's strategy.
 //!
-//! Every material, light, texture and strategy is served here, one lane at a time, by the same
-//! `Material` and `LightSet` code the sampling tests check; the lane-parallel forms in
-//! `integrator::path` take over only the lanes they can compute identically (Lambertian
-//! surfaces under flat area lights).
+//! Every material, texture and strategy is served here, one lane at a time, by the same
+//! `Material` and `LightSet` code the sampling tests check; the lane-parallel form in
+//! `integrator::path` takes over the Lambertian lanes. Light samples are drawn for the whole
+//! lane group before either runs (in SIMD for area lights and the environment).
 
 use super::shading_frame::ShadingFrame;
 use super::Strategy;
 use crate::material::{Material, Scattering};
 use crate::math::{offset_ray_origin, Frame, Rgb, Vec2, Vec3};
 use crate::scene::{Interaction, Scene};
+use crate::wide::LaneLightSample;
 
 /// Light-sampling shadow rays stop this fraction short of the light, so they do not hit it.
 pub(crate) const SHADOW_EPSILON: f32 = 1e-4;
@@ -52,9 +53,10 @@ pub(crate) struct Shading {
     pub next: Option<Continuation>,
 }
 
-/// Shades the hit `it`, seen along `-wo_world`, for a path of throughput `beta`. `nee` says
-/// whether this vertex samples a light (the caller drew `u.select` and `u.light` only then).
-/// Not inlined: it holds every material and light, and the lane loop stays small without it.
+/// Shades the hit `it`, seen along `-wo_world`, for a path of throughput `beta`. `light` is the
+/// vertex's light sample for next-event estimation, drawn with the lane group's (`u.select`
+/// and `u.light`); `None` when the vertex samples no light or the sample found none.
+/// Not inlined: it holds every material, and the lane loop stays small without it.
 #[inline(never)]
 pub(crate) fn shade(
     scene: &Scene,
@@ -63,7 +65,7 @@ pub(crate) fn shade(
     wo_world: Vec3,
     beta: Rgb,
     u: VertexNumbers,
-    nee: bool,
+    light: Option<LaneLightSample>,
 ) -> Shading {
     // Textured colours at this hit (untextured materials are used as they are).
     let textured: Material;
@@ -75,8 +77,8 @@ pub(crate) fn shade(
     };
     match material {
         // A blend: its two models at this hit, mixed by its (textured) weight.
-        Material::Blend(b) => shade_with(scene, strategy, it, &scene.mixture(b, &it.surface), wo_world, beta, u, nee),
-        _ => shade_with(scene, strategy, it, material, wo_world, beta, u, nee),
+        Material::Blend(b) => shade_with(scene, strategy, it, &scene.mixture(b, &it.surface), wo_world, beta, u, light),
+        _ => shade_with(scene, strategy, it, material, wo_world, beta, u, light),
     }
 }
 
@@ -91,7 +93,7 @@ fn shade_with<M: Scattering>(
     wo_world: Vec3,
     beta: Rgb,
     u: VertexNumbers,
-    nee: bool,
+    light: Option<LaneLightSample>,
 ) -> Shading {
     let lights = &scene.lights;
     let p = it.surface.p;
@@ -116,8 +118,7 @@ fn shade_with<M: Scattering>(
     let wo = frame.to_local(wo_world);
 
     // ---- Light sampling (next-event estimation, MIS only) ----------------------------
-    let shadow =
-        if nee { light_sample(scene, strategy, material, &frame, n_g, p, wo, wo_world, beta, u) } else { None };
+    let shadow = light.and_then(|ls| shadow_ray(strategy, material, &frame, n_g, p, wo, wo_world, beta, &ls));
 
     // ---- Direction sampling --------------------------------------------------------
     // The `light` and `mixture` strategies follow the sampled direction, which point lights
@@ -155,11 +156,10 @@ fn shade_with<M: Scattering>(
     Shading { shadow, next }
 }
 
-/// One light sample and its shadow ray, weighted by MIS against the material's density.
+/// The shadow ray of the light sample `ls`, weighted by MIS against the material's density.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn light_sample<M: Scattering>(
-    scene: &Scene,
+fn shadow_ray<M: Scattering>(
     strategy: Strategy,
     material: &M,
     frame: &ShadingFrame,
@@ -168,9 +168,8 @@ fn light_sample<M: Scattering>(
     wo: Vec3,
     wo_world: Vec3,
     beta: Rgb,
-    u: VertexNumbers,
+    ls: &LaneLightSample,
 ) -> Option<ShadowRay> {
-    let ls = scene.lights.sample(p, u.select, u.light)?;
     // The material's value and, for MIS against a light with a density, its own density of the
     // light's direction, in one evaluation.
     let (f, pdf_material) =
@@ -179,7 +178,7 @@ fn light_sample<M: Scattering>(
         return None;
     }
     let origin = offset_ray_origin(p, n_g, ls.wi);
-    let (dir, t_max) = if ls.dist.is_infinite() {
+    let (dir, t_max) = if ls.at_infinity {
         // The environment: unoccluded if the ray leaves the scene.
         (ls.wi, f32::INFINITY)
     } else {

@@ -9,9 +9,10 @@
 
 use std::sync::Arc;
 
-use super::envmap::EnvMap;
+use super::envmap::{EnvMap, EnvSamples};
 use crate::math::{Rgb, Vec2, Vec3, INV_4PI};
 use crate::sampling::warp;
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Light arriving from infinity.
 #[derive(Clone, Debug)]
@@ -62,6 +63,24 @@ impl EnvironmentLight {
         }
     }
 
+    /// Per lane of `active`, the radiance seen along the unit direction `dir`, and in the lanes
+    /// of `with_pdf` (a subset) [`EnvironmentLight::pdf`] of it (0 elsewhere): the escaped paths
+    /// of a lane group, looked up together.
+    #[inline(always)]
+    pub fn lookup_lanes<const N: usize>(
+        &self,
+        dir: &Vec3s<N>,
+        active: Ms<N>,
+        with_pdf: Ms<N>,
+    ) -> ([F32s<N>; 3], F32s<N>) {
+        match &self.map {
+            None => {
+                (self.radiance.to_array().map(F32s::splat), F32s::select(with_pdf, F32s::splat(INV_4PI), F32s::ZERO))
+            }
+            Some(map) => map.lookup_lanes(dir, active, with_pdf),
+        }
+    }
+
     /// A direction towards the environment, its solid-angle density (0: discard the sample) and
     /// the radiance arriving along it.
     #[inline]
@@ -70,6 +89,23 @@ impl EnvironmentLight {
             None => (warp::square_to_uniform_sphere(u), INV_4PI, self.radiance),
             Some(map) => map.sample_with_radiance(u),
         }
+    }
+
+    /// [`EnvironmentLight::sample`] for the lanes of `active` (a map's directions computed
+    /// together, a constant environment's lane by lane).
+    #[inline(always)]
+    pub fn sample_lanes<const N: usize>(&self, u1: &F32s<N>, u2: &F32s<N>, active: Ms<N>) -> EnvSamples<N> {
+        if let Some(map) = &self.map {
+            return map.sample_lanes(u1, u2, active);
+        }
+        let mut out = EnvSamples { dir: Vec3s::default(), pdf: F32s::ZERO, radiance: [F32s::ZERO; 3] };
+        for i in active.lanes() {
+            let (dir, pdf, radiance) = self.sample(Vec2::new(u1.0[i], u2.0[i]));
+            out.dir.set(i, dir);
+            out.pdf.0[i] = pdf;
+            [out.radiance[0].0[i], out.radiance[1].0[i], out.radiance[2].0[i]] = radiance.to_array();
+        }
+        out
     }
 
     /// Solid-angle density of [`EnvironmentLight::sample`].

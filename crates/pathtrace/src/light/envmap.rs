@@ -14,8 +14,11 @@
 //! p_uv maps to a direction of solid-angle density p_uv / (2π² sin θ), since
 //! dω = sin θ dθ dφ = 2π² sin θ du dv.
 
-use crate::math::{Rgb, Transform, Vec2, Vec3, PI};
+use crate::math::{Mat4, Rgb, Transform, Vec2, Vec3, PI};
 use crate::sampling::Distribution2D;
+use crate::wide::inverse_trig;
+use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::warp::cos_sin_turn;
 
 /// A lat-long radiance image with its sampling distribution.
 #[derive(Clone, Debug)]
@@ -29,6 +32,16 @@ pub struct EnvMap {
     distribution: Distribution2D,
     /// ∫ luminance dω over the sphere (of the piecewise-constant approximation the sampler uses).
     luminance_integral: f64,
+}
+
+/// Directions drawn by [`EnvMap::sample_lanes`], meaningful in the lanes asked for.
+#[derive(Clone, Copy, Debug)]
+pub struct EnvSamples<const N: usize> {
+    pub dir: Vec3s<N>,
+    /// Solid-angle density (0 where the sample hit a pole: discard it).
+    pub pdf: F32s<N>,
+    /// The radiance along `dir`, per channel.
+    pub radiance: [F32s<N>; 3],
 }
 
 impl EnvMap {
@@ -86,25 +99,64 @@ impl EnvMap {
     /// Radiance seen looking along the unit world direction `dir` (bilinear between texels).
     #[inline]
     pub fn radiance(&self, dir: Vec3) -> Rgb {
-        let uv = direction_to_uv(self.to_local(dir));
-        self.radiance_at(self.cell_u(uv.x), uv.y)
+        lane_rgb(self.lookup_lanes(&Vec3s::splat(dir), Ms::ALL, Ms::NONE).0)
     }
 
     /// [`EnvMap::radiance`] and [`EnvMap::pdf`] of one direction (an escaped path weighs what it
     /// sees by MIS), mapping the direction to the image once.
     #[inline]
     pub fn radiance_and_pdf(&self, dir: Vec3) -> (Rgb, f32) {
-        let local = self.to_local(dir);
-        let uv = direction_to_uv(local);
-        let cell_u = self.cell_u(uv.x);
-        (self.radiance_at(cell_u, uv.y), self.pdf_at(cell_u, uv.y, local))
+        let (radiance, pdf) = self.lookup_lanes(&Vec3s::splat(dir), Ms::ALL, Ms::ALL);
+        (lane_rgb(radiance), pdf.0[0])
+    }
+
+    /// Solid-angle density of [`EnvMap::sample`] for the unit world direction `dir`.
+    #[inline]
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        let (local, cell_u, v) = self.image_coordinates(&Vec3s::<1>::splat(dir));
+        self.pdf_at_lanes(cell_u, v, &local, Ms::ALL).0[0]
+    }
+
+    /// Per lane of `active`, the radiance seen along the unit world direction `dir` and, in the
+    /// lanes of `with_pdf` (a subset), [`EnvMap::pdf`] of it (0 elsewhere). The one-lane
+    /// instance is [`EnvMap::radiance`] and [`EnvMap::radiance_and_pdf`].
+    #[inline(always)]
+    pub fn lookup_lanes<const N: usize>(
+        &self,
+        dir: &Vec3s<N>,
+        active: Ms<N>,
+        with_pdf: Ms<N>,
+    ) -> ([F32s<N>; 3], F32s<N>) {
+        let (local, cell_u, v) = self.image_coordinates(dir);
+        let pdf = if with_pdf.any() { self.pdf_at_lanes(cell_u, v, &local, with_pdf) } else { F32s::ZERO };
+        (self.radiance_at_lanes(cell_u, v, active), pdf)
+    }
+
+    /// The map's local direction of each world direction, and its image coordinates: u from
+    /// the first texel column's centre (see [`EnvMap::cell_u`]) and v.
+    #[inline(always)]
+    fn image_coordinates<const N: usize>(&self, dir: &Vec3s<N>) -> (Vec3s<N>, F32s<N>, F32s<N>) {
+        let local = normalize(&transform_vectors(&self.to_world.inverse, dir));
+        let (u, v) = direction_to_uv(&local);
+        (local, self.cell_u(u), v)
     }
 
     /// u measured from the first texel column's centre (texel i at u = (i + ½)/W), wrapped to
     /// [0, 1): the cells of the sampling distribution and of the bilinear lookup start there.
     #[inline(always)]
-    fn cell_u(&self, u: f32) -> f32 {
+    fn cell_u<const N: usize>(&self, u: F32s<N>) -> F32s<N> {
         wrap01(u - 0.5 / self.width as f32)
+    }
+
+    /// [`EnvMap::radiance_at`] in the lanes of `active` (one texel gather per lane).
+    #[inline(always)]
+    fn radiance_at_lanes<const N: usize>(&self, cell_u: F32s<N>, v: F32s<N>, active: Ms<N>) -> [F32s<N>; 3] {
+        let mut out = [F32s::ZERO; 3];
+        for i in active.lanes() {
+            let c = self.radiance_at(cell_u.0[i], v.0[i]);
+            [out[0].0[i], out[1].0[i], out[2].0[i]] = c.to_array();
+        }
+        out
     }
 
     /// Bilinear radiance at `cell_u` (see [`EnvMap::cell_u`]) and v.
@@ -131,43 +183,51 @@ impl EnvMap {
         (dir, pdf)
     }
 
-    /// [`EnvMap::sample`] and the radiance along the sampled direction, looked up at the sampled
-    /// image coordinates (as Mitsuba's `envmap` does), so the direction is not mapped back to
-    /// the image; equal to `radiance(dir)` up to the rounding of that round trip.
+    /// [`EnvMap::sample`] and the radiance along the sampled direction: the one-lane instance of
+    /// [`EnvMap::sample_lanes`].
     #[inline]
     pub fn sample_with_radiance(&self, u: Vec2) -> (Vec3, f32, Rgb) {
-        let (cell_uv, pdf_uv) = self.distribution.sample(u);
-        let uv = Vec2::new(wrap01(cell_uv.x + 0.5 / self.width as f32), cell_uv.y);
-        let (sin_theta, cos_theta) = (PI * uv.y).sin_cos();
-        let (sin_phi, cos_phi) = (2.0 * PI * uv.x).sin_cos();
-        let local = Vec3::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi);
-        let dir = self.to_world.vector(local).normalize();
-        (dir, solid_angle_pdf(pdf_uv, sin_theta), self.radiance_at(cell_uv.x, cell_uv.y))
+        let s = self.sample_lanes(&F32s::<1>::splat(u.x), &F32s::splat(u.y), Ms::ALL);
+        (s.dir.lane(0), s.pdf.0[0], lane_rgb(s.radiance))
     }
 
-    /// Solid-angle density of [`EnvMap::sample`] for the unit world direction `dir`.
-    #[inline]
-    pub fn pdf(&self, dir: Vec3) -> f32 {
-        let local = self.to_local(dir);
-        let uv = direction_to_uv(local);
-        self.pdf_at(self.cell_u(uv.x), uv.y, local)
-    }
-
-    /// The density at `cell_u` and v of the local direction `local`.
+    /// One direction per lane of `active` from the numbers `(u1, u2)`, with its density and the
+    /// radiance along it, looked up at the sampled image coordinates (as Mitsuba's `envmap`
+    /// does), so the direction is not mapped back to the image; equal to `radiance(dir)` up to
+    /// the rounding of that round trip. The cell search is lane by lane; the direction, its
+    /// density and the transform to the world are computed for the lanes together.
     #[inline(always)]
-    fn pdf_at(&self, cell_u: f32, v: f32, local: Vec3) -> f32 {
-        let sin_theta = (1.0 - local.y * local.y).max(0.0).sqrt();
-        solid_angle_pdf(self.distribution.pdf(Vec2::new(cell_u, v)), sin_theta)
+    pub fn sample_lanes<const N: usize>(&self, u1: &F32s<N>, u2: &F32s<N>, active: Ms<N>) -> EnvSamples<N> {
+        let (mut cell_u, mut cell_v, mut pdf_uv) = (F32s::<N>::ZERO, F32s::<N>::ZERO, F32s::<N>::ZERO);
+        for i in active.lanes() {
+            let (cell, pdf) = self.distribution.sample(Vec2::new(u1.0[i], u2.0[i]));
+            (cell_u.0[i], cell_v.0[i], pdf_uv.0[i]) = (cell.x, cell.y, pdf);
+        }
+        let radiance = self.radiance_at_lanes(cell_u, cell_v, active);
+        let u = wrap01(cell_u + 0.5 / self.width as f32);
+        // θ = πv and φ = 2πu, as turns.
+        let (cos_theta, sin_theta) = cos_sin_turn(0.5 * cell_v);
+        let (cos_phi, sin_phi) = cos_sin_turn(u);
+        let local = Vec3s { x: sin_theta * sin_phi, y: cos_theta, z: -(sin_theta * cos_phi) };
+        let dir = normalize(&transform_vectors(&self.to_world.matrix, &local));
+        EnvSamples { dir, pdf: solid_angle_pdf(pdf_uv, sin_theta), radiance }
+    }
+
+    /// The density at `cell_u` and v of the local direction `local`, in the lanes of `active`
+    /// (0 in the others).
+    #[inline(always)]
+    fn pdf_at_lanes<const N: usize>(&self, cell_u: F32s<N>, v: F32s<N>, local: &Vec3s<N>, active: Ms<N>) -> F32s<N> {
+        let mut pdf_uv = F32s::ZERO;
+        for i in active.lanes() {
+            pdf_uv.0[i] = self.distribution.pdf(Vec2::new(cell_u.0[i], v.0[i]));
+        }
+        let sin_theta = (1.0 - local.y * local.y).max(F32s::ZERO).sqrt();
+        solid_angle_pdf(pdf_uv, sin_theta)
     }
 
     /// ∫ luminance dω over the whole sphere.
     pub fn luminance_integral(&self) -> f64 {
         self.luminance_integral
-    }
-
-    #[inline(always)]
-    fn to_local(&self, dir: Vec3) -> Vec3 {
-        self.to_world.inverse.transform_vector3(dir).normalize()
     }
 }
 
@@ -176,40 +236,50 @@ fn cell_rows(height: usize) -> usize {
     (height - 1).max(1)
 }
 
-/// x − ⌊x⌋ in [0, 1), for x in [−1, 2) (every caller's range: a u in [0, 1) shifted by half a
-/// texel, or atan2/2π in [−½, ½]); the same operations as with `floor`, without its library
-/// call on targets without SSE4.1.
+/// x − ⌊x⌋ in [0, 1) per lane, for x in [−1, 2) (every caller's range: a u in [0, 1) shifted by
+/// half a texel, or atan2/2π in [−½, ½]); the same operations as with `floor`, without its
+/// library call on targets without SSE4.1.
 #[inline(always)]
-fn wrap01(x: f32) -> f32 {
-    let f = if x < 0.0 {
-        x + 1.0
-    } else if x >= 1.0 {
-        x - 1.0
-    } else {
-        x
-    };
+fn wrap01<const N: usize>(x: F32s<N>) -> F32s<N> {
+    let f = F32s::select(x.lt(F32s::ZERO), x + 1.0, F32s::select(x.ge(F32s::ONE), x - 1.0, x));
     // x + 1 rounds to 1 for tiny negative x.
-    if f >= 1.0 {
-        0.0
-    } else {
-        f
-    }
+    F32s::select(f.ge(F32s::ONE), F32s::ZERO, f)
 }
 
-/// Mitsuba's lat-long coordinates of a local unit direction (see the module comment).
+/// Mitsuba's lat-long coordinates (u, v) of local unit directions (see the module comment).
 #[inline(always)]
-fn direction_to_uv(d: Vec3) -> Vec2 {
-    let u = d.x.atan2(-d.z) / (2.0 * PI);
-    let v = d.y.clamp(-1.0, 1.0).acos() / PI;
-    Vec2::new(wrap01(u), v)
+fn direction_to_uv<const N: usize>(d: &Vec3s<N>) -> (F32s<N>, F32s<N>) {
+    let u = inverse_trig::atan2(d.x, -d.z) / (2.0 * PI);
+    let v = inverse_trig::acos(d.y.max(F32s::splat(-1.0)).min(F32s::ONE)) / PI;
+    (wrap01(u), v)
 }
 
-/// p_ω = p_uv / (2π² sin θ).
-fn solid_angle_pdf(pdf_uv: f32, sin_theta: f32) -> f32 {
-    if sin_theta <= 0.0 {
-        return 0.0;
+/// p_ω = p_uv / (2π² sin θ); 0 where sin θ ≤ 0 (the poles).
+#[inline(always)]
+fn solid_angle_pdf<const N: usize>(pdf_uv: F32s<N>, sin_theta: F32s<N>) -> F32s<N> {
+    F32s::select(sin_theta.le(F32s::ZERO), F32s::ZERO, pdf_uv / (2.0 * PI * PI * sin_theta))
+}
+
+/// `m`'s linear part applied to each lane's vector (`Mat4::transform_vector3` per lane).
+#[inline(always)]
+fn transform_vectors<const N: usize>(m: &Mat4, v: &Vec3s<N>) -> Vec3s<N> {
+    let (a, b, c) = (m.x_axis, m.y_axis, m.z_axis);
+    Vec3s {
+        x: v.x * a.x + v.y * b.x + v.z * c.x,
+        y: v.x * a.y + v.y * b.y + v.z * c.y,
+        z: v.x * a.z + v.y * b.z + v.z * c.z,
     }
-    pdf_uv / (2.0 * PI * PI * sin_theta)
+}
+
+#[inline(always)]
+fn normalize<const N: usize>(v: &Vec3s<N>) -> Vec3s<N> {
+    v.scale(1.0 / v.length())
+}
+
+/// Lane 0 of three channels.
+#[inline(always)]
+fn lane_rgb(c: [F32s<1>; 3]) -> Rgb {
+    Rgb::new(c[0].0[0], c[1].0[0], c[2].0[0])
 }
 
 #[cfg(test)]
@@ -219,7 +289,10 @@ mod tests {
     #[test]
     fn uv_mapping_matches_mitsuba_axes() {
         // u = 0 looks along −z, u = ¼ along +x; v = 0 is +y.
-        let c = |d: Vec3| direction_to_uv(d);
+        let c = |d: Vec3| {
+            let (u, v) = direction_to_uv(&Vec3s::<1>::splat(d));
+            Vec2::new(u.0[0], v.0[0])
+        };
         assert!((c(Vec3::new(0.0, 0.0, -1.0)) - Vec2::new(0.0, 0.5)).length() < 1e-6);
         assert!((c(Vec3::X) - Vec2::new(0.25, 0.5)).length() < 1e-6);
         assert!(c(Vec3::Y).y.abs() < 1e-6);

@@ -1,15 +1,15 @@
 //! Light samples for a group of lanes: computed together when every light is an area light of
-//! constant radiance on a quad, triangle or sphere, else gathered lane by lane from the scene's
-//! light set.
+//! constant radiance on a quad, triangle or sphere, or the environment, else gathered lane by
+//! lane from the scene's light set.
 //!
 //! Each lane picks its light with the scene's own selection distribution ([`LightSet::pick`]),
 //! then the point on it, the direction and the density are computed for all lanes together by
-//! `light::area::sample_flat_lanes` and `sample_sphere_lanes`, the formulas the scalar light set
-//! runs in one lane.
+//! `light::area::sample_flat_lanes`, `sample_sphere_lanes` and
+//! `EnvironmentLight::sample_lanes`, the formulas the scalar light set runs in one lane.
 
 use super::simd::{F32s, Ms, Vec3s};
 use crate::light::area::{sample_flat_lanes, sample_sphere_lanes, FlatLights, FlatSamples, SphereLights};
-use crate::light::{Light, LightSet, LightShape};
+use crate::light::{EnvironmentLight, Light, LightSet, LightShape};
 use crate::math::{Rgb, Vec2, Vec3};
 
 /// One flat light: `origin + s·e1 + t·e2`.
@@ -40,15 +40,19 @@ struct SphereLight {
 enum WideLight {
     Flat(FlatLight),
     Sphere(SphereLight),
+    /// The scene's environment ([`WideLights::environment`]).
+    Environment,
 }
 
-/// The scene's lights, when all are flat or sphere area lights.
+/// The scene's lights, when all are flat or sphere area lights or the environment.
 #[derive(Clone, Debug)]
 pub struct WideLights {
     lights: Vec<WideLight>,
     /// Some light is flat; some is a sphere (each form is computed only if present).
     any_flat: bool,
     any_sphere: bool,
+    /// The environment, if the scene has one (a scene has at most one).
+    environment: Option<EnvironmentLight>,
 }
 
 /// `N` light samples (meaningful in `valid` lanes).
@@ -69,7 +73,48 @@ pub struct LightSamples<const N: usize> {
     pub delta: Ms<N>,
 }
 
+/// One lane's light sample ([`LightSamples::lane`]), for the shading of a lane on its own.
+#[derive(Clone, Copy, Debug)]
+pub struct LaneLightSample {
+    pub point: Vec3,
+    /// Unit direction from the reference point to `point`.
+    pub wi: Vec3,
+    /// Solid-angle density, light selection included (for delta lights: the selection pmf).
+    pub pdf: f32,
+    pub radiance: Rgb,
+    /// The light is at infinity (the environment, a directional light): seen along `wi`.
+    pub at_infinity: bool,
+    pub delta: bool,
+}
+
 impl<const N: usize> LightSamples<N> {
+    /// No sample in any lane.
+    #[inline(always)]
+    pub fn none() -> Self {
+        Self {
+            point: Vec3s::default(),
+            wi: Vec3s::default(),
+            pdf: F32s::ONE,
+            radiance: [F32s::ZERO; 3],
+            valid: Ms::NONE,
+            dist_finite: Ms::NONE,
+            delta: Ms::NONE,
+        }
+    }
+
+    /// Lane `i`'s sample, if it has one.
+    #[inline(always)]
+    pub fn lane(&self, i: usize) -> Option<LaneLightSample> {
+        self.valid.lane(i).then(|| LaneLightSample {
+            point: self.point.lane(i),
+            wi: self.wi.lane(i),
+            pdf: self.pdf.0[i],
+            radiance: Rgb::new(self.radiance[0].0[i], self.radiance[1].0[i], self.radiance[2].0[i]),
+            at_infinity: !self.dist_finite.lane(i),
+            delta: self.delta.lane(i),
+        })
+    }
+
     /// One sample per lane of `active` from the scene's light set (`LightSet::sample`), for
     /// lights without a lane-parallel form (points, spots, spheres, disks, environments).
     #[inline(never)]
@@ -81,15 +126,7 @@ impl<const N: usize> LightSamples<N> {
         u1: &F32s<N>,
         u2: &F32s<N>,
     ) -> Self {
-        let mut out = Self {
-            point: Vec3s::default(),
-            wi: Vec3s::default(),
-            pdf: F32s::ONE,
-            radiance: [F32s::ZERO; 3],
-            valid: Ms::NONE,
-            dist_finite: Ms::NONE,
-            delta: Ms::NONE,
-        };
+        let mut out = Self::none();
         for i in active.lanes() {
             let u = Vec2::new(u1.0[i], u2.0[i]);
             let Some(ls) = set.sample(p.lane(i), u_select.0[i], u) else { continue };
@@ -111,19 +148,20 @@ impl<const N: usize> LightSamples<N> {
 
 impl WideLights {
     /// `None` unless every light is a quad, triangle or sphere area light of constant radiance
-    /// (no point, spot, disk or environment light, no radiance texture).
+    /// or the environment (no point, spot, disk or directional light, no radiance texture).
     pub fn new(set: &LightSet) -> Option<Self> {
+        let mut environment = None;
         let lights = set
             .lights()
             .iter()
             .map(|light| {
                 let l = match light {
                     Light::Area(l) if l.texture().is_none() => l,
-                    Light::Area(_)
-                    | Light::Point(_)
-                    | Light::Spot(_)
-                    | Light::Directional(_)
-                    | Light::Environment(_) => return None,
+                    Light::Environment(e) => {
+                        environment = Some(e.clone());
+                        return Some(WideLight::Environment);
+                    }
+                    Light::Area(_) | Light::Point(_) | Light::Spot(_) | Light::Directional(_) => return None,
                 };
                 let (radiance, two_sided) = (l.emission.radiance, l.emission.two_sided);
                 let (origin, e1, e2, triangle) = match l.shape {
@@ -143,7 +181,7 @@ impl WideLights {
             .collect::<Option<Vec<_>>>()?;
         let any_flat = lights.iter().any(|l| matches!(l, WideLight::Flat(_)));
         let any_sphere = lights.iter().any(|l| matches!(l, WideLight::Sphere(_)));
-        Some(Self { lights, any_flat, any_sphere })
+        Some(Self { lights, any_flat, any_sphere, environment })
     }
 
     /// Samples a light point for each lane of `active` from `p`, with the selection numbers
@@ -168,6 +206,7 @@ impl WideLights {
         };
         let mut spheres = SphereLights { center: Vec3s::default(), radius: F32s::ZERO, inward: Ms::NONE };
         let mut on_sphere = Ms::<N>::NONE;
+        let mut on_environment = Ms::<N>::NONE;
         // The selection pmf, divided by the area for flat lights (whose density is per area).
         let mut pmf_factor = F32s::<N>::ZERO;
         let mut radiance = [F32s::<N>::ZERO; 3];
@@ -194,6 +233,12 @@ impl WideLights {
                     pmf_factor.0[i] = pmf;
                     (l.radiance, l.two_sided)
                 }
+                // Its radiance depends on the direction (below); it faces every point.
+                WideLight::Environment => {
+                    on_environment.0[i] = u32::MAX;
+                    pmf_factor.0[i] = pmf;
+                    (Rgb::BLACK, true)
+                }
             };
             [radiance[0].0[i], radiance[1].0[i], radiance[2].0[i]] = emitted.to_array();
             two_sided.0[i] = if both_faces { u32::MAX } else { 0 };
@@ -214,9 +259,21 @@ impl WideLights {
             cos_l = F32s::select(on_sphere, s.normal.dot(&s.wi), cos_l);
             pdf = F32s::select(on_sphere, s.pdf * pmf_factor, pdf);
         }
+        if let Some(env) = self.environment.as_ref().filter(|_| on_environment.any()) {
+            // At infinity along wi (the shadow ray is unoccluded if it leaves the scene); the
+            // point is the scalar light set's p + wi.
+            let e = env.sample_lanes(&u1, &u2, on_environment);
+            point = Vec3s::select(on_environment, &p.add(&e.dir), &point);
+            wi = Vec3s::select(on_environment, &e.dir, &wi);
+            dist = F32s::select(on_environment, F32s::splat(f32::INFINITY), dist);
+            pdf = F32s::select(on_environment, e.pdf * pmf_factor, pdf);
+            for c in 0..3 {
+                radiance[c] = F32s::select(on_environment, e.radiance[c], radiance[c]);
+            }
+        }
         // One-sided lights emit along their normal: towards p when cos θ_l = n·wi < 0.
         let faces_p = two_sided | cos_l.lt(F32s::<N>::ZERO);
         let valid = picked & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
-        LightSamples { point, wi, pdf, radiance, valid, dist_finite: Ms::ALL, delta: Ms::NONE }
+        LightSamples { point, wi, pdf, radiance, valid, dist_finite: !on_environment, delta: Ms::NONE }
     }
 }

@@ -15,6 +15,7 @@
 
 mod boxes;
 mod geometry;
+pub mod inverse_trig;
 mod lights;
 mod sampler;
 pub mod simd;
@@ -22,7 +23,7 @@ pub mod warp;
 
 pub(crate) use geometry::FlatGeometry;
 pub use geometry::MAX_FLAT_POLYGONS;
-pub(crate) use lights::{LightSamples, WideLights};
+pub(crate) use lights::{LaneLightSample, LightSamples, WideLights};
 pub(crate) use sampler::LaneSamplers;
 
 use crate::integrator::PathSettings;
