@@ -9,7 +9,7 @@
 
 use super::simd::{F32s, Ms, Vec3s};
 use crate::light::area::{sample_flat_lanes, sample_sphere_lanes, FlatLights, FlatSamples, SphereLights};
-use crate::light::{EnvironmentLight, Light, LightSet, LightShape};
+use crate::light::{EnvironmentLight, Light, LightSet, LightShape, PointLight};
 use crate::math::{Rgb, Vec2, Vec3};
 
 /// One flat light: `origin + s·e1 + t·e2`.
@@ -42,15 +42,17 @@ enum WideLight {
     Sphere(SphereLight),
     /// The scene's environment ([`WideLights::environment`]).
     Environment,
+    Point(PointLight),
 }
 
-/// The scene's lights, when all are flat or sphere area lights or the environment.
+/// The scene's lights, when all are flat or sphere area lights, point lights or the environment.
 #[derive(Clone, Debug)]
 pub struct WideLights {
     lights: Vec<WideLight>,
     /// Some light is flat; some is a sphere (each form is computed only if present).
     any_flat: bool,
     any_sphere: bool,
+    any_point: bool,
     /// The environment, if the scene has one (a scene has at most one).
     environment: Option<EnvironmentLight>,
 }
@@ -147,8 +149,9 @@ impl<const N: usize> LightSamples<N> {
 }
 
 impl WideLights {
-    /// `None` unless every light is a quad, triangle or sphere area light of constant radiance
-    /// or the environment (no point, spot, disk or directional light, no radiance texture).
+    /// `None` unless every light is a quad, triangle or sphere area light of constant radiance,
+    /// a point light or the environment (no spot, disk or directional light, no radiance
+    /// texture).
     pub fn new(set: &LightSet) -> Option<Self> {
         let mut environment = None;
         let lights = set
@@ -161,7 +164,8 @@ impl WideLights {
                         environment = Some(e.clone());
                         return Some(WideLight::Environment);
                     }
-                    Light::Area(_) | Light::Point(_) | Light::Spot(_) | Light::Directional(_) => return None,
+                    Light::Point(l) => return Some(WideLight::Point(*l)),
+                    Light::Area(_) | Light::Spot(_) | Light::Directional(_) => return None,
                 };
                 let (radiance, two_sided) = (l.emission.radiance, l.emission.two_sided);
                 let (origin, e1, e2, triangle) = match l.shape {
@@ -181,7 +185,8 @@ impl WideLights {
             .collect::<Option<Vec<_>>>()?;
         let any_flat = lights.iter().any(|l| matches!(l, WideLight::Flat(_)));
         let any_sphere = lights.iter().any(|l| matches!(l, WideLight::Sphere(_)));
-        Some(Self { lights, any_flat, any_sphere, environment })
+        let any_point = lights.iter().any(|l| matches!(l, WideLight::Point(_)));
+        Some(Self { lights, any_flat, any_sphere, any_point, environment })
     }
 
     /// Samples a light point for each lane of `active` from `p`, with the selection numbers
@@ -207,6 +212,8 @@ impl WideLights {
         let mut spheres = SphereLights { center: Vec3s::default(), radius: F32s::ZERO, inward: Ms::NONE };
         let mut on_sphere = Ms::<N>::NONE;
         let mut on_environment = Ms::<N>::NONE;
+        let (mut on_point, mut point_position, mut intensity) =
+            (Ms::<N>::NONE, Vec3s::<N>::default(), [F32s::<N>::ZERO; 3]);
         // The selection pmf, divided by the area for flat lights (whose density is per area).
         let mut pmf_factor = F32s::<N>::ZERO;
         let mut radiance = [F32s::<N>::ZERO; 3];
@@ -236,6 +243,14 @@ impl WideLights {
                 // Its radiance depends on the direction (below); it faces every point.
                 WideLight::Environment => {
                     on_environment.0[i] = u32::MAX;
+                    pmf_factor.0[i] = pmf;
+                    (Rgb::BLACK, true)
+                }
+                // I/r², below; a point has no facing.
+                WideLight::Point(l) => {
+                    on_point.0[i] = u32::MAX;
+                    point_position.set(i, l.position);
+                    [intensity[0].0[i], intensity[1].0[i], intensity[2].0[i]] = l.intensity.to_array();
                     pmf_factor.0[i] = pmf;
                     (Rgb::BLACK, true)
                 }
@@ -271,9 +286,22 @@ impl WideLights {
                 radiance[c] = F32s::select(on_environment, e.radiance[c], radiance[c]);
             }
         }
+        let mut no_point = Ms::<N>::NONE;
+        if self.any_point && on_point.any() {
+            // A Dirac delta in direction: its "density" is the selection pmf alone.
+            let (wi_p, dist_p, radiance_p, found) = PointLight::sample_lanes(&point_position, intensity, p);
+            point = Vec3s::select(on_point, &point_position, &point);
+            wi = Vec3s::select(on_point, &wi_p, &wi);
+            dist = F32s::select(on_point, dist_p, dist);
+            pdf = F32s::select(on_point, pmf_factor, pdf);
+            for c in 0..3 {
+                radiance[c] = F32s::select(on_point, radiance_p[c], radiance[c]);
+            }
+            no_point = on_point & !found;
+        }
         // One-sided lights emit along their normal: towards p when cos θ_l = n·wi < 0.
         let faces_p = two_sided | cos_l.lt(F32s::<N>::ZERO);
-        let valid = picked & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
-        LightSamples { point, wi, pdf, radiance, valid, dist_finite: !on_environment, delta: Ms::NONE }
+        let valid = picked & !no_point & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
+        LightSamples { point, wi, pdf, radiance, valid, dist_finite: !on_environment, delta: on_point }
     }
 }
