@@ -224,15 +224,14 @@ impl Camera {
             z: base.z + a * u.z + b * v.z,
         };
         let target = along(self.pixel00, a, self.du, b, self.dv);
-        let normalize = |v: Vec3s<N>| v.scale(1.0 / v.length());
         let origin = Vec3s::splat(self.origin);
         match self.projection {
-            Projection::Pinhole => (origin, normalize(target.sub(&origin))),
+            Projection::Pinhole => (origin, target.sub(&origin).normalize()),
             Projection::ThinLens { lens_u, lens_v, focus_scale } => {
                 let focus = origin.add(&target.sub(&origin).scale(F32s::splat(focus_scale)));
                 let (dx, dy) = lanes::square_to_uniform_disk(aperture[0], aperture[1]);
                 let lens = along(self.origin, dx, lens_u, dy, lens_v);
-                (lens, normalize(focus.sub(&lens)))
+                (lens, focus.sub(&lens).normalize())
             }
             Projection::Orthographic { dir } => (target, Vec3s::splat(dir)),
         }

@@ -136,7 +136,7 @@ impl EnvMap {
     /// the first texel column's centre (see [`EnvMap::cell_u`]) and v.
     #[inline(always)]
     fn image_coordinates<const N: usize>(&self, dir: &Vec3s<N>) -> (Vec3s<N>, F32s<N>, F32s<N>) {
-        let local = normalize(&transform_vectors(&self.to_world.inverse, dir));
+        let local = transform_vectors(&self.to_world.inverse, dir).normalize();
         let (u, v) = direction_to_uv(&local);
         (local, self.cell_u(u), v)
     }
@@ -209,7 +209,7 @@ impl EnvMap {
         let (cos_theta, sin_theta) = cos_sin_turn(0.5 * cell_v);
         let (cos_phi, sin_phi) = cos_sin_turn(u);
         let local = Vec3s { x: sin_theta * sin_phi, y: cos_theta, z: -(sin_theta * cos_phi) };
-        let dir = normalize(&transform_vectors(&self.to_world.matrix, &local));
+        let dir = transform_vectors(&self.to_world.matrix, &local).normalize();
         EnvSamples { dir, pdf: solid_angle_pdf(pdf_uv, sin_theta), radiance }
     }
 
@@ -269,11 +269,6 @@ fn transform_vectors<const N: usize>(m: &Mat4, v: &Vec3s<N>) -> Vec3s<N> {
         y: v.x * a.y + v.y * b.y + v.z * c.y,
         z: v.x * a.z + v.y * b.z + v.z * c.z,
     }
-}
-
-#[inline(always)]
-fn normalize<const N: usize>(v: &Vec3s<N>) -> Vec3s<N> {
-    v.scale(1.0 / v.length())
 }
 
 /// Lane 0 of three channels.

@@ -364,6 +364,12 @@ impl<const N: usize> Vec3s<N> {
         self.dot(self).sqrt()
     }
 
+    /// The unit vectors: times the reciprocal of the length, as glam's `Vec3::normalize`.
+    #[inline(always)]
+    pub fn normalize(&self) -> Self {
+        self.scale(1.0 / self.length())
+    }
+
     #[inline(always)]
     pub fn scale(&self, s: F32s<N>) -> Self {
         Self { x: self.x * s, y: self.y * s, z: self.z * s }
