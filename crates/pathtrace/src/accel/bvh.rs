@@ -103,6 +103,11 @@ const MEDIUM_STACK: usize = 64;
 /// A node that fewer rays of a group reach is traversed ray by ray (see
 /// [`Bvh::intersect_lanes`]).
 const SINGLE_RAY_BELOW: u32 = 3;
+/// A leaf reached by at least this many rays of a group tests each of its primitives against
+/// those rays at once (lanes = rays); fewer rays test it one at a time (lanes = primitives). A
+/// ray-lane test costs one primitive's test in every lane, a single-ray test four primitives'
+/// for one ray, so they break even near four rays.
+const RAY_LANES_FROM: u32 = 4;
 
 impl Bvh {
     /// Builds over the given primitive bounds with the production options (binned SAH, on
@@ -271,6 +276,8 @@ impl Bvh {
                     }
                     kids[i] = (child, hit, entry);
                     k += 1;
+                } else if hit.count_ones() >= RAY_LANES_FROM {
+                    t_far = self.leaves.intersect_rays(child & !LEAF, prims, origin, dir, hit, t_min, t_far, &mut best);
                 } else {
                     let mut lanes = hit;
                     while lanes != 0 {
@@ -440,6 +447,8 @@ impl Bvh {
                 if child & LEAF == 0 {
                     stack[sp] = (child, hit);
                     sp += 1;
+                } else if hit.count_ones() >= RAY_LANES_FROM {
+                    blocked |= self.leaves.occluded_rays(child & !LEAF, prims, origin, dir, hit, t_min, t_max);
                 } else {
                     let mut lanes = hit;
                     while lanes != 0 {

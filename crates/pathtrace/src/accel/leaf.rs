@@ -1,12 +1,13 @@
 //! BVH leaves: their quads and triangles packed four to a SIMD packet (lanes = primitives, as
 //! in Embree's "quad4"/"triangle4" leaves), other shapes kept as indices tested one by one.
 
-use super::lanes::{HitX4, RayX4};
+use super::lanes::{HitL, HitX4, RayX4, Rays};
 use super::quad4::Quad4;
 use super::tri4::Tri4;
 use super::PrimitiveSet;
 use crate::math::Ray;
 use crate::shape::{PrimHit, Quad, Triangle};
+use crate::wide::simd::{F32s, Vec3s};
 
 /// How a primitive is stored in a leaf.
 #[derive(Clone, Copy, Debug)]
@@ -27,7 +28,10 @@ struct Packed<G> {
 
 /// A four-lane primitive packet (quads or triangles).
 trait Packet {
+    /// One ray against the packet's primitives.
     fn hits(&self, rx4: &RayX4, t_min: f32, t_max: f32) -> HitX4;
+    /// Primitive `k` of the packet against a group of rays (the same bits per ray).
+    fn hits_rays<const N: usize>(&self, k: usize, rays: &Rays<N>, t_min: f32, t_max: F32s<N>) -> HitL<F32s<N>>;
 }
 
 impl Packet for Quad4 {
@@ -35,12 +39,20 @@ impl Packet for Quad4 {
     fn hits(&self, rx4: &RayX4, t_min: f32, t_max: f32) -> HitX4 {
         self.intersect(rx4, t_min, t_max)
     }
+    #[inline(always)]
+    fn hits_rays<const N: usize>(&self, k: usize, rays: &Rays<N>, t_min: f32, t_max: F32s<N>) -> HitL<F32s<N>> {
+        self.intersect_rays(k, rays, t_min, t_max)
+    }
 }
 
 impl Packet for Tri4 {
     #[inline(always)]
     fn hits(&self, rx4: &RayX4, t_min: f32, t_max: f32) -> HitX4 {
         self.intersect(rx4, t_min, t_max)
+    }
+    #[inline(always)]
+    fn hits_rays<const N: usize>(&self, k: usize, rays: &Rays<N>, t_min: f32, t_max: F32s<N>) -> HitL<F32s<N>> {
+        self.intersect_rays(k, rays, t_min, t_max)
     }
 }
 
@@ -76,6 +88,58 @@ fn closest_in<G: Packet>(
             offer(PrimHit { t: h.t[lane], u: h.u[lane], v: h.v[lane] }, p.ids[lane], t_max, best);
         }
     }
+}
+
+/// [`closest_in`] for the rays of `lanes` (a bitmask) of a group, testing each primitive
+/// against all of them at once; ray `i` updates `best[i]`, and the rays' `t_max` shrunk to
+/// their hits is returned. Per ray the same hit as [`closest_in`]: the same bits per test, and
+/// [`offer`]'s order does not depend on the order the hits come in.
+#[inline(always)]
+fn closest_in_rays<G: Packet, const N: usize>(
+    packets: &[Packed<G>],
+    rays: &Rays<N>,
+    lanes: u32,
+    t_min: f32,
+    mut t_max: F32s<N>,
+    best: &mut [Option<(PrimHit, u32)>; N],
+) -> F32s<N> {
+    for p in packets {
+        for k in 0..4 {
+            // Padding lanes repeat the previous primitive (and never hit).
+            if k > 0 && p.ids[k] == p.ids[k - 1] {
+                break;
+            }
+            let h = p.geom.hits_rays(k, rays, t_min, t_max);
+            let mut hit = h.mask.bitmask() & lanes;
+            while hit != 0 {
+                let i = hit.trailing_zeros() as usize;
+                hit &= hit - 1;
+                offer(PrimHit { t: h.t.0[i], u: h.u.0[i], v: h.v.0[i] }, p.ids[k], &mut t_max.0[i], &mut best[i]);
+            }
+        }
+    }
+    t_max
+}
+
+/// The rays of `lanes` (a bitmask) that hit any primitive of `packets` within their `t_max`.
+#[inline(always)]
+fn any_in_rays<G: Packet, const N: usize>(
+    packets: &[Packed<G>],
+    rays: &Rays<N>,
+    lanes: u32,
+    t_min: f32,
+    t_max: F32s<N>,
+) -> u32 {
+    let mut blocked = 0;
+    for p in packets {
+        for k in 0..4 {
+            if blocked == lanes || (k > 0 && p.ids[k] == p.ids[k - 1]) {
+                break;
+            }
+            blocked |= p.geom.hits_rays(k, rays, t_min, t_max).mask.bitmask() & lanes;
+        }
+    }
+    blocked
 }
 
 /// True if any lane of any packet is hit.
@@ -261,6 +325,78 @@ impl Leaves {
             || part(&self.scalar, leaf.scalar, leaf.n_scalar)
                 .iter()
                 .any(|&i| prims.intersect_one(i, ray, t_min, t_max).is_some())
+    }
+
+    /// [`Leaves::intersect`] for the rays of `lanes` (a bitmask) of a group (ray `i`:
+    /// `origin[i] + t·dir[i]`), each packed primitive tested against all of them at once;
+    /// returns the rays' `t_max` shrunk to their hits.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn intersect_rays<P: PrimitiveSet + ?Sized, const N: usize>(
+        &self,
+        index: u32,
+        prims: &P,
+        origin: &Vec3s<N>,
+        dir: &Vec3s<N>,
+        lanes: u32,
+        t_min: f32,
+        t_max: F32s<N>,
+        best: &mut [Option<(PrimHit, u32)>; N],
+    ) -> F32s<N> {
+        let rays = Rays::from_lanes(origin, dir);
+        let leaf = match self.resolve(index) {
+            LeafRef::Triangles(tris) => return closest_in_rays(tris, &rays, lanes, t_min, t_max, best),
+            LeafRef::Record(leaf) => leaf,
+        };
+        let t_max = closest_in_rays(part(&self.quads, leaf.quads, leaf.n_quads), &rays, lanes, t_min, t_max, best);
+        let mut t_max = closest_in_rays(part(&self.tris, leaf.tris, leaf.n_tris), &rays, lanes, t_min, t_max, best);
+        for &p in part(&self.scalar, leaf.scalar, leaf.n_scalar) {
+            let mut todo = lanes;
+            while todo != 0 {
+                let i = todo.trailing_zeros() as usize;
+                todo &= todo - 1;
+                let ray = Ray::new(origin.lane(i), dir.lane(i));
+                if let Some(hit) = prims.intersect_one(p, &ray, t_min, t_max.0[i]) {
+                    offer(hit, p, &mut t_max.0[i], &mut best[i]);
+                }
+            }
+        }
+        t_max
+    }
+
+    /// [`Leaves::occluded`] for the rays of `lanes` (a bitmask) of a group: the bitmask of the
+    /// blocked ones.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn occluded_rays<P: PrimitiveSet + ?Sized, const N: usize>(
+        &self,
+        index: u32,
+        prims: &P,
+        origin: &Vec3s<N>,
+        dir: &Vec3s<N>,
+        lanes: u32,
+        t_min: f32,
+        t_max: F32s<N>,
+    ) -> u32 {
+        let rays = Rays::from_lanes(origin, dir);
+        let leaf = match self.resolve(index) {
+            LeafRef::Triangles(tris) => return any_in_rays(tris, &rays, lanes, t_min, t_max),
+            LeafRef::Record(leaf) => leaf,
+        };
+        let mut blocked = any_in_rays(part(&self.quads, leaf.quads, leaf.n_quads), &rays, lanes, t_min, t_max);
+        blocked |= any_in_rays(part(&self.tris, leaf.tris, leaf.n_tris), &rays, lanes & !blocked, t_min, t_max);
+        for &p in part(&self.scalar, leaf.scalar, leaf.n_scalar) {
+            let mut todo = lanes & !blocked;
+            while todo != 0 {
+                let i = todo.trailing_zeros() as usize;
+                todo &= todo - 1;
+                let ray = Ray::new(origin.lane(i), dir.lane(i));
+                if prims.intersect_one(p, &ray, t_min, t_max.0[i]).is_some() {
+                    blocked |= 1 << i;
+                }
+            }
+        }
+        blocked
     }
 
     /// Same leaf records, holding the same primitives in the same packets and order.

@@ -1,11 +1,14 @@
 //! Four triangles tested at once: Möller–Trumbore ("Fast, Minimum Storage Ray/Triangle
 //! Intersection", JGT 1997) on SIMD lanes, in the operation order of
 //! [`crate::shape::Triangle::intersect`] so every lane agrees bit for bit with the scalar test.
+//! The test is written once over the lane type: one ray against the packet's four triangles, or
+//! one of its triangles against a group of rays.
 
 use glam::Vec4;
 
-use super::lanes::{HitX4, RayX4, Vec3x4};
+use super::lanes::{HitL, HitX4, Lane, RayL, RayX4, Rays, Vec3L, Vec3x4};
 use crate::shape::{Triangle, EDGE_SLACK};
+use crate::wide::simd::F32s;
 
 /// Up to four triangles in structure-of-arrays form. Unused lanes have zero edges, so their
 /// determinant is 0 and they never hit.
@@ -27,20 +30,47 @@ impl Tri4 {
     /// Per-lane hits with `t ∈ [t_min, t_max]`.
     #[inline(always)]
     pub fn intersect(&self, ray: &RayX4, t_min: f32, t_max: f32) -> HitX4 {
-        let pvec = ray.dir.cross(&self.e2);
-        let det = self.e1.dot(&pvec);
-        let ok = det.cmpne(Vec4::ZERO) & det.is_finite_mask();
-        let inv_det = Vec4::ONE / det;
-        let tvec = ray.origin.sub(&self.p0);
-        let u = tvec.dot(&pvec) * inv_det;
-        let lo = Vec4::splat(-EDGE_SLACK);
-        let hi = Vec4::splat(1.0 + EDGE_SLACK);
-        let qvec = tvec.cross(&self.e1);
-        let v = ray.dir.dot(&qvec) * inv_det;
-        let t = self.e2.dot(&qvec) * inv_det;
-        // The scalar test rejects `v < −ε || u + v > 1 + ε`, which lets NaN through; so here.
-        let v_ok = !(v.cmplt(lo) | (u + v).cmpgt(hi));
-        let mask = ok & u.cmpge(lo) & u.cmple(hi) & v_ok & t.cmpge(Vec4::splat(t_min)) & t.cmple(Vec4::splat(t_max));
-        HitX4 { mask, t, u, v }
+        moller_trumbore(ray, &self.p0, &self.e1, &self.e2, t_min, Vec4::splat(t_max))
     }
+
+    /// Triangle `k` of the packet against every ray of a group (lanes = rays), ray `i` within
+    /// `[t_min, t_max[i]]`: per ray the same bits as [`Tri4::intersect`].
+    #[inline(always)]
+    pub fn intersect_rays<const N: usize>(
+        &self,
+        k: usize,
+        rays: &Rays<N>,
+        t_min: f32,
+        t_max: F32s<N>,
+    ) -> HitL<F32s<N>> {
+        let [p0, e1, e2] = [&self.p0, &self.e1, &self.e2].map(|v| Vec3L::splat(v.lane(k)));
+        moller_trumbore(rays, &p0, &e1, &e2, t_min, t_max)
+    }
+}
+
+/// Möller–Trumbore per lane (rays or triangles in the lanes), in the scalar test's order.
+#[inline(always)]
+fn moller_trumbore<L: Lane>(
+    ray: &RayL<L>,
+    p0: &Vec3L<L>,
+    e1: &Vec3L<L>,
+    e2: &Vec3L<L>,
+    t_min: f32,
+    t_max: L,
+) -> HitL<L> {
+    let pvec = ray.dir.cross(e2);
+    let det = e1.dot(&pvec);
+    let ok = det.finite_nonzero();
+    let inv_det = L::splat(1.0) / det;
+    let tvec = ray.origin.sub(p0);
+    let u = tvec.dot(&pvec) * inv_det;
+    let lo = L::splat(-EDGE_SLACK);
+    let hi = L::splat(1.0 + EDGE_SLACK);
+    let qvec = tvec.cross(e1);
+    let v = ray.dir.dot(&qvec) * inv_det;
+    let t = e2.dot(&qvec) * inv_det;
+    // The scalar test rejects `v < −ε || u + v > 1 + ε`, which lets NaN through; so here.
+    let v_ok = !(v.lt(lo) | (u + v).gt(hi));
+    let mask = ok & u.ge(lo) & u.le(hi) & v_ok & t.ge(L::splat(t_min)) & t.le(t_max);
+    HitL { mask, t, u, v }
 }
