@@ -123,21 +123,22 @@ pub(crate) fn render_tile_lanes<const N: usize>(
         let mut pixel = [0u32; N];
         let mut at = [F32s::<N>::ZERO; 2];
         let mut jitter = [F32s::<N>::ZERO; 2];
-        let mut lens = [F32s::<N>::ZERO; 2];
         for i in (!paths.active).lanes() {
             let Some(next) = queue.pop() else { break };
-            // Where in the pixel the ray goes (film/filter.rs); filters wider than the pixel
-            // weight the sample when it is splatted (film/splat.rs).
-            let (u_filter, u_aperture) = samplers.start_camera(i, next.x, next.y, next.sample, aperture);
-            let offset = job.filter.sample(u_filter);
+            samplers.begin(i, next.x, next.y, next.sample);
             fresh.0[i] = u32::MAX;
             pixel[i] = next.pixel;
             (at[0].0[i], at[1].0[i]) = (next.x as f32, next.y as f32);
-            (jitter[0].0[i], jitter[1].0[i]) = (offset.x, offset.y);
-            (lens[0].0[i], lens[1].0[i]) = (u_aperture.x, u_aperture.y);
         }
         if fresh.any() {
-            let (origin, dir) = job.camera.generate_rays(at, jitter, lens);
+            let (u_filter, u_aperture) = samplers.camera_points(fresh, aperture);
+            for i in fresh.lanes() {
+                // Where in the pixel the ray goes (film/filter.rs); filters wider than the pixel
+                // weight the sample when it is splatted (film/splat.rs).
+                let offset = job.filter.sample(Vec2::new(u_filter[0].0[i], u_filter[1].0[i]));
+                (jitter[0].0[i], jitter[1].0[i]) = (offset.x, offset.y);
+            }
+            let (origin, dir) = job.camera.generate_rays(at, jitter, u_aperture);
             for i in fresh.lanes() {
                 let ray = Ray::new(origin.lane(i), dir.lane(i));
                 let offset = Vec2::new(jitter[0].0[i], jitter[1].0[i]);

@@ -11,10 +11,20 @@ pub fn mix64(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// The hash of no words, where [`hash_words`] starts.
+pub const HASH_START: u64 = 0x6a09_e667_f3bc_c909;
+
 /// Hashes a list of words into one 64-bit value.
 #[inline]
 pub fn hash_words(words: &[u64]) -> u64 {
-    words.iter().fold(0x6a09_e667_f3bc_c909, |h, &w| mix64(h ^ mix64(w.wrapping_add(0x9e37_79b9_7f4a_7c15))))
+    words.iter().fold(HASH_START, |h, &w| hash_word(h, w))
+}
+
+/// One step of [`hash_words`]: the hash `h` of some words continued with `w`. Always inlined,
+/// so the lane samplers' loops over it vectorise.
+#[inline(always)]
+pub fn hash_word(h: u64, w: u64) -> u64 {
+    mix64(h ^ mix64(w.wrapping_add(0x9e37_79b9_7f4a_7c15)))
 }
 
 /// The `index`-th element of a pseudo-random permutation of `0..len`, chosen by `seed`.

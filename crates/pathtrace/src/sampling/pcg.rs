@@ -12,7 +12,9 @@ pub struct Pcg32 {
 const MULTIPLIER: u64 = 6_364_136_223_846_793_005;
 
 impl Pcg32 {
-    /// A generator on stream `stream`, started from `seed`.
+    /// A generator on stream `stream`, started from `seed`. Always inlined, so the lane
+    /// samplers' loop over it vectorises.
+    #[inline(always)]
     pub fn new(seed: u64, stream: u64) -> Self {
         let mut rng = Self { state: 0, inc: (stream << 1) | 1 };
         rng.next_u32();
@@ -23,11 +25,18 @@ impl Pcg32 {
 
     /// The generator's `(state, increment)`, for the lane samplers, which continue it in SIMD
     /// lanes with [`advance`] and [`output`].
+    #[inline(always)]
     pub(crate) fn parts(&self) -> (u64, u64) {
         (self.state, self.inc)
     }
 
-    #[inline]
+    /// The generator whose [`Pcg32::parts`] are `(state, inc)`.
+    #[inline(always)]
+    pub(crate) fn from_parts(state: u64, inc: u64) -> Self {
+        Self { state, inc }
+    }
+
+    #[inline(always)]
     pub fn next_u32(&mut self) -> u32 {
         let old = self.state;
         self.state = advance(old, self.inc);

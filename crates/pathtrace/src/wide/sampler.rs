@@ -5,14 +5,14 @@
 //! Sobol' sampler (its scrambles are hashes, bit reversals and multiplies, ~150 instructions per
 //! 2D point). The lane-parallel versions below compute exactly the numbers the scalar
 //! [`Sampler`] would (`sampling/sampler.rs`, `sampling/sobol.rs`, `sampling/pcg.rs`): each lane
-//! starts its sample with the scalar sampler, then takes over its state. Tested for equality
+//! takes its pixel's hashes from the scalar sampler (which caches them across the pixel's
+//! samples), then the new lanes of a group set up their generators and draw together. Tested for equality
 //! with the scalar sequences below.
 
 use super::simd::{F32s, Ms};
-use crate::math::Vec2;
 use crate::sampling::hash::mix64;
 use crate::sampling::pcg;
-use crate::sampling::sampler::dimension_hash;
+use crate::sampling::sampler::{dimension_hash, sample_generator};
 use crate::sampling::sobol::{dim1_next_column, owen_scramble, to_unit, DIM1_FIRST_COLUMN};
 use crate::sampling::{Sampler, SamplerKind};
 
@@ -34,6 +34,8 @@ pub(crate) struct LaneSamplers<const N: usize> {
     scalar: [Sampler; N],
     mode: Mode,
     round_hash: [u64; N],
+    /// Each lane's pixel's generator-stream hash (see `sampler::sample_generator`).
+    stream_prefix: [u64; N],
     index: [u32; N],
     dimension: [u32; N],
     state: [u64; N],
@@ -52,6 +54,7 @@ impl<const N: usize> LaneSamplers<N> {
             scalar: std::array::from_fn(|_| proto.clone()),
             mode,
             round_hash: [0; N],
+            stream_prefix: [0; N],
             index: [0; N],
             dimension: [0; N],
             state: [0; N],
@@ -62,24 +65,46 @@ impl<const N: usize> LaneSamplers<N> {
     /// Starts sample `index` of pixel `(x, y)` in lane `i` and returns its first 2D point (the
     /// pixel filter's).
     #[cfg(test)]
-    pub fn start(&mut self, i: usize, x: u32, y: u32, index: u32) -> Vec2 {
-        self.start_camera(i, x, y, index, false).0
+    pub fn start(&mut self, i: usize, x: u32, y: u32, index: u32) -> crate::math::Vec2 {
+        self.begin(i, x, y, index);
+        let (u, _) = self.camera_points(Ms::from_fn(|j| j == i), false);
+        crate::math::Vec2::new(u[0].0[i], u[1].0[i])
     }
 
-    /// [`LaneSamplers::start`], also drawing the camera's aperture point (the sample's second 2D
-    /// point) when `aperture` is set; without it the aperture point is the lens centre and no
-    /// number is drawn, so pinhole renders keep their sequences.
-    pub fn start_camera(&mut self, i: usize, x: u32, y: u32, index: u32, aperture: bool) -> (Vec2, Vec2) {
+    /// Begins sample `index` of pixel `(x, y)` in lane `i`. The lanes begun together then draw
+    /// their first numbers together ([`LaneSamplers::camera_points`]).
+    #[inline(always)]
+    pub fn begin(&mut self, i: usize, x: u32, y: u32, index: u32) {
         let s = &mut self.starter;
-        s.start(x, y, index);
-        let u = s.next_2d();
-        let lens = if aperture { s.next_2d() } else { Vec2::splat(0.5) };
         if self.mode == Mode::PerLane {
+            s.start(x, y, index);
             self.scalar[i].clone_from(s);
         } else {
-            (self.round_hash[i], self.index[i], self.dimension[i], self.state[i], self.inc[i]) = s.lane_state();
+            // The pixel's hashes lane by lane (the starter caches them across a pixel's
+            // samples); the generators of all new lanes at once in `camera_points`.
+            s.start_hashes(x, y, index);
+            (self.round_hash[i], self.index[i], self.dimension[i], _, _) = s.lane_state();
+            self.stream_prefix[i] = s.stream_prefix();
         }
-        (u, lens)
+    }
+
+    /// The first 2D point (the pixel filter's) of every lane of `fresh`, begun with
+    /// [`LaneSamplers::begin`], and, when `aperture` is set, its second (the camera's aperture
+    /// point); without it the aperture point is the lens centre and no number is drawn, so
+    /// pinhole renders keep their sequences.
+    #[inline(always)]
+    pub fn camera_points(&mut self, fresh: Ms<N>, aperture: bool) -> ([F32s<N>; 2], [F32s<N>; 2]) {
+        if self.mode == Mode::Independent {
+            for i in 0..N {
+                let (state, inc) = sample_generator(self.stream_prefix[i], self.index[i]);
+                let keep = fresh.0[i] as u64 | ((fresh.0[i] as u64) << 32);
+                self.state[i] = (state & keep) | (self.state[i] & !keep);
+                self.inc[i] = (inc & keep) | (self.inc[i] & !keep);
+            }
+        }
+        let (x, y) = self.next_2d(fresh);
+        let lens = if aperture { self.next_2d(fresh) } else { (F32s::splat(0.5), F32s::splat(0.5)) };
+        ([x, y], [lens.0, lens.1])
     }
 
     /// The next number of every lane in `mask` (other lanes' values are meaningless and their
@@ -180,6 +205,7 @@ fn sobol_dim1<const N: usize>(j: &[u32; N]) -> [u32; N] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::Vec2;
     use crate::wide::simd::LANES_512 as N;
 
     /// Every lane continues exactly the scalar sampler's sequence, including lanes that skip
