@@ -9,22 +9,36 @@
 //! ([`erf_and_gaussian_fast`]). The start comes from a table of the inverse (in the erf domain,
 //! where it is smooth), so that one step usually reaches the tolerance. The table only chooses
 //! where Newton's method starts: every answer is iterated, inside a shrinking bracket, until the
-//! CDF matches to [`TOLERANCE`], as before the table.
+//! CDF matches to [`TOLERANCE`] of its range, as before the table.
+//!
+//! Everything is single precision (as Mitsuba 3's routine is): the CDF's erf is a
+//! single-precision approximation anyway, and the f64 exponentials and logarithms were half of
+//! this routine's time.
 
 use std::sync::OnceLock;
 
+use std::f32::consts::FRAC_2_SQRT_PI;
+
 use crate::math::special::{erf_and_gaussian_fast, erf_fast, erfinv_fast};
 
-/// Largest allowed |C(x) − u·C(cot θ)| (unnormalised CDF, which lies in [0, ~2 + tanθ/√π]):
-/// below single-precision resolution of the CDF.
-const TOLERANCE: f64 = 1e-7;
+/// 1/√π.
+const FRAC_1_SQRT_PI: f32 = FRAC_2_SQRT_PI / 2.0;
+
+/// Largest allowed |C(x) − u·C(cot θ)| as a fraction of C(cot θ) (the unnormalised CDF lies in
+/// [0, C(cot θ)], C(cot θ) ∈ [~2, 2 + tanθ/√π]): 2⁻²¹, eight half-ulps of the range, which the
+/// f32 evaluation of C (four roundings) always resolves.
+const TOLERANCE: f32 = 1.0 / (1u32 << 21) as f32;
+
+/// The numbers are kept inside [2⁻²⁴, 1 − 2⁻²⁴]: 2u − 1 stays inside (−1, 1) in f32, where the
+/// inverse erf is finite (the tails cut off hold 2⁻²³ of the distribution).
+const U_MIN: f32 = 1.0 / (1u32 << 24) as f32;
 
 /// Below every slope that matters: C(−8) < 10⁻²⁷ (1 + tanθ/√π), far under the smallest target
 /// (u₁ ≥ 10⁻⁹), so the root is always above it. Only bisection uses it.
-const LOWEST_SLOPE: f64 = -8.0;
+const LOWEST_SLOPE: f32 = -8.0;
 
 /// Past this cos θ the view is normal and the visible slopes are the plain Gaussian ones.
-const NORMAL_INCIDENCE: f64 = 0.99999;
+const NORMAL_INCIDENCE: f32 = 0.99999;
 
 /// Rows of the start table: r = √(1 − cos θ) ∈ [0, 1] in `ROWS` steps (linear in θ near
 /// normal incidence, where the inverse changes fastest with cos θ).
@@ -35,9 +49,9 @@ const COLUMNS: usize = 64;
 
 /// The x and y slopes for uniform numbers `u1` (x, by inverting C) and `u2` (y, which is
 /// independent and Gaussian: y = erfinv(2u₂ − 1)).
-pub(super) fn visible_slopes_11(cos_theta: f64, u1: f64, u2: f64) -> (f64, f64) {
-    let u1 = u1.clamp(1e-9, 1.0 - 1e-9);
-    let u2 = u2.clamp(1e-9, 1.0 - 1e-9);
+pub(super) fn visible_slopes_11(cos_theta: f32, u1: f32, u2: f32) -> (f32, f32) {
+    let u1 = u1.clamp(U_MIN, 1.0 - U_MIN);
+    let u2 = u2.clamp(U_MIN, 1.0 - U_MIN);
     let sy = erfinv_fast(2.0 * u2 - 1.0);
     if cos_theta > NORMAL_INCIDENCE {
         return (erfinv_fast(2.0 * u1 - 1.0), sy);
@@ -49,22 +63,22 @@ pub(super) fn visible_slopes_11(cos_theta: f64, u1: f64, u2: f64) -> (f64, f64) 
 
 /// The unnormalised CDF C of the x slope at one elevation.
 struct SlopeCdf {
-    tan_theta: f64,
+    tan_theta: f32,
     /// tanθ/√π, the weight of the Gaussian term.
-    k: f64,
+    k: f32,
     /// The largest slope, cot θ, and erf of it.
-    x_max: f64,
-    erf_max: f64,
+    x_max: f32,
+    erf_max: f32,
     /// C(cot θ), the normalisation.
-    total: f64,
+    total: f32,
 }
 
 impl SlopeCdf {
-    fn new(cos_theta: f64) -> Self {
+    fn new(cos_theta: f32) -> Self {
         let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
         let tan_theta = sin_theta / cos_theta;
         let x_max = cos_theta / sin_theta;
-        let k = tan_theta / std::f64::consts::PI.sqrt();
+        let k = tan_theta * FRAC_1_SQRT_PI;
         let (erf_max, gaussian) = erf_and_gaussian_fast(x_max);
         Self { tan_theta, k, x_max, erf_max, total: 1.0 + erf_max + k * gaussian }
     }
@@ -72,8 +86,9 @@ impl SlopeCdf {
     /// The slope x with C(x) = u·C(cot θ), from `start`: Newton's method on x, kept inside a
     /// bracket that every evaluation narrows (C increases on (−∞, cot θ]), with a bisection
     /// step whenever Newton would leave it.
-    fn invert(&self, u: f64, start: f64) -> f64 {
+    fn invert(&self, u: f32, start: f32) -> f32 {
         let target = u * self.total;
+        let tolerance = TOLERANCE * self.total;
         let (mut lo, mut hi) = (LOWEST_SLOPE, self.x_max);
         let mut x = start;
         for _ in 0..64 {
@@ -83,7 +98,7 @@ impl SlopeCdf {
             }
             let (erf_x, gaussian) = erf_and_gaussian_fast(x);
             let value = 1.0 + erf_x + self.k * gaussian - target;
-            if value.abs() < TOLERANCE {
+            if value.abs() < tolerance {
                 break;
             }
             if value > 0.0 {
@@ -91,10 +106,11 @@ impl SlopeCdf {
             } else {
                 lo = x;
             }
-            if hi - lo < 1e-12 {
+            // No f32 left between the bracket's ends.
+            if hi - lo <= f32::EPSILON * lo.abs().max(hi.abs()) {
                 break;
             }
-            let derivative = std::f64::consts::FRAC_2_SQRT_PI * gaussian * (1.0 - x * self.tan_theta);
+            let derivative = FRAC_2_SQRT_PI * gaussian * (1.0 - x * self.tan_theta);
             x -= value / derivative;
         }
         x
@@ -118,30 +134,30 @@ impl StartTable {
     fn build() -> Self {
         let mut fraction = Vec::with_capacity((ROWS + 1) * (COLUMNS + 1));
         for row in 0..=ROWS {
-            let r = row as f64 / ROWS as f64;
+            let r = row as f32 / ROWS as f32;
             let cos_theta = (1.0 - r * r).clamp(1e-4, NORMAL_INCIDENCE);
             let cdf = SlopeCdf::new(cos_theta);
             for column in 0..=COLUMNS {
-                let s = column as f64 / COLUMNS as f64;
-                let u = (1.0 - s * s).clamp(1e-9, 1.0 - 1e-9);
+                let s = column as f32 / COLUMNS as f32;
+                let u = (1.0 - s * s).clamp(U_MIN, 1.0 - U_MIN);
                 let jakob = cdf.erf_max - (cdf.erf_max + 1.0) * erf_fast((-u.ln()).sqrt());
                 let x = cdf.invert(u, erfinv_fast(jakob));
-                fraction.push(((erf_fast(x) + 1.0) / (cdf.erf_max + 1.0)).clamp(0.0, 1.0) as f32);
+                fraction.push(((erf_fast(x) + 1.0) / (cdf.erf_max + 1.0)).clamp(0.0, 1.0));
             }
         }
         Self { fraction: fraction.into_boxed_slice() }
     }
 
     /// The interpolated erf of the root for (cos θ, u₁), given erf(cot θ).
-    fn erf_of_root(&self, cos_theta: f64, u1: f64, erf_max: f64) -> f64 {
-        let cell = |t: f64, n: usize| {
-            let f = t.clamp(0.0, 1.0) * n as f64;
+    fn erf_of_root(&self, cos_theta: f32, u1: f32, erf_max: f32) -> f32 {
+        let cell = |t: f32, n: usize| {
+            let f = t.clamp(0.0, 1.0) * n as f32;
             let i = (f as usize).min(n - 1);
-            (i, f - i as f64)
+            (i, f - i as f32)
         };
         let (row, wr) = cell((1.0 - cos_theta).max(0.0).sqrt(), ROWS);
         let (column, wc) = cell((1.0 - u1).max(0.0).sqrt(), COLUMNS);
-        let at = |row: usize, column: usize| f64::from(self.fraction[row * (COLUMNS + 1) + column]);
+        let at = |row: usize, column: usize| self.fraction[row * (COLUMNS + 1) + column];
         let near = at(row, column) + (at(row, column + 1) - at(row, column)) * wc;
         let far = at(row + 1, column) + (at(row + 1, column + 1) - at(row + 1, column)) * wc;
         (near + (far - near) * wr) * (erf_max + 1.0) - 1.0
@@ -153,10 +169,10 @@ mod tests {
     use super::*;
 
     /// Elevations from grazing to just short of normal, and numbers reaching both clamps.
-    fn grid() -> impl Iterator<Item = (f64, f64)> {
+    fn grid() -> impl Iterator<Item = (f32, f32)> {
         let cosines = [1e-6, 1e-4, 0.01, 0.05, 0.2, 0.37, 0.5, 0.71, 0.9, 0.99, 0.999, 0.99998];
         cosines.into_iter().flat_map(|c| {
-            (0..=400).map(|i| i as f64 / 400.0).chain([1e-12, 1e-9, 1e-6, 1.0 - 1e-6, 1.0 - 1e-9]).map(move |u| (c, u))
+            (0..=400).map(|i| i as f32 / 400.0).chain([1e-12, 1e-9, 1e-6, 1.0 - 1e-6, 1.0 - 1e-9]).map(move |u| (c, u))
         })
     }
 
@@ -165,7 +181,7 @@ mod tests {
         for (cos_theta, u) in grid() {
             let (x, _) = visible_slopes_11(cos_theta, u, 0.5);
             let cdf = SlopeCdf::new(cos_theta);
-            let u = u.clamp(1e-9, 1.0 - 1e-9);
+            let u = u.clamp(U_MIN, 1.0 - U_MIN);
             let (erf_x, gaussian) = erf_and_gaussian_fast(x);
             let value = (1.0 + erf_x + cdf.k * gaussian) / cdf.total;
             assert!((value - u).abs() < 2.0 * TOLERANCE, "cos θ {cos_theta}, u {u}: C(x)/C(cot θ) = {value}");
@@ -176,7 +192,7 @@ mod tests {
     #[test]
     fn slopes_increase_with_the_number() {
         for cos_theta in [0.01, 0.3, 0.8, 0.9999] {
-            let xs: Vec<f64> = (1..1000).map(|i| visible_slopes_11(cos_theta, i as f64 / 1000.0, 0.5).0).collect();
+            let xs: Vec<f32> = (1..1000).map(|i| visible_slopes_11(cos_theta, i as f32 / 1000.0, 0.5).0).collect();
             assert!(xs.windows(2).all(|w| w[0] < w[1]), "cos θ {cos_theta}");
         }
     }
@@ -191,7 +207,7 @@ mod tests {
                 continue;
             }
             let cdf = SlopeCdf::new(cos_theta);
-            let u = u.clamp(1e-9, 1.0 - 1e-9);
+            let u = u.clamp(U_MIN, 1.0 - U_MIN);
             let x = erfinv_fast(table.erf_of_root(cos_theta, u, cdf.erf_max));
             let (erf_x, gaussian) = erf_and_gaussian_fast(x);
             let value = (1.0 + erf_x + cdf.k * gaussian) / cdf.total;

@@ -94,11 +94,9 @@ impl Microfacet {
         match self.kind {
             MicrofacetKind::Ggx => 0.5 * (-1.0 + (1.0 + a2t2).sqrt()),
             MicrofacetKind::Beckmann => {
-                let a = 1.0 / f64::from(a2t2).sqrt();
-                // erf to single precision: Λ is returned as f32 anyway.
+                let a = 1.0 / a2t2.sqrt();
                 let (erf_a, gaussian) = erf_and_gaussian_fast(a);
-                let l = 0.5 * (erf_a - 1.0) + gaussian / (2.0 * a * std::f64::consts::PI.sqrt());
-                l as f32
+                0.5 * (erf_a - 1.0) + gaussian / (2.0 * a * PI.sqrt())
             }
         }
     }
@@ -153,16 +151,14 @@ impl Microfacet {
     /// α = 1 Beckmann visible slopes drawn by inverting their marginal CDF in x (Jakob 2014).
     fn sample_visible_beckmann(&self, v: Vec3, u: Vec2) -> Vec3 {
         let vs = Vec3::new(self.alpha_u * v.x, self.alpha_v * v.y, v.z).normalize();
-        let (sx, sy) = visible_slopes_11(f64::from(vs.z), f64::from(u.x), f64::from(u.y));
+        let (sx, sy) = visible_slopes_11(vs.z, u.x, u.y);
         // Rotate from the frame where the (stretched) view direction has azimuth 0.
         let len = (vs.x * vs.x + vs.y * vs.y).sqrt();
-        let (cos_phi, sin_phi) = if len > 0.0 { (f64::from(vs.x / len), f64::from(vs.y / len)) } else { (1.0, 0.0) };
+        let (cos_phi, sin_phi) = if len > 0.0 { (vs.x / len, vs.y / len) } else { (1.0, 0.0) };
         let rx = cos_phi * sx - sin_phi * sy;
         let ry = sin_phi * sx + cos_phi * sy;
         // Unstretch the slopes; the normal of slope (x, y) is (−x, −y, 1) normalised.
-        let (mx, my) = (-(rx * f64::from(self.alpha_u)), -(ry * f64::from(self.alpha_v)));
-        let n = (mx * mx + my * my + 1.0).sqrt();
-        Vec3::new((mx / n) as f32, (my / n) as f32, (1.0 / n) as f32)
+        Vec3::new(-(rx * self.alpha_u), -(ry * self.alpha_v), 1.0).normalize()
     }
 }
 
