@@ -12,8 +12,7 @@
 //! CDF matches to [`TOLERANCE`] of its range, as before the table.
 //!
 //! Everything is single precision (as Mitsuba 3's routine is): the CDF's erf is a
-//! single-precision approximation anyway, and the f64 exponentials and logarithms were half of
-//! this routine's time.
+//! single-precision approximation anyway, and f32 is the number type of the SIMD lanes.
 
 use std::sync::OnceLock;
 
@@ -34,7 +33,7 @@ const TOLERANCE: f32 = 1.0 / (1u32 << 21) as f32;
 const U_MIN: f32 = 1.0 / (1u32 << 24) as f32;
 
 /// Below every slope that matters: C(−8) < 10⁻²⁷ (1 + tanθ/√π), far under the smallest target
-/// (u₁ ≥ 10⁻⁹), so the root is always above it. Only bisection uses it.
+/// (u₁ ≥ [`U_MIN`] = 2⁻²⁴), so the root is always above it. Only bisection uses it.
 const LOWEST_SLOPE: f32 = -8.0;
 
 /// Past this cos θ the view is normal and the visible slopes are the plain Gaussian ones.
