@@ -9,7 +9,7 @@ use super::build::{BuildItem, BuildOptions};
 use super::lanes::RayX4;
 use super::leaf::{Leaves, Packable};
 use super::subtree::build_tree;
-use super::wide::{collapse, wide_depth, Node4, RayBox4, RayBoxes, EMPTY, LEAF};
+use super::wide::{collapse, prefetch, wide_depth, Node4, RayBox4, RayBoxes, EMPTY, LEAF};
 use crate::math::{Aabb, Ray};
 use crate::shape::PrimHit;
 use crate::wide::simd::{F32s, Ms, Vec3s};
@@ -297,6 +297,7 @@ impl Bvh {
                 }
             }
             for &(child, hit, _) in &kids[..k] {
+                prefetch(&self.wide, child);
                 stack[sp] = (child, hit);
                 sp += 1;
             }
@@ -337,6 +338,7 @@ impl Bvh {
                 let child = n.children[lane];
                 lanes &= lanes - 1;
                 if child & LEAF == 0 {
+                    prefetch(&self.wide, child);
                     let mut i = sp;
                     while i > base && stack[i - 1].1 < near[lane] {
                         stack[i] = stack[i - 1];
@@ -445,6 +447,7 @@ impl Bvh {
                     continue;
                 }
                 if child & LEAF == 0 {
+                    prefetch(&self.wide, child);
                     stack[sp] = (child, hit);
                     sp += 1;
                 } else if hit.count_ones() >= RAY_LANES_FROM {
@@ -487,6 +490,7 @@ impl Bvh {
                 let child = n.children[lanes.trailing_zeros() as usize];
                 lanes &= lanes - 1;
                 if child & LEAF == 0 {
+                    prefetch(&self.wide, child);
                     stack[sp] = child;
                     sp += 1;
                 } else if child != EMPTY && self.leaves.occluded(child & !LEAF, prims, ray, &rx4, t_min, t_max) {

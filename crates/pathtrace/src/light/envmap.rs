@@ -194,15 +194,10 @@ impl EnvMap {
     /// One direction per lane of `active` from the numbers `(u1, u2)`, with its density and the
     /// radiance along it, looked up at the sampled image coordinates (as Mitsuba's `envmap`
     /// does), so the direction is not mapped back to the image; equal to `radiance(dir)` up to
-    /// the rounding of that round trip. The cell search is lane by lane; the direction, its
-    /// density and the transform to the world are computed for the lanes together.
+    /// the rounding of that round trip.
     #[inline(always)]
     pub fn sample_lanes<const N: usize>(&self, u1: &F32s<N>, u2: &F32s<N>, active: Ms<N>) -> EnvSamples<N> {
-        let (mut cell_u, mut cell_v, mut pdf_uv) = (F32s::<N>::ZERO, F32s::<N>::ZERO, F32s::<N>::ZERO);
-        for i in active.lanes() {
-            let (cell, pdf) = self.distribution.sample(Vec2::new(u1.0[i], u2.0[i]));
-            (cell_u.0[i], cell_v.0[i], pdf_uv.0[i]) = (cell.x, cell.y, pdf);
-        }
+        let (cell_u, cell_v, pdf_uv) = self.distribution.sample_lanes(u1, u2, active);
         let radiance = self.radiance_at_lanes(cell_u, cell_v, active);
         let u = wrap01(cell_u + 0.5 / self.width as f32);
         // θ = πv and φ = 2πu, as turns.
