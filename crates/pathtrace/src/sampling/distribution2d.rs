@@ -50,7 +50,7 @@ impl Distribution2D {
         active: Ms<N>,
     ) -> (F32s<N>, F32s<N>, F32s<N>) {
         let (mut x, mut y, mut pdf) = (F32s::<N>::ZERO, F32s::<N>::ZERO, F32s::<N>::ZERO);
-        // Inactive lanes search the marginal for u = 0, which costs them nothing to finish.
+        // Inactive lanes skip the marginal and keep row 0.
         let mut row_of = [0usize; N];
         for i in active.lanes() {
             let (j, pv, tv) = self.marginal.sample_remapped(u2.0[i]);
@@ -59,7 +59,8 @@ impl Distribution2D {
             pdf.0[i] = pv;
         }
         // The marginal never picks a row of zero weight; an inactive lane searches the first
-        // row that has weight.
+        // row that has weight (found by a scan from the top: row 0 in every map tried so far,
+        // but a map with many black rows on top would pay for the scan on every call).
         let fallback = self.rows.iter().flatten().next().map(Distribution1D::search_table);
         let Some(fallback) = fallback else { return (x, y, F32s::ZERO) };
         let searches: [(&CdfGuide, &[f32], f32); N] = std::array::from_fn(|i| {
