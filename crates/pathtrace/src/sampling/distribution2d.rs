@@ -15,6 +15,8 @@ pub struct Distribution2D {
     nv: usize,
     /// One per row; `None` for a row of zero weight (the marginal never picks it).
     rows: Vec<Option<Distribution1D>>,
+    /// The first row of positive weight, which lanes outside the active mask search.
+    first_row: usize,
     marginal: Distribution1D,
 }
 
@@ -29,7 +31,9 @@ impl Distribution2D {
         let row_sums: Vec<f32> =
             weights.chunks_exact(nu).map(|r| r.iter().map(|&w| w.max(0.0) as f64).sum::<f64>() as f32).collect();
         let marginal = Distribution1D::new(&row_sums)?;
-        Some(Self { nu, nv, rows, marginal })
+        // The marginal has positive total weight, so some row has weight.
+        let first_row = rows.iter().position(Option::is_some)?;
+        Some(Self { nu, nv, rows, first_row, marginal })
     }
 
     /// A point of the square and its density (with respect to area in `[0,1)²`): the one-lane
@@ -58,10 +62,9 @@ impl Distribution2D {
             y.0[i] = (j as f32 + tv) / self.nv as f32;
             pdf.0[i] = pv;
         }
-        // The marginal never picks a row of zero weight; an inactive lane searches the first
-        // row that has weight (found by a scan from the top: row 0 in every map tried so far,
-        // but a map with many black rows on top would pay for the scan on every call).
-        let fallback = self.rows.iter().flatten().next().map(Distribution1D::search_table);
+        // The marginal never picks a row of zero weight; an inactive lane keeps row 0, which
+        // may have none, and then searches the first row that has weight.
+        let fallback = self.rows[self.first_row].as_ref().map(Distribution1D::search_table);
         let Some(fallback) = fallback else { return (x, y, F32s::ZERO) };
         let searches: [(&CdfGuide, &[f32], f32); N] = std::array::from_fn(|i| {
             let row = self.rows[row_of[i]].as_ref().map_or(fallback, Distribution1D::search_table);
