@@ -6,7 +6,7 @@
 
 use crate::film::{FeaturePixel, FeatureSample, PixelFilter, PixelStats, SplatBlock};
 use crate::integrator::PathStats;
-use crate::math::{Ray, Rgb, Vec2, Vec3, Vec4};
+use crate::math::{Rgb, Vec2, Vec3, Vec4};
 use crate::medium::MediumId;
 use crate::scene::{Interaction, Primitive};
 use crate::shape::SurfacePoint;
@@ -110,31 +110,50 @@ impl<const N: usize> Paths<N> {
         }
     }
 
-    /// Starts a camera path in lane `i` for pixel `pixel` of the tile, its ray in `medium`;
-    /// `features`: the path records a feature sample.
+    /// Starts camera paths in the lanes of `fresh`: lane `i` for tile pixel `pixel[i]`, its ray
+    /// from `origin` along `dir` in `medium`, at `jitter` in its pixel; `features`: the paths
+    /// record feature samples. The SIMD fields are set for the whole group at once (lane by lane,
+    /// the twenty-odd stores per lane were 10% of the teapot's render).
     #[inline(always)]
-    pub fn start(&mut self, i: usize, pixel: u32, ray: Ray, medium: u32, jitter: Vec2, features: bool) {
-        self.active.0[i] = u32::MAX;
-        self.origin.set(i, ray.origin);
-        self.dir.set(i, ray.dir);
+    #[allow(clippy::too_many_arguments)]
+    pub fn start(
+        &mut self,
+        fresh: Ms<N>,
+        pixel: &[u32; N],
+        origin: &Vec3s<N>,
+        dir: &Vec3s<N>,
+        medium: u32,
+        jitter: &[F32s<N>; 2],
+        features: bool,
+    ) {
+        self.active = self.active | fresh;
+        self.origin = Vec3s::select(fresh, origin, &self.origin);
+        self.dir = Vec3s::select(fresh, dir, &self.dir);
         for c in 0..3 {
-            self.beta[c].0[i] = 1.0;
-            self.radiance[c].0[i] = 0.0;
+            self.beta[c] = F32s::select(fresh, F32s::ONE, self.beta[c]);
+            self.radiance[c] = F32s::select(fresh, F32s::ZERO, self.radiance[c]);
         }
-        self.eta_scale.0[i] = 1.0;
-        self.prev_p.set(i, ray.origin);
-        self.prev_pdf.0[i] = 0.0;
-        self.prev_specular.0[i] = u32::MAX;
-        self.jitter[i] = jitter;
-        self.segments[i] = 1;
-        self.medium[i] = medium;
-        self.hero[i] = Self::NO_CHANNEL;
-        self.channel_density[i] = Rgb::splat(1.0);
-        self.pixel[i] = pixel;
-        if features {
-            self.feature_pending.0[i] = u32::MAX;
-            self.feature[i] = FeatureSample::default();
-            self.feature_tint[i] = Rgb::splat(1.0);
+        self.eta_scale = F32s::select(fresh, F32s::ONE, self.eta_scale);
+        self.prev_p = Vec3s::select(fresh, origin, &self.prev_p);
+        self.prev_pdf = F32s::select(fresh, F32s::ZERO, self.prev_pdf);
+        self.prev_specular = self.prev_specular | fresh;
+        for i in 0..N {
+            // Blended through the lane mask (all bits set or clear), so these compile to SIMD
+            // blends too (`if` per lane compiled to a branch per lane).
+            let new = fresh.0[i];
+            self.segments[i] = (1 & new) | (self.segments[i] & !new);
+            self.medium[i] = (medium & new) | (self.medium[i] & !new);
+            self.pixel[i] = (pixel[i] & new) | (self.pixel[i] & !new);
+        }
+        for i in fresh.lanes() {
+            self.jitter[i] = Vec2::new(jitter[0].0[i], jitter[1].0[i]);
+            self.hero[i] = Self::NO_CHANNEL;
+            self.channel_density[i] = Rgb::splat(1.0);
+            if features {
+                self.feature_pending.0[i] = u32::MAX;
+                self.feature[i] = FeatureSample::default();
+                self.feature_tint[i] = Rgb::splat(1.0);
+            }
         }
     }
 

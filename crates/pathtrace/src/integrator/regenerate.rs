@@ -8,7 +8,7 @@ use super::path::vertex;
 use crate::camera::Camera;
 use crate::film::{FeaturePixel, PixelFilter, PixelStats, SplatBlock};
 use crate::integrator::PathStats;
-use crate::math::{Ray, Vec2};
+use crate::math::Vec2;
 use crate::render::tile::{Tile, TileResult, WaveSamples};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -30,7 +30,11 @@ pub(crate) struct LaneJob<'a> {
 struct Queue<'a> {
     tile: Tile,
     samples: WaveSamples<'a>,
+    /// The current pixel: its index in the tile and its film coordinates (kept as the index
+    /// advances: two divisions per sample were 1.3% of the teapot's render).
     pixel: u32,
+    x: u32,
+    y: u32,
     next: u32,
     end: u32,
 }
@@ -45,22 +49,27 @@ struct Job {
 
 impl<'a> Queue<'a> {
     fn new(tile: Tile, samples: WaveSamples<'a>) -> Self {
-        let mut q = Self { tile, samples, pixel: 0, next: 0, end: 0 };
+        let mut q = Self { tile, samples, pixel: 0, x: tile.x0, y: tile.y0, next: 0, end: 0 };
         q.enter_pixel();
         q
     }
 
     fn enter_pixel(&mut self) {
         if self.pixel < self.tile.w * self.tile.h {
-            let (x, y) = self.coordinates();
-            let (first, count) = self.samples.range(x, y);
+            let (first, count) = self.samples.range(self.x, self.y);
             self.next = first;
             self.end = first + count;
         }
     }
 
-    fn coordinates(&self) -> (u32, u32) {
-        (self.tile.x0 + self.pixel % self.tile.w, self.tile.y0 + self.pixel / self.tile.w)
+    /// Moves to the tile's next pixel, row by row.
+    fn advance(&mut self) {
+        self.pixel += 1;
+        self.x += 1;
+        if self.x == self.tile.x0 + self.tile.w {
+            self.x = self.tile.x0;
+            self.y += 1;
+        }
     }
 
     #[inline(always)]
@@ -69,16 +78,15 @@ impl<'a> Queue<'a> {
             if self.pixel >= self.tile.w * self.tile.h {
                 return None;
             }
-            self.pixel += 1;
+            self.advance();
             self.enter_pixel();
         }
         if self.pixel >= self.tile.w * self.tile.h {
             return None;
         }
-        let (x, y) = self.coordinates();
         let sample = self.next;
         self.next += 1;
-        Some(Job { pixel: self.pixel, x, y, sample })
+        Some(Job { pixel: self.pixel, x: self.x, y: self.y, sample })
     }
 }
 
@@ -139,13 +147,9 @@ pub(crate) fn render_tile_lanes<const N: usize>(
                 (jitter[0].0[i], jitter[1].0[i]) = (offset.x, offset.y);
             }
             let (origin, dir) = job.camera.generate_rays(at, jitter, u_aperture);
-            for i in fresh.lanes() {
-                let ray = Ray::new(origin.lane(i), dir.lane(i));
-                let offset = Vec2::new(jitter[0].0[i], jitter[1].0[i]);
-                paths.start(i, pixel[i], ray, job.scene.camera_medium(), offset, job.features);
-                if max_depth == 0 {
-                    paths.finish(i, &mut out);
-                }
+            paths.start(fresh, &pixel, &origin, &dir, job.scene.camera_medium(), &jitter, job.features);
+            if max_depth == 0 {
+                paths.finish_all(fresh, &mut out);
             }
             out.stats.camera_rays += u64::from(fresh.bitmask().count_ones());
         }

@@ -121,8 +121,11 @@ impl Sampler {
     #[inline(always)]
     pub(crate) fn start_hashes(&mut self, x: u32, y: u32, index: u32) {
         self.index = index;
-        self.index_in_round = index % self.strata_count;
-        self.round = index / self.strata_count;
+        // One stratum per round (the independent sampler's case) needs no division.
+        (self.round, self.index_in_round) = match self.strata_count {
+            1 => (index, 0),
+            n => (index / n, index % n),
+        };
         if self.hashed != Some((x, y, self.round)) {
             if !matches!(self.hashed, Some((hx, hy, _)) if (hx, hy) == (x, y)) {
                 self.pixel_hash = hash_words(&[self.seed, ((x as u64) << 32) | y as u64]);
