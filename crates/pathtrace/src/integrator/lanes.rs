@@ -137,6 +137,8 @@ impl<const N: usize> Paths<N> {
         self.prev_p = Vec3s::select(fresh, origin, &self.prev_p);
         self.prev_pdf = F32s::select(fresh, F32s::ZERO, self.prev_pdf);
         self.prev_specular = self.prev_specular | fresh;
+        // One index walks four arrays (the mask and three fields) in step.
+        #[allow(clippy::needless_range_loop)]
         for i in 0..N {
             // Blended through the lane mask (all bits set or clear), so these compile to SIMD
             // blends too (`if` per lane compiled to a branch per lane).
