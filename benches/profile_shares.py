@@ -98,11 +98,24 @@ def main():
     parser.add_argument("patterns", nargs="*", help="regular expressions over frame names")
     parser.add_argument("--hot", type=int, default=0, help="list the N hottest innermost frames")
     args = parser.parse_args()
-    samples, others, total = inline_chains(args.data, args.binary)
+    for path in (args.data, args.binary):
+        if not os.path.isfile(path):
+            raise SystemExit(f"{path}: no such file")
+    patterns = []
+    for pattern in args.patterns:
+        try:
+            patterns.append((pattern, re.compile(pattern)))
+        except re.error as e:
+            raise SystemExit(f"pattern {pattern!r}: {e}")
+    try:
+        samples, others, total = inline_chains(args.data, args.binary)
+    except FileNotFoundError as e:
+        raise SystemExit(f"{e.filename}: not installed (needs perf, readelf and addr2line)")
+    except subprocess.CalledProcessError as e:
+        raise SystemExit(f"{e.cmd[0]} failed on {args.data} / {args.binary}: {e.stderr.strip()}")
     if total == 0:
         raise SystemExit(f"{args.data}: no samples")
-    for pattern in args.patterns:
-        r = re.compile(pattern)
+    for pattern, r in patterns:
         n = sum(c for c, chain in samples if any(r.search(f) for f, _ in chain))
         print(f"{100 * n / total:5.1f}% {pattern}")
     if args.hot:
