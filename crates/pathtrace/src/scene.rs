@@ -194,11 +194,16 @@ impl Scene {
         t_max: F32s<N>,
     ) -> Ms<N> {
         let blocked = self.bvh.occluded_lanes(&self.prims, origin, dir, active, 0.0, t_max);
+        if self.unbounded.is_empty() && self.instances.is_empty() {
+            // Nothing outside the BVH: the mask is the bits (one branch-free expansion, where
+            // the lane-by-lane questions below were 1.2% of the teapot's render).
+            return Ms::from_fn(|i| blocked >> i & 1 != 0);
+        }
         Ms::from_fn(|i| {
             if blocked & (1 << i) != 0 {
                 return true;
             }
-            if !active.lane(i) || (self.unbounded.is_empty() && self.instances.is_empty()) {
+            if !active.lane(i) {
                 return false;
             }
             let ray = Ray::new(origin.lane(i), dir.lane(i));

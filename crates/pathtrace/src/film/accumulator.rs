@@ -113,18 +113,25 @@ fn square_to_fixed(x: f64) -> u128 {
 }
 
 impl PixelStats {
+    /// Adds a black sample (a camera ray that left an unlit scene, a path that found no light;
+    /// 81% of teapot-simple's samples): it adds zero to every sum, so only the count changes.
+    /// [`PixelStats::add`] of [`Rgb::BLACK`] (or of −0).
+    #[inline(always)]
+    pub fn add_black(&mut self) {
+        self.count += 1;
+    }
+
     /// Adds one finite sample (channels beyond ±[`SAMPLE_LIMIT`] are clamped to it).
     // Always inlined: called from the render loop's AVX2/AVX-512 code, where the f64 → u64
     // conversion of the square is one instruction (out of line, compiled for the baseline
     // x86-64, it is a branchy sequence, and the call itself showed as 12% of the teapot's time).
     #[inline(always)]
     pub fn add(&mut self, c: Rgb) {
-        self.count += 1;
-        // A black sample (a camera ray that left an unlit scene, a path that found no light)
-        // adds zero to every sum: only the count changes. 81% of teapot-simple's samples.
         if c == Rgb::BLACK {
+            self.add_black();
             return;
         }
+        self.count += 1;
         let x = c.to_array().map(f64::from);
         // Nearly every sample: branch-free conversions, the same integers (NaN fails the test).
         if x.iter().all(|v| v.abs() < SMALL_SAMPLE) {
