@@ -31,8 +31,23 @@ def main(argv=None):
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant timed")
     args = p.parse_args(argv)
-    low, high = (int(v) for v in args.spp.split(","))
-    scenes = dict(s.split("=", 1) for s in args.scene)
+    try:
+        low, high = (int(v) for v in args.spp.split(","))
+    except ValueError:
+        p.error(f"--spp {args.spp!r}: give two sample counts, as in --spp 64,256")
+    if not 0 < low < high:
+        p.error(f"--spp {args.spp!r}: the counts must be positive and increasing (the fit needs two)")
+    scenes = {}
+    for s in args.scene:
+        label, sep, path = s.partition("=")
+        if not sep or not label or not path:
+            p.error(f"--scene {s!r}: give LABEL=PATH, as in --scene teapot=../shared/scenes/teapot-simple/simple.xml")
+        if not os.path.isfile(path):
+            p.error(f"--scene {s!r}: {path}: no such file")
+        scenes[label] = path
+    for binary in args.pathtrace:
+        if not os.access(binary, os.X_OK):
+            p.error(f"--pathtrace {binary}: not an executable file")
     if "llvm" in args.variant and "DRJIT_LIBLLVM_PATH" not in os.environ:
         lib = cm.find_libllvm()
         if lib:

@@ -262,13 +262,12 @@ impl Bvh {
                     continue;
                 }
                 if child & LEAF == 0 {
-                    // The nearest entry among the rays that hit orders the children.
-                    let mut entry = f32::INFINITY;
-                    let mut lanes = hit;
-                    while lanes != 0 {
-                        entry = entry.min(near.0[lanes.trailing_zeros() as usize]);
-                        lanes &= lanes - 1;
-                    }
+                    // The entry of the first ray that hits orders the children. Any order gives
+                    // the same hits (the closest hit and its tie rule do not depend on it), so
+                    // this only has to be a good guess, and one lane's entry is nearly the
+                    // group's nearest for the coherent rays that reach here; the nearest over
+                    // the hit lanes was a scalar loop, about 6% of the teapot's time.
+                    let entry = near.0[hit.trailing_zeros() as usize];
                     let mut i = k;
                     while i > 0 && kids[i - 1].2 < entry {
                         kids[i] = kids[i - 1];

@@ -89,11 +89,22 @@ pub(super) const EXACT_SMALL: f64 = 2048.0;
 pub(super) const SMALL_LIMIT: f64 = 64.0;
 
 /// Samples below this magnitude in every channel (their squares below 2¹⁰) take
-/// [`fixed_small`] for the value and its square in [`PixelStats::add`].
-const SMALL_SAMPLE: f64 = 32.0;
+/// [`small_terms`] for the value and its square in [`PixelStats::add`].
+pub(crate) const SMALL_SAMPLE: f32 = 32.0;
 
 // Every value the fast paths convert is within `fixed_small`'s exact range.
-const _: () = assert!(SMALL_LIMIT < EXACT_SMALL && SMALL_SAMPLE * SMALL_SAMPLE < EXACT_SMALL);
+const _: () = assert!(SMALL_LIMIT < EXACT_SMALL && ((SMALL_SAMPLE * SMALL_SAMPLE) as f64) < EXACT_SMALL);
+// 64 small samples' terms (each below 2¹⁰ · 2⁴⁰ = 2⁵⁰) sum without overflow in an `i64`, as
+// [`PixelStats::add_small_terms`] lets lane groups of up to 64 do.
+const _: () = assert!((SMALL_SAMPLE * SMALL_SAMPLE) as f64 * SCALE * 64.0 < 9.2e18);
+
+/// A small sample's fixed-point value and square in one channel (`x` below [`SMALL_SAMPLE`] in
+/// magnitude): what [`PixelStats::add`] adds for it. Branch-free, so lane groups convert
+/// their estimates in SIMD.
+#[inline(always)]
+pub(crate) fn small_terms(x: f64) -> (i64, i64) {
+    (fixed_small(x), fixed_small(x * x))
+}
 
 /// The mean of `count` values (1 if there are none) whose fixed-point sum is `sum`.
 #[inline]
@@ -118,7 +129,26 @@ impl PixelStats {
     /// [`PixelStats::add`] of [`Rgb::BLACK`] (or of −0).
     #[inline(always)]
     pub fn add_black(&mut self) {
-        self.count += 1;
+        self.add_blacks(1);
+    }
+
+    /// Adds `count` black samples.
+    #[inline(always)]
+    pub fn add_blacks(&mut self, count: u32) {
+        self.count += count;
+    }
+
+    /// Adds `count` samples below [`SMALL_SAMPLE`] in every channel whose [`small_terms`] sum
+    /// to `sum` and `sum_sq` per channel. The same integers as adding each sample: integer
+    /// addition, and a saturating sum of non-negative terms is min(total, MAX) however it is
+    /// grouped.
+    #[inline(always)]
+    pub(crate) fn add_small_terms(&mut self, count: u32, sum: [i64; 3], sum_sq: [i64; 3]) {
+        self.count += count;
+        for k in 0..3 {
+            self.sum[k] += i128::from(sum[k]);
+            self.sum_sq[k] = self.sum_sq[k].saturating_add(sum_sq[k] as u128);
+        }
     }
 
     /// Adds one finite sample (channels beyond ±[`SAMPLE_LIMIT`] are clamped to it).
@@ -131,16 +161,13 @@ impl PixelStats {
             self.add_black();
             return;
         }
-        self.count += 1;
-        let x = c.to_array().map(f64::from);
         // Nearly every sample: branch-free conversions, the same integers (NaN fails the test).
-        if x.iter().all(|v| v.abs() < SMALL_SAMPLE) {
-            for (k, &v) in x.iter().enumerate() {
-                self.sum[k] += i128::from(fixed_small(v));
-                self.sum_sq[k] = self.sum_sq[k].saturating_add(fixed_small(v * v) as u128);
-            }
+        if c.to_array().iter().all(|v| v.abs() < SMALL_SAMPLE) {
+            let terms = c.to_array().map(|v| small_terms(f64::from(v)));
+            self.add_small_terms(1, terms.map(|t| t.0), terms.map(|t| t.1));
             return;
         }
+        self.count += 1;
         for (k, x) in c.to_array().into_iter().enumerate() {
             // f32 → f64 is exact, so is the scaling by a power of two; x² of an f32 fits f64's
             // 53 bits exactly: the only rounding is the truncation to the grid.

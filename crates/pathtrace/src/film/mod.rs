@@ -15,6 +15,7 @@ mod ranged;
 mod splat;
 pub mod tonemap;
 
+pub(crate) use accumulator::{small_terms, SMALL_SAMPLE};
 pub use accumulator::{PixelStats, FRACTION_BITS, SAMPLE_LIMIT};
 pub use allocation::{FilmTooLarge, FILM_BYTES_PER_PIXEL};
 pub use features::{FeatureBuffers, FeaturePixel, FeatureSample, FEATURE_BYTES_PER_PIXEL};
