@@ -374,12 +374,12 @@ mod tests {
                     4 => 40.0 + i as f32,
                     _ => -0.1 * i as f32,
                 };
-                // Lane 6 is black in two channels only, lane 10 large in one only; lane 9 is
+                // Lane 6 is black in two channels only, lane 8 large in one only; lane 9 is
                 // not asked to finish.
                 for c in 0..3 {
                     paths.radiance[c].0[i] = match (i, c) {
                         (6, 1) => 1.5,
-                        (10, 2) => 1e20,
+                        (8, 2) => 1e20,
                         _ => value,
                     };
                 }
