@@ -238,12 +238,12 @@ impl RenderSession {
         let handle = std::thread::Builder::new()
             .name("pathtrace-session".into())
             .spawn(move || {
+                // Ends the render however the waves end: a panic in a worker (a bug) must wake
+                // the waiters too, who would otherwise wait for ever.
+                let ending = EndOnExit { end: &worker_shared.end, ended: &worker_shared.ended };
                 pool.install(|| run_waves(&scene, &prep, &settings, &worker_shared));
-                let mut end = worker_shared.end.lock().unwrap_or_else(|e| e.into_inner());
-                *end = Some(Instant::now());
                 worker_shared.finished.store(true, Ordering::Release);
-                drop(end);
-                worker_shared.ended.notify_all();
+                drop(ending);
             })
             .map_err(|e| RenderError::Threads(e.to_string()))?;
         Ok(Self { shared, handle: Some(handle) })
@@ -315,10 +315,12 @@ impl RenderSession {
     }
 
     /// Waits for the render to end (finished, timed out or cancelled) and returns the film.
+    /// A panic in a worker (a bug) is raised again here rather than passed off as a film.
     pub fn wait(mut self) -> RenderOutcome {
         if let Some(h) = self.handle.take() {
-            // A panic in a worker is a bug; the film holds what was merged before it.
-            let _ = h.join();
+            if let Err(panic) = h.join() {
+                std::panic::resume_unwind(panic);
+            }
         }
         let progress = self.progress();
         let mut film = self.shared.lock_film().clone();
@@ -334,6 +336,21 @@ impl Drop for RenderSession {
             self.cancel();
             let _ = h.join();
         }
+    }
+}
+
+/// Marks the render ended and wakes its waiters when dropped, on return or unwinding.
+struct EndOnExit<'a> {
+    end: &'a Mutex<Option<Instant>>,
+    ended: &'a Condvar,
+}
+
+impl Drop for EndOnExit<'_> {
+    fn drop(&mut self) {
+        let mut end = self.end.lock().unwrap_or_else(|e| e.into_inner());
+        *end = Some(Instant::now());
+        drop(end);
+        self.ended.notify_all();
     }
 }
 
@@ -472,5 +489,28 @@ fn run_adaptive(
                 break;
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A worker that panics still ends the render: its waiters wake (they used to wait for ever).
+    #[test]
+    fn a_panicking_worker_wakes_the_waiters() {
+        let state = Arc::new((Mutex::new(None), Condvar::new()));
+        let worker = Arc::clone(&state);
+        let handle = std::thread::spawn(move || {
+            let _ending = EndOnExit { end: &worker.0, ended: &worker.1 };
+            panic!("a bug in a worker");
+        });
+        let end = state.0.lock().unwrap_or_else(|e| e.into_inner());
+        let (end, timeout) = state
+            .1
+            .wait_timeout_while(end, Duration::from_secs(60), |end| end.is_none())
+            .unwrap_or_else(|e| e.into_inner());
+        assert!(end.is_some() && !timeout.timed_out());
+        assert!(handle.join().is_err(), "the panic reaches the joiner");
     }
 }
