@@ -2,6 +2,7 @@
 
 mod features;
 mod lanes;
+mod material_lanes;
 mod media;
 mod path;
 mod regenerate;

@@ -18,16 +18,17 @@
 
 use super::features::record_features;
 use super::lanes::{Output, Paths, Surfaces};
+use super::material_lanes::{material_lanes, LaneVertex};
 use super::media::{leaving_medium, medium_vertex, shadow_transmittance, travel};
 use super::regenerate::LaneJob;
 use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
 use super::Strategy;
-use crate::material::{lambertian, Material};
+use crate::material::{lambertian, Material, RoughConductorLanes, RoughPlasticLanes};
 use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2};
 use crate::scene::{Interaction, Primitive, Scene};
 use crate::wide::simd::{F32s, Ms, Vec3s};
 use crate::wide::warp;
-use crate::wide::{LaneSamplers, LightSamples};
+use crate::wide::{LaneForm, LaneSamplers, LightSamples};
 
 /// Settings of the path loop.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,20 +78,20 @@ impl PathStats {
 }
 
 /// The shadow rays and continuations of a vertex, per lane.
-struct Scattered<const N: usize> {
-    shadow: Ms<N>,
-    shadow_origin: Vec3s<N>,
-    shadow_dir: Vec3s<N>,
-    shadow_t_max: F32s<N>,
+pub(super) struct Scattered<const N: usize> {
+    pub shadow: Ms<N>,
+    pub shadow_origin: Vec3s<N>,
+    pub shadow_dir: Vec3s<N>,
+    pub shadow_t_max: F32s<N>,
     /// What an unoccluded shadow ray adds (throughput included).
-    contribution: [F32s<N>; 3],
-    goes_on: Ms<N>,
-    origin: Vec3s<N>,
-    dir: Vec3s<N>,
-    weight: [F32s<N>; 3],
-    pdf: F32s<N>,
-    specular: Ms<N>,
-    eta: F32s<N>,
+    pub contribution: [F32s<N>; 3],
+    pub goes_on: Ms<N>,
+    pub origin: Vec3s<N>,
+    pub dir: Vec3s<N>,
+    pub weight: [F32s<N>; 3],
+    pub pdf: F32s<N>,
+    pub specular: Ms<N>,
+    pub eta: F32s<N>,
 }
 
 // Always inlined, as every helper of the lane loop: a helper compiled outside the loop's
@@ -212,6 +213,11 @@ pub(crate) fn vertex<const N: usize>(
     let mut simd = Ms::<N>::NONE;
     let mut one_sided = Ms::<N>::NONE;
     let mut albedo = [F32s::<N>::ZERO; 3];
+    // Lanes of materials with a lane form, by model, and their materials.
+    let mut conductor = Ms::<N>::NONE;
+    let mut conductors: Option<RoughConductorLanes<N>> = None;
+    let mut plastic = Ms::<N>::NONE;
+    let mut plastics: Option<RoughPlasticLanes<N>> = None;
     for i in (alive & !scatter).lanes() {
         let class = &lanes.classes[s.material[i] as usize];
         // A one-sided material seen from behind (the shading normal facing away, Mitsuba's
@@ -232,6 +238,19 @@ pub(crate) fn vertex<const N: usize>(
             simd.0[i] = u32::MAX;
             let a = if class.textured { textured_albedo(scene, &s, i) } else { class.albedo };
             [albedo[0].0[i], albedo[1].0[i], albedo[2].0[i]] = a.to_array();
+        } else if let Some(form) = class.lane_form {
+            match (form, &materials[s.material[i] as usize]) {
+                (LaneForm::RoughConductor, Material::RoughConductor(m)) => {
+                    conductor.0[i] = u32::MAX;
+                    conductors.get_or_insert_with(|| m.lanes()).set(i, m);
+                }
+                (LaneForm::RoughPlastic, Material::RoughPlastic(m)) => {
+                    plastic.0[i] = u32::MAX;
+                    plastics.get_or_insert_with(|| m.lanes()).set(i, m);
+                }
+                // `WideScene::new` gives each form to its model only.
+                _ => unreachable!("lane form {form:?} on another material"),
+            }
         }
     }
     // Medium interactions: a vertex like any other (the depth limit, then light sampling).
@@ -276,7 +295,33 @@ pub(crate) fn vertex<const N: usize>(
     } else {
         LambertLight::none()
     };
-    for i in (alive & !simd & !scatter).lanes() {
+    let lane_forms = conductor | plastic;
+    if lane_forms.any() {
+        let v = LaneVertex {
+            strategy,
+            one_sided,
+            p: &s.p,
+            n_geometric: &s.n_geometric,
+            n_shading: &s.n_shading,
+            wo: &wo,
+            beta: &paths.beta,
+            nee: surface_nee,
+            light: &light_samples,
+            u_lobe,
+            u1: ud1,
+            u2: ud2,
+        };
+        // Each form's other lanes take the formulas without per-lane calls (`only`).
+        if let Some(mut m) = conductors {
+            m.distribution = m.distribution.only(conductor);
+            material_lanes(&v, conductor, &m, &mut sc);
+        }
+        if let Some(mut m) = plastics {
+            m.distribution = m.distribution.only(plastic);
+            material_lanes(&v, plastic, &m, &mut sc);
+        }
+    }
+    for i in (alive & !simd & !lane_forms & !scatter).lanes() {
         let it = Interaction {
             surface: s.surface(i),
             material: &materials[s.material[i] as usize],

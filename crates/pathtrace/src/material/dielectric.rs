@@ -6,6 +6,7 @@
 
 use super::BsdfSample;
 use crate::math::{Rgb, Vec3};
+use crate::wide::simd::F32s;
 
 /// Smooth dielectric interface with interior index of refraction `ior` (exterior 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -20,15 +21,27 @@ pub struct Dielectric {
 /// index η = η_inside / η_outside. Returns (F, cos θt, η of the crossing) — cos θt = 0 on total
 /// internal reflection. (Born & Wolf; as in pbrt-v4 `FrDielectric`.)
 pub fn fresnel_dielectric(cos_theta_i: f32, eta: f32) -> (f32, f32, f32) {
-    let (cos_i, eta) = if cos_theta_i < 0.0 { (-cos_theta_i, 1.0 / eta) } else { (cos_theta_i, eta) };
-    let sin2_t = (1.0 - cos_i * cos_i).max(0.0) / (eta * eta);
-    if sin2_t >= 1.0 {
-        return (1.0, 0.0, eta);
-    }
-    let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
+    let (f, cos_t, eta) = fresnel_dielectric_lanes(F32s([cos_theta_i]), F32s([eta]));
+    (f.0[0], cos_t.0[0], eta.0[0])
+}
+
+/// [`fresnel_dielectric`] in every lane (the scalar form is its one-lane instance).
+#[inline(always)]
+pub(crate) fn fresnel_dielectric_lanes<const N: usize>(
+    cos_theta_i: F32s<N>,
+    eta: F32s<N>,
+) -> (F32s<N>, F32s<N>, F32s<N>) {
+    let inside = cos_theta_i.lt(F32s::ZERO);
+    let cos_i = F32s::select(inside, -cos_theta_i, cos_theta_i);
+    let eta = F32s::select(inside, 1.0 / eta, eta);
+    let sin2_t = (1.0 - cos_i * cos_i).max(F32s::ZERO) / (eta * eta);
+    let cos_t = (1.0 - sin2_t).max(F32s::ZERO).sqrt();
     let r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
     let r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    (0.5 * (r_parl * r_parl + r_perp * r_perp), cos_t, eta)
+    let f = 0.5 * (r_parl * r_parl + r_perp * r_perp);
+    // Total internal reflection.
+    let total = sin2_t.ge(F32s::ONE);
+    (F32s::select(total, F32s::ONE, f), F32s::select(total, F32s::ZERO, cos_t), eta)
 }
 
 impl Dielectric {

@@ -20,8 +20,9 @@
 //! `beckmann_slopes.rs`).
 
 use super::beckmann_slopes::visible_slopes_11;
-use crate::math::special::{erf_and_gaussian_fast, exp_flushed_f32};
+use crate::math::special::{erf_and_gaussian_lanes, exp_flushed_lanes};
 use crate::math::{Vec2, Vec3, PI};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Which normal distribution.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,59 +55,30 @@ impl Microfacet {
         Self::new(kind, alpha, alpha)
     }
 
-    /// D(m): microfacet area density per unit projected area (Walter 2007 eqs. 25, 33, with
-    /// the anisotropic tan²θ (cos²φ/αu² + sin²φ/αv²) of Heitz 2014 §5.2).
+    /// This distribution in every lane of a group (the scalar methods below are the one-lane
+    /// instances of [`MicrofacetLanes`]'s: one implementation of each formula).
+    #[inline(always)]
+    pub(crate) fn lanes<const N: usize>(&self) -> MicrofacetLanes<N> {
+        MicrofacetLanes {
+            beckmann: Ms::from_fn(|_| self.kind == MicrofacetKind::Beckmann),
+            alpha_u: F32s::splat(self.alpha_u),
+            alpha_v: F32s::splat(self.alpha_v),
+        }
+    }
+
+    /// D(m): microfacet area density per unit projected area.
     pub fn d(&self, m: Vec3) -> f32 {
-        if m.z <= 0.0 {
-            return 0.0;
-        }
-        let (ax, ay) = (self.alpha_u, self.alpha_v);
-        let cos2 = m.z * m.z;
-        let d = match self.kind {
-            MicrofacetKind::Beckmann => {
-                let e = ((m.x / ax) * (m.x / ax) + (m.y / ay) * (m.y / ay)) / cos2;
-                exp_flushed_f32(-e) / (PI * ax * ay * cos2 * cos2)
-            }
-            MicrofacetKind::Ggx => {
-                let t = (m.x / ax) * (m.x / ax) + (m.y / ay) * (m.y / ay) + cos2;
-                1.0 / (PI * ax * ay * t * t)
-            }
-        };
-        if d.is_finite() {
-            d
-        } else {
-            0.0
-        }
+        self.lanes::<1>().d(&Vec3s::splat(m)).0[0]
     }
 
-    /// α² tan²θ of `v` with the roughness projected onto v's azimuth (Heitz 2014 eq. 80).
-    fn alpha2_tan2(&self, v: Vec3) -> f32 {
-        let xy = (self.alpha_u * v.x) * (self.alpha_u * v.x) + (self.alpha_v * v.y) * (self.alpha_v * v.y);
-        xy / (v.z * v.z)
-    }
-
-    /// Smith's Λ(v) (Heitz 2014 eqs. 72 and 86).
+    /// Smith's Λ(v).
     pub fn lambda(&self, v: Vec3) -> f32 {
-        let a2t2 = self.alpha2_tan2(v);
-        if a2t2 == 0.0 || !a2t2.is_finite() {
-            return if a2t2 == 0.0 { 0.0 } else { f32::INFINITY };
-        }
-        match self.kind {
-            MicrofacetKind::Ggx => 0.5 * (-1.0 + (1.0 + a2t2).sqrt()),
-            MicrofacetKind::Beckmann => {
-                let a = 1.0 / a2t2.sqrt();
-                let (erf_a, gaussian) = erf_and_gaussian_fast(a);
-                0.5 * (erf_a - 1.0) + gaussian / (2.0 * a * PI.sqrt())
-            }
-        }
+        self.lanes::<1>().lambda(&Vec3s::splat(v)).0[0]
     }
 
     /// Smith's masking G1(v, m) = 1/(1 + Λ(v)), zero when v sees the back of m.
     pub fn g1(&self, v: Vec3, m: Vec3) -> f32 {
-        if v.dot(m) * v.z <= 0.0 {
-            return 0.0;
-        }
-        1.0 / (1.0 + self.lambda(v))
+        self.lanes::<1>().g1(&Vec3s::splat(v), &Vec3s::splat(m)).0[0]
     }
 
     /// Separable masking–shadowing G1(wo, m)·G1(wi, m) (Mitsuba 3's choice).
@@ -117,62 +89,194 @@ impl Microfacet {
     /// Density of [`Microfacet::sample_visible`]: D_v(m) = G1(v, m) max(0, v·m) D(m) / cos θv
     /// (Heitz & d'Eon 2014 eq. 2), for `v` above the surface.
     pub fn pdf_visible(&self, v: Vec3, m: Vec3) -> f32 {
-        if v.z <= 0.0 {
-            return 0.0;
-        }
-        visible_density(self.g1(v, m), v.dot(m), self.d(m), v.z)
+        self.lanes::<1>().pdf_visible(&Vec3s::splat(v), &Vec3s::splat(m)).0[0]
     }
 
     /// Draws a microfacet normal visible from `v` (which must have `v.z > 0`).
     pub fn sample_visible(&self, v: Vec3, u: Vec2) -> Vec3 {
-        match self.kind {
-            MicrofacetKind::Ggx => self.sample_visible_ggx(v, u),
-            MicrofacetKind::Beckmann => self.sample_visible_beckmann(v, u),
-        }
-    }
-
-    /// Heitz 2018, listing 1: stretch to the hemisphere configuration (α = 1), sample the
-    /// projected half-disk seen from v, unstretch.
-    fn sample_visible_ggx(&self, v: Vec3, u: Vec2) -> Vec3 {
-        let vh = Vec3::new(self.alpha_u * v.x, self.alpha_v * v.y, v.z).normalize();
-        let len2 = vh.x * vh.x + vh.y * vh.y;
-        let t1 = if len2 > 0.0 { Vec3::new(-vh.y, vh.x, 0.0) / len2.sqrt() } else { Vec3::X };
-        let t2 = vh.cross(t1);
-        let r = u.x.sqrt();
-        let phi = 2.0 * PI * u.y;
-        let p1 = r * phi.cos();
-        let s = 0.5 * (1.0 + vh.z);
-        let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * r * phi.sin();
-        let nh = p1 * t1 + p2 * t2 + (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt() * vh;
-        Vec3::new(self.alpha_u * nh.x, self.alpha_v * nh.y, nh.z.max(0.0)).normalize()
-    }
-
-    /// Heitz & d'Eon 2014 §4 (stretch, sample slopes for α = 1, rotate, unstretch) with the
-    /// α = 1 Beckmann visible slopes drawn by inverting their marginal CDF in x (Jakob 2014).
-    fn sample_visible_beckmann(&self, v: Vec3, u: Vec2) -> Vec3 {
-        let vs = Vec3::new(self.alpha_u * v.x, self.alpha_v * v.y, v.z).normalize();
-        let (sx, sy) = visible_slopes_11(vs.z, u.x, u.y);
-        // Rotate from the frame where the (stretched) view direction has azimuth 0.
-        let len = (vs.x * vs.x + vs.y * vs.y).sqrt();
-        let (cos_phi, sin_phi) = if len > 0.0 { (vs.x / len, vs.y / len) } else { (1.0, 0.0) };
-        let rx = cos_phi * sx - sin_phi * sy;
-        let ry = sin_phi * sx + cos_phi * sy;
-        // Unstretch the slopes; the normal of slope (x, y) is (−x, −y, 1) normalised.
-        Vec3::new(-(rx * self.alpha_u), -(ry * self.alpha_v), 1.0).normalize()
+        self.lanes::<1>().sample_visible(&Vec3s::splat(v), F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
     }
 }
 
-/// D_v(m) = G1(v, m) max(0, v·m) D(m) / cos θv from its parts (Heitz & d'Eon 2014 eq. 2), for
-/// callers that already hold G1 and D (a model's value and density at one pair of directions).
+/// A microfacet distribution per lane: each lane's kind and roughness (lanes of one group can
+/// hold different materials).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MicrofacetLanes<const N: usize> {
+    /// Beckmann lanes; the others are GGX.
+    pub beckmann: Ms<N>,
+    pub alpha_u: F32s<N>,
+    pub alpha_v: F32s<N>,
+}
+
+// Always inlined: the lane loop's callers are compiled for AVX2/AVX-512, and a helper compiled
+// outside them would work on the lanes with narrower instructions. Each model is evaluated
+// only if some lane has it.
+impl<const N: usize> MicrofacetLanes<N> {
+    /// The same distributions, with the lanes outside `lanes` taken as GGX: their values are
+    /// then not needed, and GGX's formulas have no call per lane (Beckmann's exponentials do).
+    #[inline(always)]
+    pub fn only(self, lanes: Ms<N>) -> Self {
+        Self { beckmann: self.beckmann & lanes, ..self }
+    }
+
+    /// Lane `i` holds `m`.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, m: &Microfacet) {
+        self.beckmann.0[i] = u32::from(m.kind == MicrofacetKind::Beckmann).wrapping_neg();
+        self.alpha_u.0[i] = m.alpha_u;
+        self.alpha_v.0[i] = m.alpha_v;
+    }
+
+    /// D(m) (Walter 2007 eqs. 25, 33, with the anisotropic tan²θ (cos²φ/αu² + sin²φ/αv²) of
+    /// Heitz 2014 §5.2); 0 below the surface and where the value overflows.
+    #[inline(always)]
+    pub fn d(&self, m: &Vec3s<N>) -> F32s<N> {
+        let (ax, ay) = (self.alpha_u, self.alpha_v);
+        let cos2 = m.z * m.z;
+        let (sx, sy) = (m.x / ax, m.y / ay);
+        let beckmann = if self.beckmann.any() {
+            let e = (sx * sx + sy * sy) / cos2;
+            exp_flushed_lanes(-e, self.beckmann) / (PI * ax * ay * cos2 * cos2)
+        } else {
+            F32s::ZERO
+        };
+        let ggx = if (!self.beckmann).any() {
+            let t = sx * sx + sy * sy + cos2;
+            1.0 / (PI * ax * ay * t * t)
+        } else {
+            F32s::ZERO
+        };
+        let d = F32s::select(self.beckmann, beckmann, ggx);
+        F32s::select(m.z.gt(F32s::ZERO) & d.is_finite(), d, F32s::ZERO)
+    }
+
+    /// Smith's Λ(v) (Heitz 2014 eqs. 72 and 86), from α² tan²θ of `v` with the roughness
+    /// projected onto v's azimuth (Heitz 2014 eq. 80): 0 at normal incidence, ∞ at grazing.
+    #[inline(always)]
+    pub fn lambda(&self, v: &Vec3s<N>) -> F32s<N> {
+        let (au, av) = (self.alpha_u, self.alpha_v);
+        let xy = (au * v.x) * (au * v.x) + (av * v.y) * (av * v.y);
+        let a2t2 = xy / (v.z * v.z);
+        let beckmann = if self.beckmann.any() {
+            let a = 1.0 / a2t2.sqrt();
+            let (erf_a, gaussian) = erf_and_gaussian_lanes(a, self.beckmann);
+            0.5 * (erf_a - 1.0) + gaussian / (2.0 * a * PI.sqrt())
+        } else {
+            F32s::ZERO
+        };
+        let ggx = if (!self.beckmann).any() { 0.5 * (-1.0 + (1.0 + a2t2).sqrt()) } else { F32s::ZERO };
+        let lambda = F32s::select(self.beckmann, beckmann, ggx);
+        let lambda = F32s::select(a2t2.is_finite(), lambda, F32s::splat(f32::INFINITY));
+        F32s::select(a2t2.eq(F32s::ZERO), F32s::ZERO, lambda)
+    }
+
+    /// G1(v, m) = 1/(1 + Λ(v)), zero when v sees the back of m.
+    #[inline(always)]
+    pub fn g1(&self, v: &Vec3s<N>, m: &Vec3s<N>) -> F32s<N> {
+        let back = (v.dot(m) * v.z).le(F32s::ZERO);
+        F32s::select(back, F32s::ZERO, 1.0 / (1.0 + self.lambda(v)))
+    }
+
+    /// D_v(m) (see [`Microfacet::pdf_visible`]); 0 for `v` below the surface.
+    #[inline(always)]
+    pub fn pdf_visible(&self, v: &Vec3s<N>, m: &Vec3s<N>) -> F32s<N> {
+        let density = visible_density_lanes(self.g1(v, m), v.dot(m), self.d(m), v.z);
+        F32s::select(v.z.le(F32s::ZERO), F32s::ZERO, density)
+    }
+
+    /// A microfacet normal visible from `v` (`v.z > 0`) per lane of `active`, from the numbers
+    /// `u1`, `u2` (other lanes: unspecified).
+    #[inline(always)]
+    pub fn sample_visible(&self, v: &Vec3s<N>, u1: F32s<N>, u2: F32s<N>, active: Ms<N>) -> Vec3s<N> {
+        let (au, av) = (self.alpha_u, self.alpha_v);
+        // Both models start from the view direction stretched to the α = 1 configuration.
+        let stretched = Vec3s { x: au * v.x, y: av * v.y, z: v.z }.normalize();
+        let beckmann = active & self.beckmann;
+        let ggx = active & !self.beckmann;
+        let m_ggx = if ggx.any() { self.sample_visible_ggx(&stretched, u1, u2, ggx) } else { Vec3s::default() };
+        let m_beckmann =
+            if beckmann.any() { self.sample_visible_beckmann(&stretched, u1, u2, beckmann) } else { Vec3s::default() };
+        Vec3s::select(self.beckmann, &m_beckmann, &m_ggx)
+    }
+
+    /// Heitz 2018, listing 1: sample the projected half-disk seen from the stretched view
+    /// direction `vh`, unstretch (in the lanes of `lanes`; the others' values are unspecified).
+    #[inline(always)]
+    fn sample_visible_ggx(&self, vh: &Vec3s<N>, u1: F32s<N>, u2: F32s<N>, lanes: Ms<N>) -> Vec3s<N> {
+        let zero = F32s::ZERO;
+        let len2 = vh.x * vh.x + vh.y * vh.y;
+        let len = len2.sqrt();
+        let t1 = Vec3s::select(
+            len2.gt(zero),
+            &Vec3s { x: -vh.y / len, y: vh.x / len, z: zero / len },
+            &Vec3s::splat(Vec3::X),
+        );
+        let t2 = cross(vh, &t1);
+        let r = u1.sqrt();
+        let phi = 2.0 * PI * u2;
+        // libm's cosine and sine, lane by lane (the scalar form's bits).
+        let (mut cos_phi, mut sin_phi) = (F32s::ZERO, F32s::ZERO);
+        for i in lanes.lanes() {
+            (cos_phi.0[i], sin_phi.0[i]) = (phi.0[i].cos(), phi.0[i].sin());
+        }
+        let p1 = r * cos_phi;
+        let s = 0.5 * (1.0 + vh.z);
+        let p2 = (1.0 - s) * (1.0 - p1 * p1).max(zero).sqrt() + s * r * sin_phi;
+        let h = (1.0 - p1 * p1 - p2 * p2).max(zero).sqrt();
+        let nh = t1.scale(p1).add(&t2.scale(p2)).add(&vh.scale(h));
+        Vec3s { x: self.alpha_u * nh.x, y: self.alpha_v * nh.y, z: nh.z.max(zero) }.normalize()
+    }
+
+    /// Heitz & d'Eon 2014 §4 (sample slopes for α = 1 seen from the stretched `vs`, rotate,
+    /// unstretch) with the α = 1 Beckmann visible slopes drawn by inverting their marginal CDF
+    /// in x (Jakob 2014), lane by lane (an iteration to convergence).
+    #[inline(always)]
+    fn sample_visible_beckmann(&self, vs: &Vec3s<N>, u1: F32s<N>, u2: F32s<N>, lanes: Ms<N>) -> Vec3s<N> {
+        let (mut sx, mut sy) = (F32s::ZERO, F32s::ZERO);
+        for i in lanes.lanes() {
+            (sx.0[i], sy.0[i]) = visible_slopes_11(vs.z.0[i], u1.0[i], u2.0[i]);
+        }
+        // Rotate from the frame where the (stretched) view direction has azimuth 0.
+        let len = (vs.x * vs.x + vs.y * vs.y).sqrt();
+        let tilted = len.gt(F32s::ZERO);
+        let cos_phi = F32s::select(tilted, vs.x / len, F32s::ONE);
+        let sin_phi = F32s::select(tilted, vs.y / len, F32s::ZERO);
+        let rx = cos_phi * sx - sin_phi * sy;
+        let ry = sin_phi * sx + cos_phi * sy;
+        // Unstretch the slopes; the normal of slope (x, y) is (−x, −y, 1) normalised.
+        Vec3s { x: -(rx * self.alpha_u), y: -(ry * self.alpha_v), z: F32s::ONE }.normalize()
+    }
+}
+
+/// `a × b` per lane, in glam's operand order (bit-identical lanes).
 #[inline(always)]
-pub(crate) fn visible_density(g1_v: f32, v_dot_m: f32, d: f32, cos_theta_v: f32) -> f32 {
-    g1_v * v_dot_m.max(0.0) * d / cos_theta_v
+fn cross<const N: usize>(a: &Vec3s<N>, b: &Vec3s<N>) -> Vec3s<N> {
+    Vec3s { x: a.y * b.z - b.y * a.z, y: a.z * b.x - b.z * a.x, z: a.x * b.y - b.x * a.y }
+}
+
+/// D_v(m) = G1(v, m) max(0, v·m) D(m) / cos θv from its parts (Heitz & d'Eon 2014 eq. 2) per
+/// lane, for callers that already hold G1 and D (a model's value and density at one pair of
+/// directions).
+#[inline(always)]
+pub(crate) fn visible_density_lanes<const N: usize>(
+    g1_v: F32s<N>,
+    v_dot_m: F32s<N>,
+    d: F32s<N>,
+    cos_theta_v: F32s<N>,
+) -> F32s<N> {
+    g1_v * v_dot_m.max(F32s::ZERO) * d / cos_theta_v
 }
 
 /// Mirror reflection of `v` about the microfacet normal `m`: 2(v·m)m − v.
 #[inline]
 pub fn reflect_about(v: Vec3, m: Vec3) -> Vec3 {
-    2.0 * v.dot(m) * m - v
+    reflect_about_lanes(&Vec3s::<1>::splat(v), &Vec3s::splat(m)).lane(0)
+}
+
+/// [`reflect_about`] in every lane.
+#[inline(always)]
+pub(crate) fn reflect_about_lanes<const N: usize>(v: &Vec3s<N>, m: &Vec3s<N>) -> Vec3s<N> {
+    m.scale(2.0 * v.dot(m)).sub(v)
 }
 
 /// Refraction of `v` (with cos θ = `cos_vm` > 0 to `m`) through the microfacet normal `m`, for

@@ -20,6 +20,7 @@ use super::{reflect_local, BsdfSample};
 use crate::math::special::gauss_legendre;
 use crate::math::{Rgb, Vec2, Vec3, INV_PI};
 use crate::sampling::warp;
+use crate::wide::simd::F32s;
 
 /// A smooth plastic. Build it with [`Plastic::new`], which precomputes the coating terms.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -131,13 +132,19 @@ impl Plastic {
 /// specular sampling weight, against the transmitted (diffuse) fraction weighted by its
 /// complement; 0 when both vanish.
 pub(super) fn coating_pick_probability(reflected: f32, transmitted: f32, specular_weight: f32) -> f32 {
+    coating_pick_probability_lanes(F32s([reflected]), F32s([transmitted]), F32s([specular_weight])).0[0]
+}
+
+/// [`coating_pick_probability`] in every lane.
+#[inline(always)]
+pub(super) fn coating_pick_probability_lanes<const N: usize>(
+    reflected: F32s<N>,
+    transmitted: F32s<N>,
+    specular_weight: F32s<N>,
+) -> F32s<N> {
     let s = reflected * specular_weight;
     let d = transmitted * (1.0 - specular_weight);
-    if s + d > 0.0 {
-        s / (s + d)
-    } else {
-        0.0
-    }
+    F32s::select((s + d).gt(F32s::ZERO), s / (s + d), F32s::ZERO)
 }
 
 #[cfg(test)]

@@ -6,10 +6,12 @@
 //! With F = 1 it loses exactly the energy of light that would scatter more than once between
 //! microfacets: e.g. for GGX α = 1 at normal incidence its albedo is ≈ 0.77 (tests/microfacet_bsdfs.rs).
 
-use super::fresnel::fresnel_conductor_rgb;
-use super::microfacet::{reflect_about, visible_density, Microfacet};
+use super::fresnel::fresnel_conductor_rgb_lanes;
+use super::lanes::{LaneSamples, LaneScattering};
+use super::microfacet::{reflect_about_lanes, visible_density_lanes, Microfacet, MicrofacetLanes};
 use super::BsdfSample;
 use crate::math::{Rgb, Vec2, Vec3};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// A rough conductor.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,23 +26,28 @@ pub struct RoughConductor {
 }
 
 impl RoughConductor {
+    /// This material in every lane of a group (the scalar methods are the one-lane instances of
+    /// [`RoughConductorLanes`]'s).
+    #[inline(always)]
+    pub(crate) fn lanes<const N: usize>(&self) -> RoughConductorLanes<N> {
+        let splat = |c: Rgb| c.to_array().map(F32s::splat);
+        RoughConductorLanes {
+            distribution: self.distribution.lanes(),
+            eta: splat(self.eta),
+            k: splat(self.k),
+            reflectance: splat(self.reflectance),
+        }
+    }
+
     pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
-        if wo.z <= 0.0 {
-            return None;
-        }
-        let m = self.distribution.sample_visible(wo, u);
-        let wi = reflect_about(wo, m);
-        let cos_om = wo.dot(m);
-        if wi.z <= 0.0 || cos_om <= 0.0 {
-            return None;
-        }
-        let pdf = self.distribution.pdf_visible(wo, m) / (4.0 * cos_om);
-        if !pdf.is_finite() || pdf <= 0.0 {
-            return None;
-        }
-        let f = fresnel_conductor_rgb(cos_om, self.eta, self.k);
-        let weight = self.reflectance * f * self.distribution.g1(wi, m);
-        Some(BsdfSample { wi, weight, pdf, delta: false, eta: 1.0 })
+        let s = self.lanes::<1>().sample(&Vec3s::splat(wo), F32s::ZERO, F32s([u.x]), F32s([u.y]), Ms::ALL);
+        s.valid.lane(0).then(|| BsdfSample {
+            wi: s.wi.lane(0),
+            weight: Rgb::new(s.weight[0].0[0], s.weight[1].0[0], s.weight[2].0[0]),
+            pdf: s.pdf.0[0],
+            delta: false,
+            eta: 1.0,
+        })
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
@@ -55,22 +62,136 @@ impl RoughConductor {
     /// an exp) are computed once when MIS needs both.
     #[inline]
     pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return (Rgb::BLACK, 0.0);
+        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
+        (Rgb::new(f[0].0[0], f[1].0[0], f[2].0[0]), pdf.0[0])
+    }
+}
+
+/// A rough conductor per lane (lanes can hold different ones), RGB channels as lane groups.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RoughConductorLanes<const N: usize> {
+    pub distribution: MicrofacetLanes<N>,
+    pub eta: [F32s<N>; 3],
+    pub k: [F32s<N>; 3],
+    pub reflectance: [F32s<N>; 3],
+}
+
+// Always inlined, as the lane loop's helpers (see `MicrofacetLanes`).
+impl<const N: usize> RoughConductorLanes<N> {
+    /// Lane `i` holds `m`.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, m: &RoughConductor) {
+        self.distribution.set(i, &m.distribution);
+        for (c, ((eta, k), reflectance)) in
+            m.eta.to_array().into_iter().zip(m.k.to_array()).zip(m.reflectance.to_array()).enumerate()
+        {
+            self.eta[c].0[i] = eta;
+            self.k[c].0[i] = k;
+            self.reflectance[c].0[i] = reflectance;
         }
-        let m = (wo + wi).normalize();
-        let cos_om = wo.dot(m);
-        let d = self.distribution.d(m);
-        let g1_o = self.distribution.g1(wo, m);
-        let dg = d * (g1_o * self.distribution.g1(wi, m));
+    }
+}
+
+impl<const N: usize> LaneScattering<N> for RoughConductorLanes<N> {
+    /// A reflection about a visible normal of `wo` per lane of `active`, from `u1`, `u2` (one
+    /// lobe: `u_lobe` is not used).
+    #[inline(always)]
+    fn sample(&self, wo: &Vec3s<N>, _u_lobe: F32s<N>, u1: F32s<N>, u2: F32s<N>, active: Ms<N>) -> LaneSamples<N> {
+        let zero = F32s::ZERO;
+        // Directions below the surface are answered nothing (`!(x <= 0)` keeps the scalar
+        // form's rule for NaN).
+        let active = active & !wo.z.le(zero);
+        let m = self.distribution.sample_visible(wo, u1, u2, active);
+        let wi = reflect_about_lanes(wo, &m);
+        let cos_om = wo.dot(&m);
+        let pdf = self.distribution.pdf_visible(wo, &m) / (4.0 * cos_om);
+        let valid = active & !wi.z.le(zero) & !cos_om.le(zero) & pdf.is_finite() & pdf.gt(zero);
+        let f = fresnel_conductor_rgb_lanes(cos_om, self.eta, self.k);
+        let g1 = self.distribution.g1(&wi, &m);
+        let weight = std::array::from_fn(|c| self.reflectance[c] * f[c] * g1);
+        LaneSamples { valid, wi, weight, pdf }
+    }
+
+    /// f·cos θi and the density of `wi` per lane.
+    #[inline(always)]
+    fn eval_pdf(&self, wo: &Vec3s<N>, wi: &Vec3s<N>) -> ([F32s<N>; 3], F32s<N>) {
+        let zero = F32s::ZERO;
+        let below = wo.z.le(zero) | wi.z.le(zero);
+        let m = wo.add(wi).normalize();
+        let cos_om = wo.dot(&m);
+        let d = self.distribution.d(&m);
+        let g1_o = self.distribution.g1(wo, &m);
+        let dg = d * (g1_o * self.distribution.g1(wi, &m));
         // f·cos θi: the cos θi of the denominator cancels.
-        let f = if dg <= 0.0 {
-            Rgb::BLACK
-        } else {
-            self.reflectance * fresnel_conductor_rgb(cos_om, self.eta, self.k) * (dg / (4.0 * wo.z))
-        };
+        let fresnel = fresnel_conductor_rgb_lanes(cos_om, self.eta, self.k);
+        let scale = dg / (4.0 * wo.z);
+        let black = below | dg.le(zero);
+        let f = std::array::from_fn(|c| F32s::select(black, zero, self.reflectance[c] * fresnel[c] * scale));
         // Jacobian of the reflection map dωm/dωi = 1/(4 wo·m) (Walter 2007 eq. 14).
-        let pdf = if cos_om <= 0.0 { 0.0 } else { visible_density(g1_o, cos_om, d, wo.z) / (4.0 * cos_om) };
+        let pdf = visible_density_lanes(g1_o, cos_om, d, wo.z) / (4.0 * cos_om);
+        let pdf = F32s::select(below | cos_om.le(zero), zero, pdf);
         (f, pdf)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{Microfacet, MicrofacetKind};
+    use crate::wide::simd::LANES_512 as N;
+
+    /// A different conductor in every lane (both distributions, several roughnesses).
+    fn conductor(i: usize) -> RoughConductor {
+        let kind = if i.is_multiple_of(2) { MicrofacetKind::Beckmann } else { MicrofacetKind::Ggx };
+        RoughConductor {
+            distribution: Microfacet::isotropic(kind, [0.005, 0.05, 0.2, 0.7][i % 4]),
+            eta: Rgb::new(0.2 + 0.1 * i as f32, 0.9, 1.1),
+            k: Rgb::new(3.9, 2.4 + 0.05 * i as f32, 2.2),
+            reflectance: Rgb::new(1.0, 0.8, 0.9),
+        }
+    }
+
+    fn direction(a: f32, b: f32) -> Vec3 {
+        Vec3::new(a - 0.5, b - 0.5, 0.7 * a * b - 0.05).normalize()
+    }
+
+    /// Each lane of a group of mixed conductors gives the bits of its own scalar evaluation and
+    /// sample (the scalar forms are the one-lane instance: this checks that lanes stay apart).
+    #[test]
+    fn lanes_of_mixed_conductors_match_each_scalar_one() {
+        let mut lanes = conductor(0).lanes::<N>();
+        for i in 0..N {
+            lanes.set(i, &conductor(i));
+        }
+        let mut x = 0x2545_f491u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / (1u32 << 24) as f32
+        };
+        for _ in 0..200 {
+            let wo: [Vec3; N] = std::array::from_fn(|_| direction(next(), next()));
+            let wi: [Vec3; N] = std::array::from_fn(|_| direction(next(), next()));
+            let u1 = F32s::from_fn(|_| next());
+            let u2 = F32s::from_fn(|_| next());
+            let (wo_l, wi_l) = (Vec3s::from_fn(|i| wo[i]), Vec3s::from_fn(|i| wi[i]));
+            let (f, pdf) = lanes.eval_pdf(&wo_l, &wi_l);
+            let s = lanes.sample(&wo_l, F32s::ZERO, u1, u2, Ms::ALL);
+            for i in 0..N {
+                let m = conductor(i);
+                let (f1, pdf1) = m.eval_pdf(wo[i], wi[i]);
+                assert_eq!([f[0].0[i], f[1].0[i], f[2].0[i]].map(f32::to_bits), f1.to_array().map(f32::to_bits));
+                assert_eq!(pdf.0[i].to_bits(), pdf1.to_bits());
+                let one = m.sample(wo[i], Vec2::new(u1.0[i], u2.0[i]));
+                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}");
+                if let Some(one) = one {
+                    assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
+                    let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
+                    assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
+                    assert_eq!(s.pdf.0[i].to_bits(), one.pdf.to_bits());
+                }
+            }
+        }
     }
 }

@@ -18,14 +18,19 @@
 //! - A textured α: [`RoughPlastic::with_alpha`] with the tables interpolated over α
 //!   (`rough_plastic_alpha.rs`).
 
-use super::dielectric::fresnel_dielectric;
-use super::microfacet::{reflect_about, refract_about, visible_density, Microfacet};
-use super::plastic::{base_albedo, specular_sampling_weight};
+use super::dielectric::{fresnel_dielectric, fresnel_dielectric_lanes};
+use super::lanes::{LaneSamples, LaneScattering};
+use super::microfacet::{
+    reflect_about, reflect_about_lanes, refract_about, visible_density_lanes, Microfacet, MicrofacetLanes,
+};
+use super::plastic::{base_albedo, coating_pick_probability_lanes, specular_sampling_weight};
 use super::rough_plastic_alpha::RoughPlasticAlphaTable;
 use super::BsdfSample;
 use crate::math::special::gauss_legendre;
 use crate::math::{Rgb, Vec2, Vec3, INV_PI};
-use crate::sampling::warp;
+use crate::sampling::warp::cosine_hemisphere_pdf_lanes;
+use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::warp as warp_lanes;
 use rayon::prelude::*;
 
 /// Entries of the transmittance table (Mitsuba's `MI_ROUGH_TRANSMITTANCE_RES`).
@@ -151,36 +156,29 @@ impl RoughPlastic {
         self.internal
     }
 
-    /// t(μ) by linear interpolation in the table.
-    fn transmittance(&self, mu: f32) -> f32 {
-        let x = mu.clamp(0.0, 1.0) * (TABLE_SIZE - 1) as f32;
-        let i = (x as usize).min(TABLE_SIZE - 2);
-        let w = x - i as f32;
-        (1.0 - w) * self.transmittance[i] + w * self.transmittance[i + 1]
-    }
-
-    fn coating_probability(&self, wo: Vec3) -> f32 {
-        let t = self.transmittance(wo.z);
-        super::plastic::coating_pick_probability(1.0 - t, t, self.specular_weight)
+    /// This plastic in every lane of a group (the scalar methods are the one-lane instances of
+    /// [`RoughPlasticLanes`]'s).
+    #[inline(always)]
+    pub(crate) fn lanes<const N: usize>(&self) -> RoughPlasticLanes<'_, N> {
+        RoughPlasticLanes {
+            distribution: self.distribution.lanes(),
+            specular: self.specular.to_array().map(F32s::splat),
+            base: self.base.to_array().map(F32s::splat),
+            ior: F32s::splat(self.ior),
+            specular_weight: F32s::splat(self.specular_weight),
+            transmittance: [&self.transmittance; N],
+        }
     }
 
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        if wo.z <= 0.0 {
-            return None;
-        }
-        let wi = if u_lobe < self.coating_probability(wo) {
-            reflect_about(wo, self.distribution.sample_visible(wo, u))
-        } else {
-            warp::square_to_cosine_hemisphere(u)
-        };
-        if wi.z <= 0.0 {
-            return None;
-        }
-        let (f, pdf) = self.eval_pdf(wo, wi);
-        if !pdf.is_finite() || pdf <= 0.0 {
-            return None;
-        }
-        Some(BsdfSample { wi, weight: f * (1.0 / pdf), pdf, delta: false, eta: 1.0 })
+        let s = self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), F32s([u.x]), F32s([u.y]), Ms::ALL);
+        s.valid.lane(0).then(|| BsdfSample {
+            wi: s.wi.lane(0),
+            weight: Rgb::new(s.weight[0].0[0], s.weight[1].0[0], s.weight[2].0[0]),
+            pdf: s.pdf.0[0],
+            delta: false,
+            eta: 1.0,
+        })
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
@@ -195,21 +193,101 @@ impl RoughPlastic {
     /// an exp) serve both the coating's value and its visible-normal density.
     #[inline]
     pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return (Rgb::BLACK, 0.0);
+        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
+        (Rgb::new(f[0].0[0], f[1].0[0], f[2].0[0]), pdf.0[0])
+    }
+}
+
+/// t(μ) by linear interpolation in a transmittance table.
+#[inline(always)]
+fn interpolate(table: &[f32; TABLE_SIZE], mu: f32) -> f32 {
+    let x = mu.clamp(0.0, 1.0) * (TABLE_SIZE - 1) as f32;
+    let i = (x as usize).min(TABLE_SIZE - 2);
+    let w = x - i as f32;
+    (1.0 - w) * table[i] + w * table[i + 1]
+}
+
+/// A rough plastic per lane (lanes can hold different ones), RGB channels as lane groups.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RoughPlasticLanes<'a, const N: usize> {
+    pub distribution: MicrofacetLanes<N>,
+    pub specular: [F32s<N>; 3],
+    /// ρ' / (π η²).
+    pub base: [F32s<N>; 3],
+    pub ior: F32s<N>,
+    pub specular_weight: F32s<N>,
+    /// Each lane's t(μ) table.
+    pub transmittance: [&'a [f32; TABLE_SIZE]; N],
+}
+
+// Always inlined, as the lane loop's helpers (see `MicrofacetLanes`).
+impl<'a, const N: usize> RoughPlasticLanes<'a, N> {
+    /// Lane `i` holds `m`.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, m: &'a RoughPlastic) {
+        self.distribution.set(i, &m.distribution);
+        for c in 0..3 {
+            self.specular[c].0[i] = m.specular.to_array()[c];
+            self.base[c].0[i] = m.base.to_array()[c];
         }
-        let m = (wo + wi).normalize();
-        let cos_om = wo.dot(m);
-        let d = self.distribution.d(m);
-        let g1_o = self.distribution.g1(wo, m);
-        let f = fresnel_dielectric(cos_om, self.ior).0;
-        let coat = f * d * (g1_o * self.distribution.g1(wi, m)) / (4.0 * wo.z);
+        self.ior.0[i] = m.ior;
+        self.specular_weight.0[i] = m.specular_weight;
+        self.transmittance[i] = &m.transmittance;
+    }
+
+    /// t(μ) per lane, from each lane's table (a lookup per lane).
+    #[inline(always)]
+    fn transmittance(&self, mu: F32s<N>) -> F32s<N> {
+        F32s::from_fn(|i| interpolate(self.transmittance[i], mu.0[i]))
+    }
+
+    /// The probability of sampling the coating, seen along `wo`.
+    #[inline(always)]
+    fn coating_probability(&self, wo: &Vec3s<N>) -> F32s<N> {
+        let t = self.transmittance(wo.z);
+        coating_pick_probability_lanes(1.0 - t, t, self.specular_weight)
+    }
+}
+
+impl<const N: usize> LaneScattering<N> for RoughPlasticLanes<'_, N> {
+    /// The coating (visible normals) or the base (cosine-weighted), chosen by `u_lobe`; the
+    /// weight is f·cos/pdf with the pdf of the whole mixture.
+    #[inline(always)]
+    fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, u1: F32s<N>, u2: F32s<N>, active: Ms<N>) -> LaneSamples<N> {
+        let zero = F32s::ZERO;
+        // `!(x <= 0)` keeps the scalar form's rule for NaN.
+        let active = active & !wo.z.le(zero);
+        let coat = u_lobe.lt(self.coating_probability(wo));
+        let m = self.distribution.sample_visible(wo, u1, u2, active & coat);
+        let reflected = reflect_about_lanes(wo, &m);
+        let diffuse =
+            if (active & !coat).any() { warp_lanes::square_to_cosine_hemisphere(u1, u2) } else { Vec3s::default() };
+        let wi = Vec3s::select(coat, &reflected, &diffuse);
+        let (f, pdf) = self.eval_pdf(wo, &wi);
+        let valid = active & !wi.z.le(zero) & pdf.is_finite() & pdf.gt(zero);
+        let inv_pdf = 1.0 / pdf;
+        LaneSamples { valid, wi, weight: f.map(|c| c * inv_pdf), pdf }
+    }
+
+    /// f·cos θi and the density of `wi` per lane.
+    #[inline(always)]
+    fn eval_pdf(&self, wo: &Vec3s<N>, wi: &Vec3s<N>) -> ([F32s<N>; 3], F32s<N>) {
+        let zero = F32s::ZERO;
+        let below = wo.z.le(zero) | wi.z.le(zero);
+        let m = wo.add(wi).normalize();
+        let cos_om = wo.dot(&m);
+        let d = self.distribution.d(&m);
+        let g1_o = self.distribution.g1(wo, &m);
+        let fresnel = fresnel_dielectric_lanes(cos_om, self.ior).0;
+        let coat = fresnel * d * (g1_o * self.distribution.g1(wi, &m)) / (4.0 * wo.z);
         let base = self.transmittance(wo.z) * self.transmittance(wi.z) * wi.z;
-        let value = self.specular * coat + self.base * base;
+        let value = std::array::from_fn(|c| F32s::select(below, zero, self.specular[c] * coat + self.base[c] * base));
         let p_coat = self.coating_probability(wo);
         // Jacobian of the reflection map dωm/dωi = 1/(4 wo·m) (Walter 2007 eq. 14).
-        let coat_pdf = if cos_om > 0.0 { visible_density(g1_o, cos_om, d, wo.z) / (4.0 * cos_om) } else { 0.0 };
-        (value, p_coat * coat_pdf + (1.0 - p_coat) * warp::cosine_hemisphere_pdf(wi))
+        let coat_pdf = visible_density_lanes(g1_o, cos_om, d, wo.z) / (4.0 * cos_om);
+        let coat_pdf = F32s::select(cos_om.gt(zero), coat_pdf, zero);
+        let pdf = p_coat * coat_pdf + (1.0 - p_coat) * cosine_hemisphere_pdf_lanes(wi.z);
+        (value, F32s::select(below, zero, pdf))
     }
 }
 
@@ -217,6 +295,55 @@ impl RoughPlastic {
 mod tests {
     use super::*;
     use crate::material::MicrofacetKind;
+    use crate::wide::simd::LANES_512 as N;
+
+    /// Each lane of a group of mixed plastics (both distributions, several roughnesses, indices
+    /// and colours) gives the bits of its own scalar evaluation and sample: the scalar forms are
+    /// the one-lane instance, so this checks that lanes and their tables stay apart.
+    #[test]
+    fn lanes_of_mixed_plastics_match_each_scalar_one() {
+        let plastics: Vec<RoughPlastic> = (0..4)
+            .map(|k| {
+                let kind = if k % 2 == 0 { MicrofacetKind::Beckmann } else { MicrofacetKind::Ggx };
+                let d = Microfacet::isotropic(kind, [0.01, 0.08, 0.3, 0.6][k]);
+                RoughPlastic::new(d, Rgb::new(0.2, 0.5, 0.8 - 0.1 * k as f32), Rgb::WHITE, 1.3 + 0.2 * k as f32, k == 3)
+            })
+            .collect();
+        let mut lanes = plastics[0].lanes::<N>();
+        for i in 0..N {
+            lanes.set(i, &plastics[i % 4]);
+        }
+        let mut x = 0x2545_f491u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / (1u32 << 24) as f32
+        };
+        for _ in 0..200 {
+            let mut direction = || Vec3::new(next() - 0.5, next() - 0.5, 0.7 * next() - 0.05).normalize();
+            let wo: [Vec3; N] = std::array::from_fn(|_| direction());
+            let wi: [Vec3; N] = std::array::from_fn(|_| direction());
+            let (wo_l, wi_l) = (Vec3s::from_fn(|i| wo[i]), Vec3s::from_fn(|i| wi[i]));
+            let u = [0; 3].map(|_| F32s::<N>::from_fn(|_| next()));
+            let (f, pdf) = lanes.eval_pdf(&wo_l, &wi_l);
+            let s = lanes.sample(&wo_l, u[0], u[1], u[2], Ms::ALL);
+            for i in 0..N {
+                let m = &plastics[i % 4];
+                let (f1, pdf1) = m.eval_pdf(wo[i], wi[i]);
+                assert_eq!([f[0].0[i], f[1].0[i], f[2].0[i]].map(f32::to_bits), f1.to_array().map(f32::to_bits));
+                assert_eq!(pdf.0[i].to_bits(), pdf1.to_bits());
+                let one = m.sample(wo[i], u[0].0[i], Vec2::new(u[1].0[i], u[2].0[i]));
+                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}");
+                if let Some(one) = one {
+                    assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
+                    let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
+                    assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
+                    assert_eq!(s.pdf.0[i].to_bits(), one.pdf.to_bits());
+                }
+            }
+        }
+    }
 
     fn dir(theta: f32, phi: f32) -> Vec3 {
         Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos())

@@ -1,6 +1,8 @@
 //! Special functions the microfacet models need: the error function, its inverse, and
 //! Gauss–Legendre quadrature nodes (for tables precomputed when a material is built).
 
+use crate::wide::simd::{F32s, Ms};
+
 /// eˣ in single precision, with arguments far below the smallest positive result answered 0 at
 /// once: glibc's `expf` returns +0 for every x < −103.98 too, but reaches it through its
 /// underflow handler (which sets `errno`), and Gaussian tails evaluated at grazing angles land
@@ -36,11 +38,31 @@ pub fn erf_fast(x: f32) -> f32 {
 /// both (Beckmann's Λ and its visible-slope CDF): one exponential instead of two.
 #[inline]
 pub fn erf_and_gaussian_fast(x: f32) -> (f32, f32) {
+    let (erf, gaussian) = erf_and_gaussian_lanes(F32s([x]), Ms::ALL);
+    (erf.0[0], gaussian.0[0])
+}
+
+/// [`erf_and_gaussian_fast`] in the lanes of `lanes` (the one implementation: the scalar form is
+/// its one-lane instance); the other lanes' values are unspecified.
+#[inline(always)]
+pub fn erf_and_gaussian_lanes<const N: usize>(x: F32s<N>, lanes: Ms<N>) -> (F32s<N>, F32s<N>) {
     let t = 1.0 / (1.0 + 0.327_591_1 * x.abs());
     let poly = t * (0.254_829_6 + t * (-0.284_496_74 + t * (1.421_413_8 + t * (-1.453_152 + t * 1.061_405_4))));
-    let gaussian = exp_flushed_f32(-x * x);
+    let gaussian = exp_flushed_lanes(-x * x, lanes);
     let y = 1.0 - poly * gaussian;
-    (if x < 0.0 { -y } else { y }, gaussian)
+    (F32s::select(x.lt(F32s::ZERO), -y, y), gaussian)
+}
+
+/// [`exp_flushed_f32`] in the lanes of `lanes` (the others are 0): one call per lane, so every
+/// lane has the scalar form's bits (a polynomial in SIMD would round differently), and only
+/// where it is needed (a group's lanes can hold different models).
+#[inline(always)]
+pub fn exp_flushed_lanes<const N: usize>(x: F32s<N>, lanes: Ms<N>) -> F32s<N> {
+    let mut out = F32s::ZERO;
+    for i in lanes.lanes() {
+        out.0[i] = exp_flushed_f32(x.0[i]);
+    }
+    out
 }
 
 /// Giles' single-precision approximation of the inverse error function ("Approximating the

@@ -48,11 +48,13 @@ pub fn square_to_cosine_hemisphere(u: Vec2) -> Vec3 {
 }
 
 pub fn cosine_hemisphere_pdf(w: Vec3) -> f32 {
-    if w.z > 0.0 {
-        w.z * INV_PI
-    } else {
-        0.0
-    }
+    cosine_hemisphere_pdf_lanes(F32s([w.z])).0[0]
+}
+
+/// [`cosine_hemisphere_pdf`] in every lane, from the directions' cos θ.
+#[inline(always)]
+pub fn cosine_hemisphere_pdf_lanes<const N: usize>(cos_theta: F32s<N>) -> F32s<N> {
+    F32s::select(cos_theta.gt(F32s::ZERO), cos_theta * INV_PI, F32s::ZERO)
 }
 
 /// Uniform direction in the cone of half-angle θ_max around +z: cos θ = 1 - u(1 - cos θ_max);

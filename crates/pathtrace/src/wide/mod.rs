@@ -26,7 +26,7 @@ pub use geometry::MAX_FLAT_POLYGONS;
 pub(crate) use lights::{LaneLightSample, LightSamples, WideLights};
 pub(crate) use sampler::LaneSamplers;
 
-use crate::integrator::PathSettings;
+use crate::integrator::{PathSettings, Strategy};
 use crate::material::Material;
 use crate::math::Rgb;
 use crate::scene::Scene;
@@ -98,6 +98,16 @@ pub(crate) struct MaterialClass {
     pub black: bool,
     /// Scatters from its front only: seen from behind, the path ends there.
     pub one_sided: bool,
+    /// The material's lane form, when its lanes are shaded together through it
+    /// (`integrator::material_lanes`).
+    pub lane_form: Option<LaneForm>,
+}
+
+/// The materials with a lane form ([`crate::material::LaneScattering`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum LaneForm {
+    RoughConductor,
+    RoughPlastic,
 }
 
 /// What a scene offers the lane-parallel forms, prepared once per render.
@@ -129,7 +139,22 @@ impl WideScene {
                     Material::Lambertian(l) if scene.normal_perturbation(id as u32).is_none() => Some(l.albedo),
                     _ => None,
                 };
+                // Materials with a lane form, shaded in lanes where their frame is the shading
+                // normal's (no tangent, no normal map) and their colours are constants, under a
+                // strategy that continues paths by the material.
+                let continues_by_material =
+                    matches!(settings.strategy, Strategy::Bsdf | Strategy::Mis | Strategy::MisBalance);
+                let plain = continues_by_material
+                    && !m.is_anisotropic()
+                    && !scene.is_material_textured(id as u32)
+                    && scene.normal_perturbation(id as u32).is_none();
+                let lane_form = match m {
+                    Material::RoughConductor(_) if plain => Some(LaneForm::RoughConductor),
+                    Material::RoughPlastic(_) if plain => Some(LaneForm::RoughPlastic),
+                    _ => None,
+                };
                 MaterialClass {
+                    lane_form,
                     albedo: simd.unwrap_or(Rgb::BLACK),
                     simd: simd.is_some(),
                     textured: scene.is_material_textured(id as u32),

@@ -1,0 +1,109 @@
+//! The lane-parallel form of a vertex on a material with a lane form (rough conductors and
+//! rough plastics, untextured, isotropic, without a normal map): the same steps as
+//! `integrator::shade` (shading frame, the light sample's shadow ray with its MIS weight, a
+//! direction sampled by the material), computed for all those lanes together through the
+//! material's lane form ([`LaneScattering`], whose one-lane instance is the scalar material).
+//! Every lane gets the bits `shade` would give it: the same operations in the same order.
+
+// Channel loops index several lane groups with the same channel number.
+#![allow(clippy::needless_range_loop)]
+
+use super::path::Scattered;
+use super::shade::SHADOW_EPSILON;
+use super::Strategy;
+use crate::material::LaneScattering;
+use crate::math::offset_ray_origin_lanes;
+use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::{warp, LightSamples};
+
+/// What the lane forms need of their vertex.
+pub(super) struct LaneVertex<'a, const N: usize> {
+    pub strategy: Strategy,
+    /// Lanes whose material is one-sided (their frame is not turned over).
+    pub one_sided: Ms<N>,
+    pub p: &'a Vec3s<N>,
+    pub n_geometric: &'a Vec3s<N>,
+    pub n_shading: &'a Vec3s<N>,
+    /// Towards the viewer (world space).
+    pub wo: &'a Vec3s<N>,
+    pub beta: &'a [F32s<N>; 3],
+    /// Lanes with a light sample to test, and the samples.
+    pub nee: Ms<N>,
+    pub light: &'a LightSamples<N>,
+    pub u_lobe: F32s<N>,
+    pub u1: F32s<N>,
+    pub u2: F32s<N>,
+}
+
+/// Shades the vertex's `lanes`, each with its material in `material`, queueing their shadow
+/// rays and continuations in `sc` (the other lanes' entries are kept).
+#[inline(always)]
+pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
+    v: &LaneVertex<N>,
+    lanes: Ms<N>,
+    material: &M,
+    sc: &mut Scattered<N>,
+) {
+    let zero = F32s::<N>::ZERO;
+    // The frame, turned over for the back of a two-sided surface (shade.rs: `flipped`).
+    let flipped = !v.one_sided & v.n_geometric.dot(v.wo).lt(zero);
+    let n_g = Vec3s::select(flipped, &v.n_geometric.neg(), v.n_geometric);
+    let n_s = Vec3s::select(flipped, &v.n_shading.neg(), v.n_shading);
+    let (s, t) = warp::basis(&n_s);
+    let to_local = |w: &Vec3s<N>| Vec3s { x: w.dot(&s), y: w.dot(&t), z: w.dot(&n_s) };
+    let wo = to_local(v.wo);
+    // shade.rs's `same_side`: both directions on one side of the true surface.
+    let same_side = |a: &Vec3s<N>, b: &Vec3s<N>| (n_g.dot(a) * n_g.dot(b)).gt(zero);
+
+    // ---- Light sampling: the shadow ray and what it adds if unoccluded -------------------
+    let ls = v.light;
+    let lit = lanes & v.nee & ls.valid;
+    if lit.any() {
+        let (f, pdf_material) = material.eval_pdf(&wo, &to_local(&ls.wi));
+        // A point light cannot be found by material sampling: its sample counts in full.
+        let pdf_material = F32s::select(ls.delta, zero, pdf_material);
+        let black = |c: &[F32s<N>; 3]| c[0].eq(zero) & c[1].eq(zero) & c[2].eq(zero);
+        let lit = lit & !black(&ls.radiance) & !black(&f) & same_side(v.wo, &ls.wi);
+        if lit.any() {
+            let origin = offset_ray_origin_lanes(v.p, &n_g, &ls.wi);
+            let to_light = ls.point.sub(&origin);
+            let dist = to_light.length();
+            let finite = ls.dist_finite;
+            let towards = Vec3s { x: to_light.x / dist, y: to_light.y / dist, z: to_light.z / dist };
+            let dir = Vec3s::select(finite, &towards, &ls.wi);
+            let t_max = F32s::select(finite, dist * (1.0 - SHADOW_EPSILON), F32s::splat(f32::INFINITY));
+            let w = F32s::select(ls.delta, F32s::ONE, v.strategy.mis_weight_lanes(ls.pdf, pdf_material));
+            let scale = w / ls.pdf;
+            sc.shadow = sc.shadow | lit;
+            sc.shadow_origin = Vec3s::select(lit, &origin, &sc.shadow_origin);
+            sc.shadow_dir = Vec3s::select(lit, &dir, &sc.shadow_dir);
+            sc.shadow_t_max = F32s::select(lit, t_max, sc.shadow_t_max);
+            for c in 0..3 {
+                let term = v.beta[c] * f[c] * ls.radiance[c] * scale;
+                sc.contribution[c] = F32s::select(lit, term, sc.contribution[c]);
+            }
+        }
+    }
+
+    // ---- Direction: sampled by the material -----------------------------------------------
+    let sample = material.sample(&wo, v.u_lobe, v.u1, v.u2, lanes);
+    let wi = sample.wi;
+    let wi_world = s.scale(wi.x).add(&t.scale(wi.y)).add(&n_s.scale(wi.z));
+    // Reflection must stay on the viewer's side of the true surface (shading normals can
+    // disagree with it), as in shade.rs.
+    let reflects = (wi_world.dot(&n_s) * wo.z).gt(zero);
+    let black = sample.weight[0].eq(zero) & sample.weight[1].eq(zero) & sample.weight[2].eq(zero);
+    let stays = same_side(v.wo, &wi_world);
+    let agree = (reflects & stays) | (!reflects & !stays);
+    let goes_on = sample.valid & agree & !black;
+    let origin = offset_ray_origin_lanes(v.p, &n_g, &wi_world);
+    sc.goes_on = (sc.goes_on & !lanes) | goes_on;
+    sc.origin = Vec3s::select(lanes, &origin, &sc.origin);
+    sc.dir = Vec3s::select(lanes, &wi_world, &sc.dir);
+    for c in 0..3 {
+        sc.weight[c] = F32s::select(lanes, sample.weight[c], sc.weight[c]);
+    }
+    sc.pdf = F32s::select(lanes, sample.pdf, sc.pdf);
+    sc.specular = sc.specular & !lanes;
+    sc.eta = F32s::select(lanes, F32s::ONE, sc.eta);
+}

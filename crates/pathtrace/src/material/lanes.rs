@@ -1,0 +1,25 @@
+//! The materials' lane forms, as the estimator's lane-parallel shading
+//! (`integrator::material_lanes`) asks them: a material's value, density and samples for a
+//! group of lanes at once, each lane with its own material of that model. Each model's scalar
+//! methods are the one-lane instance of its lane form, so a formula exists once.
+
+use crate::wide::simd::{F32s, Ms, Vec3s};
+
+/// Sampled directions per lane: the valid lanes' direction `wi` (local frame), weight
+/// f·cos/pdf per RGB channel and solid-angle density.
+pub(crate) struct LaneSamples<const N: usize> {
+    pub valid: Ms<N>,
+    pub wi: Vec3s<N>,
+    pub weight: [F32s<N>; 3],
+    pub pdf: F32s<N>,
+}
+
+/// A model's lane form, in the local frame (normal = +z), as [`crate::material::Material`]'s
+/// `eval_pdf` and `sample`; none of them has a Dirac lobe.
+pub(crate) trait LaneScattering<const N: usize> {
+    /// f·cos θi and the density of `wi` per lane.
+    fn eval_pdf(&self, wo: &Vec3s<N>, wi: &Vec3s<N>) -> ([F32s<N>; 3], F32s<N>);
+    /// A direction per lane of `active`, from the lobe number `u_lobe` and the direction's
+    /// `u1`, `u2`.
+    fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, u1: F32s<N>, u2: F32s<N>, active: Ms<N>) -> LaneSamples<N>;
+}
