@@ -3,6 +3,8 @@
 //! group of lanes at once, each lane with its own material of that model. Each model's scalar
 //! methods are the one-lane instance of its lane form, so a formula exists once.
 
+use super::BsdfSample;
+use crate::math::Rgb;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Sampled directions per lane: the valid lanes' direction `wi` (local frame), weight
@@ -12,6 +14,26 @@ pub(crate) struct LaneSamples<const N: usize> {
     pub wi: Vec3s<N>,
     pub weight: [F32s<N>; 3],
     pub pdf: F32s<N>,
+}
+
+impl<const N: usize> LaneSamples<N> {
+    /// Lane `i`'s sample, if valid (a non-Dirac one: these models have no Dirac lobe).
+    #[inline(always)]
+    pub fn lane(&self, i: usize) -> Option<BsdfSample> {
+        self.valid.lane(i).then(|| BsdfSample {
+            wi: self.wi.lane(i),
+            weight: rgb_lane(&self.weight, i),
+            pdf: self.pdf.0[i],
+            delta: false,
+            eta: 1.0,
+        })
+    }
+}
+
+/// Lane `i` of a colour held as one lane group per channel.
+#[inline(always)]
+pub(crate) fn rgb_lane<const N: usize>(c: &[F32s<N>; 3], i: usize) -> Rgb {
+    Rgb::new(c[0].0[i], c[1].0[i], c[2].0[i])
 }
 
 /// A model's lane form, in the local frame (normal = +z), as [`crate::material::Material`]'s

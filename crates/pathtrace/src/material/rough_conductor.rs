@@ -7,7 +7,7 @@
 //! microfacets: e.g. for GGX α = 1 at normal incidence its albedo is ≈ 0.77 (tests/microfacet_bsdfs.rs).
 
 use super::fresnel::fresnel_conductor_rgb_lanes;
-use super::lanes::{LaneSamples, LaneScattering};
+use super::lanes::{rgb_lane, LaneSamples, LaneScattering};
 use super::microfacet::{reflect_about_lanes, visible_density_lanes, Microfacet, MicrofacetLanes};
 use super::BsdfSample;
 use crate::math::{Rgb, Vec2, Vec3};
@@ -40,14 +40,7 @@ impl RoughConductor {
     }
 
     pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
-        let s = self.lanes::<1>().sample(&Vec3s::splat(wo), F32s::ZERO, F32s([u.x]), F32s([u.y]), Ms::ALL);
-        s.valid.lane(0).then(|| BsdfSample {
-            wi: s.wi.lane(0),
-            weight: Rgb::new(s.weight[0].0[0], s.weight[1].0[0], s.weight[2].0[0]),
-            pdf: s.pdf.0[0],
-            delta: false,
-            eta: 1.0,
-        })
+        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s::ZERO, F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
@@ -63,7 +56,7 @@ impl RoughConductor {
     #[inline]
     pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
         let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
-        (Rgb::new(f[0].0[0], f[1].0[0], f[2].0[0]), pdf.0[0])
+        (rgb_lane(&f, 0), pdf.0[0])
     }
 }
 
