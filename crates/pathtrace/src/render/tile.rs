@@ -5,7 +5,9 @@ use crate::film::{FeaturePixel, PixelFilter, PixelStats, SplatBlock};
 use crate::integrator::{render_tile_lanes, LaneJob, PathStats};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
-use crate::wide::simd::{LANES_256, LANES_512};
+use crate::wide::simd::LANES_256;
+#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
+use crate::wide::simd::LANES_512;
 use crate::wide::WideScene;
 
 /// A rectangle of pixels.
@@ -37,7 +39,9 @@ pub(super) struct TileJob<'a> {
     pub lanes: &'a WideScene,
     /// Trace one path at a time (`Kernel::Scalar`) instead of a SIMD group.
     pub one_lane: bool,
-    /// Groups of 8 lanes even with AVX-512 (`Kernel::Wide8`).
+    /// Groups of 8 lanes even with AVX-512 (`Kernel::Wide8`). Unread in builds with debug
+    /// assertions, which have only the 8-lane loop (`render_tile`).
+    #[cfg_attr(debug_assertions, allow(dead_code))]
     pub at_most_8_lanes: bool,
     pub filter: &'a PixelFilter,
     /// Record feature buffers (`RenderSettings::features`).
@@ -90,8 +94,14 @@ pub(crate) struct TileResult {
 /// per sample, and the film sums them exactly, so every build gives the same image (to check it,
 /// `Kernel::Wide8` forces groups of 8 where AVX-512 would give 16). Setting `PATHTRACE_NO_AVX512` or `PATHTRACE_NO_AVX2` forces the narrower
 /// builds, to measure them (docs/benchmarks.md).
+///
+/// Builds with debug assertions (the dev and test profiles) compile only the portable copy. Each
+/// copy of the wide loop is one very large function, and LLVM's loop passes take time quadratic in
+/// its size (`ScalarEvolution::forgetLoop` dominated a profile of the compiler): the test build
+/// of this crate took over 40 minutes with three copies. Every copy computes the same image, so
+/// tests of the portable copy hold for the others; release builds keep all three.
 pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
     {
         let avx2 = std::arch::is_x86_feature_detected!("avx2") && std::env::var_os("PATHTRACE_NO_AVX2").is_none();
         let avx512 = avx2
@@ -114,13 +124,13 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
     render_tile_body::<LANES_256>(job, sampler, tile, samples)
 }
 
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
 #[target_feature(enable = "avx2")]
 fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     render_tile_body::<LANES_256>(job, sampler, tile, samples)
 }
 
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
 #[target_feature(enable = "avx2,avx512f,avx512vl,avx512dq,avx512bw")]
 fn render_tile_avx512(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     render_tile_body::<LANES_512>(job, sampler, tile, samples)
