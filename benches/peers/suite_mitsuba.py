@@ -32,6 +32,7 @@ import hashlib
 import json
 import math
 import os
+import re
 import shlex
 import statistics
 import struct
@@ -42,6 +43,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cornell_mitsuba as cm  # noqa: E402  (find_libllvm)
 from equal_quality import rel_mse, run_pathtrace, timed_render  # noqa: E402
+from scene_means import inline_includes  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 SHARED = os.path.abspath(os.path.join(REPO, "..", "shared", "scenes"))
@@ -121,10 +123,24 @@ def scene_path(rel, args):
 
 
 class Mitsuba:
-    def __init__(self, mi, dr, variant, path, defines):
+    def __init__(self, mi, dr, variant, path, defines, sampler=None):
         self.mi, self.dr, self.variant = mi, dr, variant
         mi.set_variant(variant)
-        self.scene = mi.load_file(path, **defines)
+        if sampler is None:
+            self.scene = mi.load_file(path, **defines)
+        else:
+            # The scene's text (includes inlined) with every sampler's type replaced, loaded from
+            # the scene's folder so that relative paths resolve as for the file itself.
+            folder = os.path.dirname(os.path.abspath(path))
+            text = inline_includes(open(path).read(), folder)
+            text = re.sub(r'(<sampler\s+type=")[^"]*"', rf'\g<1>{sampler}"', text)
+            mi.file_resolver().prepend(folder)
+            cwd = os.getcwd()
+            os.chdir(folder)
+            try:
+                self.scene = mi.load_string(text, **defines)
+            finally:
+                os.chdir(cwd)
         film = self.scene.sensors()[0].film()
         self.size = tuple(int(v) for v in film.crop_size())
 
@@ -171,6 +187,12 @@ def main(argv=None):
     p.add_argument("--only", default=None, help="only scenes whose label contains this text")
     p.add_argument("--spp-scale", type=float, default=1.0, help="multiply every scene's spp")
     p.add_argument("--json", metavar="FILE", help="also write the table as JSON")
+    p.add_argument("--mitsuba-samplers", default="", metavar="LIST",
+                   help="comma-separated Mitsuba samplers also timed to the target error (e.g. "
+                        "stratified,multijitter,ldsampler; the scene file's sampler is always timed); the "
+                        "table's last column compares each renderer's best")
+    p.add_argument("--samplers", default="", metavar="LIST",
+                   help="comma-separated samplers of ours also timed to the target error (e.g. sobol)")
     p.add_argument("--pathtrace-arg", action="append", default=[], metavar="ARG",
                    help="an extra argument for our renders (repeat for several), e.g. "
                         "--pathtrace-arg=--light-selection --pathtrace-arg=power")
@@ -190,6 +212,9 @@ def main(argv=None):
     print(f"mitsuba {mi.__version__} {args.variant} vs {args.pathtrace}, {args.threads} threads, "
           f"{args.runs} interleaved rounds, target relative MSE {args.target:g}", flush=True)
 
+    def split(names):
+        return [n for n in (names or "").split(",") if n]
+
     rows = []
     with tempfile.TemporaryDirectory(prefix="suite-") as tmp:
         for label, rel, defines, spp in SCENES:
@@ -200,37 +225,62 @@ def main(argv=None):
                 print(f"{label}: {path} is absent, skipped")
                 continue
             spp = max(1, round(spp * args.spp_scale))
+
+            def ours_with(extra, path=path, defines=defines):
+                return lambda np, spp, seed: ours(np, args.pathtrace, path, defines, spp, seed, args.threads, tmp,
+                                                  list(args.pathtrace_arg) + extra)
             ref = reference(np, mi, dr, label, path, defines, args)
             theirs = Mitsuba(mi, dr, args.variant, path, defines)
             w, h = theirs.size
             theirs.render(np, spp, 0)  # warm-up: kernels compiled, files cached
             ours(np, args.pathtrace, path, defines, 1, 0, args.threads, tmp, args.pathtrace_arg)
-            r = {"scene": label, "size": f"{w}x{h}", "spp": spp, "mitsuba": [], "ours": []}
+            # The other samplers, for time to the target error only: (who, sampler, render).
+            others = [("mitsuba", name, Mitsuba(mi, dr, args.variant, path, defines, name).render)
+                      for name in split(args.mitsuba_samplers)]
+            others += [("ours", name, ours_with(["--sampler", name])) for name in split(args.samplers)]
+            for _, _, render in others:
+                render(np, spp, 0)  # warm-up
+            r = {"scene": label, "size": f"{w}x{h}", "spp": spp, "mitsuba": [], "ours": [],
+                 "samplers": {f"{who} {name}": [] for who, name, _ in others}}
+
+            def measure(render, run):
+                seconds, img = render(np, spp, 1 + run)
+                err = rel_mse(np, img, ref)
+                return {"seconds": seconds, "samples_per_s": w * h * spp / seconds, "rel_mse": err,
+                        "time_to_target": seconds * err / args.target}
+
             for run in range(args.runs):
-                for who in ("mitsuba", "ours"):
-                    if who == "mitsuba":
-                        seconds, img = theirs.render(np, spp, 1 + run)
-                    else:
-                        seconds, img = ours(np, args.pathtrace, path, defines, spp, 1 + run, args.threads, tmp,
-                                            args.pathtrace_arg)
-                    err = rel_mse(np, img, ref)
-                    r[who].append({"seconds": seconds, "samples_per_s": w * h * spp / seconds, "rel_mse": err,
-                                   "time_to_target": seconds * err / args.target})
+                r["mitsuba"].append(measure(theirs.render, run))
+                r["ours"].append(measure(ours_with([]), run))
+                for who, name, render in others:
+                    r["samplers"][f"{who} {name}"].append(measure(render, run))
             rows.append(r)
             med = {who: {k: statistics.median(x[k] for x in r[who]) for k in r[who][0]} for who in ("mitsuba", "ours")}
             r["median"] = med
+            # Each renderer's best sampler: the scene's own or one of the others.
+            best = {who: ("scene's", med[who]["time_to_target"]) for who in ("mitsuba", "ours")}
+            for key, runs in r["samplers"].items():
+                who, name = key.split(" ", 1)
+                t = statistics.median(x["time_to_target"] for x in runs)
+                print(f"  {key}: time to {args.target:g} {t:.3f} s, relMSE "
+                      f"{statistics.median(x['rel_mse'] for x in runs):.4f}", flush=True)
+                if t < best[who][1]:
+                    best[who] = (name, t)
+            r["best"] = best
             print(f"{label:<22} {w}x{h} {spp:>3} spp  samples/s: ours {med['ours']['samples_per_s'] / 1e6:7.3f} M, "
                   f"mitsuba {med['mitsuba']['samples_per_s'] / 1e6:7.3f} M, ratio "
                   f"{med['ours']['samples_per_s'] / med['mitsuba']['samples_per_s']:5.2f}x   "
                   f"time to {args.target:g}: ours {med['ours']['time_to_target']:.3f} s, "
                   f"mitsuba {med['mitsuba']['time_to_target']:.3f} s, ratio "
                   f"{med['ours']['time_to_target'] / med['mitsuba']['time_to_target']:5.2f}x   "
+                  f"(best samplers: ours {best['ours'][0]}, mitsuba {best['mitsuba'][0]}, ratio "
+                  f"{best['ours'][1] / best['mitsuba'][1]:5.2f}x)   "
                   f"relMSE: ours {med['ours']['rel_mse']:.4f}, mitsuba {med['mitsuba']['rel_mse']:.4f}", flush=True)
 
     print()
     print("| scene | size, spp | ours M samples/s | Mitsuba M samples/s | ours ÷ Mitsuba speed "
-          "| time to relMSE 1e-2, ours ÷ Mitsuba |")
-    print("| --- | --- | --- | --- | --- | --- |")
+          "| time to relMSE 1e-2, ours ÷ Mitsuba | the same, best samplers (ours, Mitsuba's) |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
     ratios = []
     for r in rows:
         m = r["median"]
@@ -238,7 +288,9 @@ def main(argv=None):
         ratios.append(ratio)
         print(f"| {r['scene']} | {r['size']}, {r['spp']} | {m['ours']['samples_per_s'] / 1e6:.3f} | "
               f"{m['mitsuba']['samples_per_s'] / 1e6:.3f} | {ratio:.2f}× | "
-              f"{m['ours']['time_to_target'] / m['mitsuba']['time_to_target']:.2f}× |")
+              f"{m['ours']['time_to_target'] / m['mitsuba']['time_to_target']:.2f}× | "
+              f"{r['best']['ours'][1] / r['best']['mitsuba'][1]:.2f}× ({r['best']['ours'][0]}, "
+              f"{r['best']['mitsuba'][0]}) |")
     if ratios:
         gm = math.exp(sum(math.log(x) for x in ratios) / len(ratios))
         print(f"\ngeometric mean of the speed ratios: {gm:.2f}×  (min {min(ratios):.2f}×)")
