@@ -18,7 +18,13 @@ const MAX_PASSES: u32 = 64;
 impl Scene {
     /// The closest surface along `ray` that is there (not cut out), with the ray segment that
     /// found it (its origin moved past the surfaces passed).
-    #[inline(always)]
+    ///
+    /// Out of line, like [`Scene::occluded_opaque`]: these single-ray queries are the BVH walks
+    /// of every scattered ray, and inlined they put a copy of the tree traversal (several, one
+    /// per stack size) into each copy of the render loop, whose compile time grows faster than
+    /// its size (docs/benchmarks.md, "Build times"); a call per ray costs nothing measurable
+    /// beside the walk it makes.
+    #[inline(never)]
     pub fn intersect_opaque(&self, ray: &Ray) -> Option<(Ray, Hit)> {
         let hit = self.intersect(ray, f32::INFINITY)?;
         if !self.has_cutouts() {
@@ -28,7 +34,7 @@ impl Scene {
     }
 
     /// True if a surface that is there lies along `ray` within `t_max`.
-    #[inline(always)]
+    #[inline(never)]
     pub fn occluded_opaque(&self, ray: &Ray, t_max: f32) -> bool {
         if !self.has_cutouts() {
             return self.occluded(ray, t_max);

@@ -101,7 +101,11 @@ impl Instances {
     }
 
     /// Closest hit: (hit, instance, primitive of its group).
-    #[inline(always)]
+    ///
+    /// Out of line (as `occluded`): the two-level walk is large, and inlined it put three
+    /// copies of itself into each copy of the render loop, a third of its size, for scenes
+    /// that mostly have no instances.
+    #[inline(never)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<(PrimHit, u32, u32)> {
         let probe = Probe { set: self, inner: Cell::new(0) };
         let (hit, instance) = self.top.intersect(&probe, ray, t_min, t_max)?;
@@ -109,7 +113,7 @@ impl Instances {
     }
 
     /// True if any instance blocks the ray within `[t_min, t_max]`.
-    #[inline(always)]
+    #[inline(never)]
     pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
         self.top.occluded(&Blocker(self), ray, t_min, t_max)
     }
