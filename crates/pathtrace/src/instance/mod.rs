@@ -103,7 +103,7 @@ impl Instances {
     /// Closest hit: (hit, instance, primitive of its group).
     ///
     /// Out of line (as `occluded`): the two-level walk is large, and inlined it put three
-    /// copies of itself into each copy of the render loop, a third of its size, for scenes
+    /// copies of itself into each copy of the render loop, a fifth of its size, for scenes
     /// that mostly have no instances.
     #[inline(never)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<(PrimHit, u32, u32)> {
