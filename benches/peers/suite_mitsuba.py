@@ -122,6 +122,15 @@ def scene_path(rel, args):
     return os.path.join(args.scenes, rel)
 
 
+MITSUBA_SAMPLERS = ("independent", "stratified", "multijitter", "orthogonal", "ldsampler")
+OUR_SAMPLERS = ("independent", "stratified", "sobol")
+
+
+def split(names):
+    """The names of a comma-separated list (none for an empty one)."""
+    return [n for n in (names or "").split(",") if n]
+
+
 class Mitsuba:
     def __init__(self, mi, dr, variant, path, defines, sampler=None):
         self.mi, self.dr, self.variant = mi, dr, variant
@@ -134,13 +143,20 @@ class Mitsuba:
             folder = os.path.dirname(os.path.abspath(path))
             text = inline_includes(open(path).read(), folder)
             text = re.sub(r'(<sampler\s+type=")[^"]*"', rf'\g<1>{sampler}"', text)
-            mi.file_resolver().prepend(folder)
+            # The folder is searched first for this load only: left in the global resolver, it
+            # would shadow the next scene's files of the same relative name.
+            resolver = mi.file_resolver()
+            saved = [str(resolver[i]) for i in range(len(resolver))]
+            resolver.prepend(folder)
             cwd = os.getcwd()
             os.chdir(folder)
             try:
                 self.scene = mi.load_string(text, **defines)
             finally:
                 os.chdir(cwd)
+                resolver.clear()
+                for entry in saved:
+                    resolver.append(entry)
         film = self.scene.sensors()[0].film()
         self.size = tuple(int(v) for v in film.crop_size())
 
@@ -197,6 +213,11 @@ def main(argv=None):
                    help="an extra argument for our renders (repeat for several), e.g. "
                         "--pathtrace-arg=--light-selection --pathtrace-arg=power")
     args = p.parse_args(argv)
+    for option, names, known in (("--mitsuba-samplers", args.mitsuba_samplers, MITSUBA_SAMPLERS),
+                                 ("--samplers", args.samplers, OUR_SAMPLERS)):
+        unknown = [n for n in split(names) if n not in known]
+        if unknown:
+            p.error(f"{option}: unknown sampler {', '.join(unknown)} (expected some of: {', '.join(known)})")
     if "llvm" in args.variant + args.ref_variant and "DRJIT_LIBLLVM_PATH" not in os.environ:
         lib = cm.find_libllvm()
         if lib:
@@ -211,9 +232,6 @@ def main(argv=None):
     dr.set_thread_count(args.threads)
     print(f"mitsuba {mi.__version__} {args.variant} vs {args.pathtrace}, {args.threads} threads, "
           f"{args.runs} interleaved rounds, target relative MSE {args.target:g}", flush=True)
-
-    def split(names):
-        return [n for n in (names or "").split(",") if n]
 
     rows = []
     with tempfile.TemporaryDirectory(prefix="suite-") as tmp:
@@ -233,7 +251,7 @@ def main(argv=None):
             theirs = Mitsuba(mi, dr, args.variant, path, defines)
             w, h = theirs.size
             theirs.render(np, spp, 0)  # warm-up: kernels compiled, files cached
-            ours(np, args.pathtrace, path, defines, 1, 0, args.threads, tmp, args.pathtrace_arg)
+            ours_with([])(np, 1, 0)
             # The other samplers, for time to the target error only: (who, sampler, render).
             others = [("mitsuba", name, Mitsuba(mi, dr, args.variant, path, defines, name).render)
                       for name in split(args.mitsuba_samplers)]
