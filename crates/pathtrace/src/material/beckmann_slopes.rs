@@ -6,7 +6,7 @@
 //! x ≤ cot θ, with C'(x) = 2/√π · e^(−x²) · (1 − x tanθ). Jakob solves C = u in the erf domain
 //! (b = erf(x)), where each Newton step costs an inverse erf (a logarithm) and an exponential;
 //! here the steps are taken on x itself, where erf(x) and e^(−x²) share one exponential
-//! ([`erf_and_gaussian_fast`]). The start comes from a table of the inverse (in the erf domain,
+//! ([`erf_and_gaussian_lanes`]). The start comes from a table of the inverse (in the erf domain,
 //! where it is smooth), so that one step usually reaches the tolerance. The table only chooses
 //! where Newton's method starts: every answer is iterated, inside a shrinking bracket, until the
 //! CDF matches to [`TOLERANCE`] of its range, as before the table.
@@ -18,7 +18,8 @@ use std::sync::OnceLock;
 
 use std::f32::consts::FRAC_2_SQRT_PI;
 
-use crate::math::special::{erf_and_gaussian_fast, erf_fast, erfinv_fast};
+use crate::math::special::{erf_and_gaussian_lanes, erf_fast, erfinv_fast, erfinv_lanes};
+use crate::wide::simd::{F32s, Ms};
 
 /// 1/√π.
 const FRAC_1_SQRT_PI: f32 = FRAC_2_SQRT_PI / 2.0;
@@ -47,70 +48,94 @@ const ROWS: usize = 64;
 const COLUMNS: usize = 64;
 
 /// The x and y slopes for uniform numbers `u1` (x, by inverting C) and `u2` (y, which is
-/// independent and Gaussian: y = erfinv(2u₂ − 1)).
-pub(super) fn visible_slopes_11(cos_theta: f32, u1: f32, u2: f32) -> (f32, f32) {
-    let u1 = u1.clamp(U_MIN, 1.0 - U_MIN);
-    let u2 = u2.clamp(U_MIN, 1.0 - U_MIN);
-    let sy = erfinv_fast(2.0 * u2 - 1.0);
-    if cos_theta > NORMAL_INCIDENCE {
-        return (erfinv_fast(2.0 * u1 - 1.0), sy);
+/// independent and Gaussian: y = erfinv(2u₂ − 1)), in the lanes of `lanes` (the others'
+/// values are unspecified). The lanes iterate together until the last one has converged; the
+/// scalar form is the one-lane instance.
+#[inline(always)]
+pub(super) fn visible_slopes_lanes<const N: usize>(
+    cos_theta: F32s<N>,
+    u1: F32s<N>,
+    u2: F32s<N>,
+    lanes: Ms<N>,
+) -> (F32s<N>, F32s<N>) {
+    let (lo, hi) = (F32s::splat(U_MIN), F32s::splat(1.0 - U_MIN));
+    let u1 = u1.max(lo).min(hi);
+    let u2 = u2.max(lo).min(hi);
+    let sy = erfinv_lanes(2.0 * u2 - 1.0);
+    let normal = cos_theta.gt(F32s::splat(NORMAL_INCIDENCE));
+    let gaussian_x = if (lanes & normal).any() { erfinv_lanes(2.0 * u1 - 1.0) } else { F32s::ZERO };
+    let oblique = lanes & !normal;
+    if !oblique.any() {
+        return (gaussian_x, sy);
     }
     let cdf = SlopeCdf::new(cos_theta);
-    let start = erfinv_fast(start_table().erf_of_root(cos_theta, u1, cdf.erf_max));
-    (cdf.invert(u1, start), sy)
+    let table = start_table();
+    let mut start_erf = F32s::ZERO;
+    for i in oblique.lanes() {
+        start_erf.0[i] = table.erf_of_root(cos_theta.0[i], u1.0[i], cdf.erf_max.0[i]);
+    }
+    let x = cdf.invert(u1, erfinv_lanes(start_erf), oblique);
+    (F32s::select(normal, gaussian_x, x), sy)
 }
 
-/// The unnormalised CDF C of the x slope at one elevation.
-struct SlopeCdf {
-    tan_theta: f32,
+/// [`visible_slopes_lanes`] for one view (tests).
+#[cfg(test)]
+fn visible_slopes_11(cos_theta: f32, u1: f32, u2: f32) -> (f32, f32) {
+    let (x, y) = visible_slopes_lanes(F32s([cos_theta]), F32s([u1]), F32s([u2]), Ms::ALL);
+    (x.0[0], y.0[0])
+}
+
+/// The unnormalised CDF C of the x slope at one elevation per lane.
+struct SlopeCdf<const N: usize> {
+    tan_theta: F32s<N>,
     /// tanθ/√π, the weight of the Gaussian term.
-    k: f32,
+    k: F32s<N>,
     /// The largest slope, cot θ, and erf of it.
-    x_max: f32,
-    erf_max: f32,
+    x_max: F32s<N>,
+    erf_max: F32s<N>,
     /// C(cot θ), the normalisation.
-    total: f32,
+    total: F32s<N>,
 }
 
-impl SlopeCdf {
-    fn new(cos_theta: f32) -> Self {
-        let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+impl<const N: usize> SlopeCdf<N> {
+    #[inline(always)]
+    fn new(cos_theta: F32s<N>) -> Self {
+        let sin_theta = (1.0 - cos_theta * cos_theta).max(F32s::ZERO).sqrt();
         let tan_theta = sin_theta / cos_theta;
         let x_max = cos_theta / sin_theta;
         let k = tan_theta * FRAC_1_SQRT_PI;
-        let (erf_max, gaussian) = erf_and_gaussian_fast(x_max);
+        let (erf_max, gaussian) = erf_and_gaussian_lanes(x_max);
         Self { tan_theta, k, x_max, erf_max, total: 1.0 + erf_max + k * gaussian }
     }
 
-    /// The slope x with C(x) = u·C(cot θ), from `start`: Newton's method on x, kept inside a
-    /// bracket that every evaluation narrows (C increases on (−∞, cot θ]), with a bisection
-    /// step whenever Newton would leave it.
-    fn invert(&self, u: f32, start: f32) -> f32 {
+    /// The slope x with C(x) = u·C(cot θ) in each lane of `lanes`, from `start`: Newton's
+    /// method on x, kept inside a bracket that every evaluation narrows (C increases on
+    /// (−∞, cot θ]), with a bisection step whenever Newton would leave it. A lane stops when it
+    /// has converged; the loop, when every lane has.
+    #[inline(always)]
+    fn invert(&self, u: F32s<N>, start: F32s<N>, lanes: Ms<N>) -> F32s<N> {
         let target = u * self.total;
         let tolerance = TOLERANCE * self.total;
-        let (mut lo, mut hi) = (LOWEST_SLOPE, self.x_max);
+        let (mut lo, mut hi) = (F32s::splat(LOWEST_SLOPE), self.x_max);
         let mut x = start;
+        let mut active = lanes;
         for _ in 0..64 {
             // Also true for NaN (a step divided by a vanished derivative).
-            if !(x > lo && x < hi) {
-                x = 0.5 * (lo + hi);
-            }
-            let (erf_x, gaussian) = erf_and_gaussian_fast(x);
+            let outside = !(x.gt(lo) & x.lt(hi));
+            x = F32s::select(active & outside, 0.5 * (lo + hi), x);
+            let (erf_x, gaussian) = erf_and_gaussian_lanes(x);
             let value = 1.0 + erf_x + self.k * gaussian - target;
-            if value.abs() < tolerance {
-                break;
-            }
-            if value > 0.0 {
-                hi = x;
-            } else {
-                lo = x;
-            }
+            active = active & !value.abs().lt(tolerance);
+            let above = value.gt(F32s::ZERO);
+            hi = F32s::select(active & above, x, hi);
+            lo = F32s::select(active & !above, x, lo);
             // No f32 left between the bracket's ends.
-            if hi - lo <= f32::EPSILON * lo.abs().max(hi.abs()) {
+            active = active & !(hi - lo).le(f32::EPSILON * lo.abs().max(hi.abs()));
+            if !active.any() {
                 break;
             }
             let derivative = FRAC_2_SQRT_PI * gaussian * (1.0 - x * self.tan_theta);
-            x -= value / derivative;
+            x = F32s::select(active, x - value / derivative, x);
         }
         x
     }
@@ -135,13 +160,14 @@ impl StartTable {
         for row in 0..=ROWS {
             let r = row as f32 / ROWS as f32;
             let cos_theta = (1.0 - r * r).clamp(1e-4, NORMAL_INCIDENCE);
-            let cdf = SlopeCdf::new(cos_theta);
+            let cdf = SlopeCdf::new(F32s([cos_theta]));
+            let erf_max = cdf.erf_max.0[0];
             for column in 0..=COLUMNS {
                 let s = column as f32 / COLUMNS as f32;
                 let u = (1.0 - s * s).clamp(U_MIN, 1.0 - U_MIN);
-                let jakob = cdf.erf_max - (cdf.erf_max + 1.0) * erf_fast((-u.ln()).sqrt());
-                let x = cdf.invert(u, erfinv_fast(jakob));
-                fraction.push(((erf_fast(x) + 1.0) / (cdf.erf_max + 1.0)).clamp(0.0, 1.0));
+                let jakob = erf_max - (erf_max + 1.0) * erf_fast((-u.ln()).sqrt());
+                let x = cdf.invert(F32s([u]), F32s([erfinv_fast(jakob)]), Ms::ALL).0[0];
+                fraction.push(((erf_fast(x) + 1.0) / (erf_max + 1.0)).clamp(0.0, 1.0));
             }
         }
         Self { fraction: fraction.into_boxed_slice() }
@@ -166,6 +192,7 @@ impl StartTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::special::erf_and_gaussian_fast;
 
     /// Elevations from grazing to just short of normal, and numbers reaching both clamps.
     fn grid() -> impl Iterator<Item = (f32, f32)> {
@@ -179,12 +206,12 @@ mod tests {
     fn slopes_invert_the_cdf() {
         for (cos_theta, u) in grid() {
             let (x, _) = visible_slopes_11(cos_theta, u, 0.5);
-            let cdf = SlopeCdf::new(cos_theta);
+            let cdf = SlopeCdf::new(F32s([cos_theta]));
             let u = u.clamp(U_MIN, 1.0 - U_MIN);
             let (erf_x, gaussian) = erf_and_gaussian_fast(x);
-            let value = (1.0 + erf_x + cdf.k * gaussian) / cdf.total;
+            let value = (1.0 + erf_x + cdf.k.0[0] * gaussian) / cdf.total.0[0];
             assert!((value - u).abs() < 2.0 * TOLERANCE, "cos θ {cos_theta}, u {u}: C(x)/C(cot θ) = {value}");
-            assert!(x <= cdf.x_max, "cos θ {cos_theta}, u {u}: x {x} beyond cot θ");
+            assert!(x <= cdf.x_max.0[0], "cos θ {cos_theta}, u {u}: x {x} beyond cot θ");
         }
     }
 
@@ -205,11 +232,11 @@ mod tests {
             if cos_theta > NORMAL_INCIDENCE {
                 continue;
             }
-            let cdf = SlopeCdf::new(cos_theta);
+            let cdf = SlopeCdf::new(F32s([cos_theta]));
             let u = u.clamp(U_MIN, 1.0 - U_MIN);
-            let x = erfinv_fast(table.erf_of_root(cos_theta, u, cdf.erf_max));
+            let x = erfinv_fast(table.erf_of_root(cos_theta, u, cdf.erf_max.0[0]));
             let (erf_x, gaussian) = erf_and_gaussian_fast(x);
-            let value = (1.0 + erf_x + cdf.k * gaussian) / cdf.total;
+            let value = (1.0 + erf_x + cdf.k.0[0] * gaussian) / cdf.total.0[0];
             assert!((value - u).abs() < 2e-3, "cos θ {cos_theta}, u {u}: start at C = {value}");
         }
     }

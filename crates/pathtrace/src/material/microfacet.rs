@@ -19,8 +19,9 @@
 //! Routine for the Beckmann Distribution"), here bracketed and iterated to convergence (see
 //! `beckmann_slopes.rs`).
 
-use super::beckmann_slopes::visible_slopes_11;
-use crate::math::special::{erf_and_gaussian_lanes, exp_flushed_lanes};
+use super::beckmann_slopes::visible_slopes_lanes;
+use crate::math::exp_lanes;
+use crate::math::special::erf_and_gaussian_lanes;
 use crate::math::{Vec2, Vec3, PI};
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
@@ -113,7 +114,8 @@ pub(crate) struct MicrofacetLanes<const N: usize> {
 // only if some lane has it.
 impl<const N: usize> MicrofacetLanes<N> {
     /// The same distributions, with the lanes outside `lanes` taken as GGX: their values are
-    /// then not needed, and GGX's formulas have no call per lane (Beckmann's exponentials do).
+    /// then not needed, and a group without Beckmann lanes skips Beckmann's exponentials and
+    /// slope inversion altogether.
     #[inline(always)]
     pub fn only(self, lanes: Ms<N>) -> Self {
         Self { beckmann: self.beckmann & lanes, ..self }
@@ -136,7 +138,7 @@ impl<const N: usize> MicrofacetLanes<N> {
         let (sx, sy) = (m.x / ax, m.y / ay);
         let beckmann = if self.beckmann.any() {
             let e = (sx * sx + sy * sy) / cos2;
-            exp_flushed_lanes(-e, self.beckmann) / (PI * ax * ay * cos2 * cos2)
+            exp_lanes(-e) / (PI * ax * ay * cos2 * cos2)
         } else {
             F32s::ZERO
         };
@@ -159,7 +161,7 @@ impl<const N: usize> MicrofacetLanes<N> {
         let a2t2 = xy / (v.z * v.z);
         let beckmann = if self.beckmann.any() {
             let a = 1.0 / a2t2.sqrt();
-            let (erf_a, gaussian) = erf_and_gaussian_lanes(a, self.beckmann);
+            let (erf_a, gaussian) = erf_and_gaussian_lanes(a);
             0.5 * (erf_a - 1.0) + gaussian / (2.0 * a * PI.sqrt())
         } else {
             F32s::ZERO
@@ -229,13 +231,10 @@ impl<const N: usize> MicrofacetLanes<N> {
 
     /// Heitz & d'Eon 2014 §4 (sample slopes for α = 1 seen from the stretched `vs`, rotate,
     /// unstretch) with the α = 1 Beckmann visible slopes drawn by inverting their marginal CDF
-    /// in x (Jakob 2014), lane by lane (an iteration to convergence).
+    /// in x (Jakob 2014), all lanes iterating together.
     #[inline(always)]
     fn sample_visible_beckmann(&self, vs: &Vec3s<N>, u1: F32s<N>, u2: F32s<N>, lanes: Ms<N>) -> Vec3s<N> {
-        let (mut sx, mut sy) = (F32s::ZERO, F32s::ZERO);
-        for i in lanes.lanes() {
-            (sx.0[i], sy.0[i]) = visible_slopes_11(vs.z.0[i], u1.0[i], u2.0[i]);
-        }
+        let (sx, sy) = visible_slopes_lanes(vs.z, u1, u2, lanes);
         // Rotate from the frame where the (stretched) view direction has azimuth 0.
         let len = (vs.x * vs.x + vs.y * vs.y).sqrt();
         let tilted = len.gt(F32s::ZERO);

@@ -1,6 +1,7 @@
 //! Maths primitives: glam re-exports, colours, frames, transforms, boxes and rays.
 
 mod aabb;
+mod exp_log;
 mod frame;
 mod ray;
 mod rgb;
@@ -8,6 +9,7 @@ pub mod special;
 mod transform;
 
 pub use aabb::Aabb;
+pub use exp_log::{exp_lanes, ln_lanes};
 pub use frame::Frame;
 pub use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 pub use ray::{offset_ray_origin, offset_ray_origin_lanes, Ray};

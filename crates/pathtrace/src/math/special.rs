@@ -1,21 +1,8 @@
 //! Special functions the microfacet models need: the error function, its inverse, and
 //! Gauss–Legendre quadrature nodes (for tables precomputed when a material is built).
 
-use crate::wide::simd::{F32s, Ms};
-
-/// eˣ in single precision, with arguments far below the smallest positive result answered 0 at
-/// once: glibc's `expf` returns +0 for every x < −103.98 too, but reaches it through its
-/// underflow handler (which sets `errno`), and Gaussian tails evaluated at grazing angles land
-/// there often enough to show in profiles (the f64 form was 2% of a veach-mis render). Same
-/// value, bit for bit.
-#[inline(always)]
-pub fn exp_flushed_f32(x: f32) -> f32 {
-    if x < -104.0 {
-        0.0
-    } else {
-        x.exp()
-    }
-}
+use super::exp_log::{exp_lanes, ln_lanes};
+use crate::wide::simd::F32s;
 
 /// The error function erf(x) = 2/√π ∫₀ˣ e^(−t²) dt, to double precision (libm's port of
 /// FreeBSD's msun `erf`).
@@ -38,77 +25,66 @@ pub fn erf_fast(x: f32) -> f32 {
 /// both (Beckmann's Λ and its visible-slope CDF): one exponential instead of two.
 #[inline]
 pub fn erf_and_gaussian_fast(x: f32) -> (f32, f32) {
-    let (erf, gaussian) = erf_and_gaussian_lanes(F32s([x]), Ms::ALL);
+    let (erf, gaussian) = erf_and_gaussian_lanes(F32s([x]));
     (erf.0[0], gaussian.0[0])
 }
 
-/// [`erf_and_gaussian_fast`] in the lanes of `lanes` (the one implementation: the scalar form is
-/// its one-lane instance); the other lanes' values are unspecified.
+/// [`erf_and_gaussian_fast`] per lane (the one implementation: the scalar form is its one-lane
+/// instance).
 #[inline(always)]
-pub fn erf_and_gaussian_lanes<const N: usize>(x: F32s<N>, lanes: Ms<N>) -> (F32s<N>, F32s<N>) {
+pub fn erf_and_gaussian_lanes<const N: usize>(x: F32s<N>) -> (F32s<N>, F32s<N>) {
     let t = 1.0 / (1.0 + 0.327_591_1 * x.abs());
     let poly = t * (0.254_829_6 + t * (-0.284_496_74 + t * (1.421_413_8 + t * (-1.453_152 + t * 1.061_405_4))));
-    let gaussian = exp_flushed_lanes(-x * x, lanes);
+    let gaussian = exp_lanes(-x * x);
     let y = 1.0 - poly * gaussian;
     (F32s::select(x.lt(F32s::ZERO), -y, y), gaussian)
-}
-
-/// [`exp_flushed_f32`] in the lanes of `lanes` (the others are 0): one call per lane, so every
-/// lane has the scalar form's bits (a polynomial in SIMD would round differently), and only
-/// where it is needed (a group's lanes can hold different models).
-#[inline(always)]
-pub fn exp_flushed_lanes<const N: usize>(x: F32s<N>, lanes: Ms<N>) -> F32s<N> {
-    let mut out = F32s::ZERO;
-    for i in lanes.lanes() {
-        out.0[i] = exp_flushed_f32(x.0[i]);
-    }
-    out
 }
 
 /// Giles' single-precision approximation of the inverse error function ("Approximating the
 /// erfinv function", GPU Computing Gems, 2011): relative error below ~4·10⁻⁷ on (−1, 1), at the
 /// cost of one logarithm (and a square root in the tails). ±∞ at ±1, NaN outside.
+#[inline]
 pub fn erfinv_fast(y: f32) -> f32 {
-    if !(-1.0..=1.0).contains(&y) {
-        return f32::NAN;
+    erfinv_lanes(F32s([y])).0[0]
+}
+
+/// [`erfinv_fast`] per lane (its one implementation): both of Giles' polynomials are evaluated
+/// in every lane and each lane keeps its own.
+#[inline(always)]
+pub fn erfinv_lanes<const N: usize>(y: F32s<N>) -> F32s<N> {
+    let w = -ln_lanes((1.0 - y) * (1.0 + y));
+    let central = w - 2.5;
+    let mut p = F32s::splat(2.810_226_4e-8);
+    for c in [
+        3.432_739_4e-7,
+        -3.523_387_7e-6,
+        -4.391_506_5e-6,
+        0.000_218_580_87,
+        -0.001_253_725,
+        -0.004_177_681_6,
+        0.246_640_73,
+        1.501_409_4,
+    ] {
+        p = p * central + c;
     }
-    if y.abs() == 1.0 {
-        return y * f32::INFINITY;
+    let tail = w.sqrt() - 3.0;
+    let mut q = F32s::splat(-0.000_200_214_26);
+    for c in [
+        0.000_100_950_56,
+        0.001_349_343_2,
+        -0.003_673_428_4,
+        0.005_739_507_7,
+        -0.007_622_461,
+        0.009_438_870_5,
+        1.001_674,
+        2.832_976_8,
+    ] {
+        q = q * tail + c;
     }
-    let w = -((1.0 - y) * (1.0 + y)).ln();
-    if w < 5.0 {
-        let w = w - 2.5;
-        let mut p = 2.810_226_4e-8;
-        for c in [
-            3.432_739_4e-7,
-            -3.523_387_7e-6,
-            -4.391_506_5e-6,
-            0.000_218_580_87,
-            -0.001_253_725,
-            -0.004_177_681_6,
-            0.246_640_73,
-            1.501_409_4,
-        ] {
-            p = c + p * w;
-        }
-        p * y
-    } else {
-        let w = w.sqrt() - 3.0;
-        let mut p = -0.000_200_214_26;
-        for c in [
-            0.000_100_950_56,
-            0.001_349_343_2,
-            -0.003_673_428_4,
-            0.005_739_507_7,
-            -0.007_622_461,
-            0.009_438_870_5,
-            1.001_674,
-            2.832_976_8,
-        ] {
-            p = c + p * w;
-        }
-        p * y
-    }
+    let x = F32s::select(w.lt(F32s::splat(5.0)), p, q) * y;
+    // ±1: w = +∞ (both polynomials are ∞ or NaN there); beyond: NaN from the logarithm.
+    let edge = y.abs().eq(F32s::ONE);
+    F32s::select(edge, y * f32::INFINITY, x)
 }
 
 /// The `n` Gauss–Legendre nodes and weights on [−1, 1] (Newton's method on the Legendre
@@ -144,22 +120,6 @@ pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn flushed_exponentials_are_the_library_values() {
-        let xs = [
-            -1e30, -2000.0, -1024.5, -1023.0, -800.0, -746.0, -745.2, -745.1, -740.0, -104.5, -104.0, -103.9, -87.0,
-            -1.0, 0.0, 2.5,
-        ];
-        for x in xs {
-            let x32 = x as f32;
-            assert_eq!(exp_flushed_f32(x32).to_bits(), x32.exp().to_bits(), "{x32}");
-        }
-        for k in 0..20_000 {
-            let x32 = -80.0 - k as f32 * 0.002;
-            assert_eq!(exp_flushed_f32(x32).to_bits(), x32.exp().to_bits(), "{x32}");
-        }
-    }
 
     /// The inverse error function on (−1, 1) to double precision, the reference for
     /// [`erfinv_fast`]: Newton's method on erf(x) = y (d/dx erf = 2/√π e^(−x²)) from the

@@ -90,6 +90,13 @@ impl<const N: usize> F32s<N> {
         zip(self, b, |a, b| if a > b { a } else { b })
     }
 
+    /// `f` applied to every lane (a loop the compiler vectorises when `f` has no branches or
+    /// calls).
+    #[inline(always)]
+    pub fn map_lanes(self, f: impl Fn(f32) -> f32) -> Self {
+        map(self, f)
+    }
+
     #[inline(always)]
     pub fn sqrt(self) -> Self {
         map(self, f32::sqrt)
