@@ -38,28 +38,70 @@ pub fn permutation_element(index: u32, len: u32, seed: u64) -> u32 {
         return 0;
     }
     let mask = u32::MAX >> (len - 1).leading_zeros();
-    let s0 = seed as u32;
-    let s1 = (seed >> 32) as u32 | 1;
     let mut i = index;
     loop {
-        i ^= s0;
-        i &= mask;
-        i = i.wrapping_mul(s1 | 1) & mask;
-        i ^= (i & mask) >> 4;
-        i = i.wrapping_mul(0x9e37_79b9 | 1) & mask;
-        i ^= (i & mask) >> 7;
-        i = i.wrapping_add(s0 >> 8) & mask;
-        i = i.wrapping_mul(0x2c1b_3c6d | 1) & mask;
-        i ^= (i & mask) >> 11;
+        i = permutation_step(i, mask, seed);
         if i < len {
             return i;
         }
     }
 }
 
+/// [`permutation_element`] in `N` lanes, each with its own seed: the lanes take the hash steps
+/// together until every lane's value falls below `len`, a lane that is done keeping its value,
+/// so each lane gets exactly [`permutation_element`]'s answer.
+#[inline(always)]
+pub fn permutation_lanes<const N: usize>(index: &[u32; N], len: u32, seeds: &[u64; N]) -> [u32; N] {
+    if len == 1 {
+        return [0; N];
+    }
+    let mask = u32::MAX >> (len - 1).leading_zeros();
+    let mut i = std::array::from_fn(|l| permutation_step(index[l], mask, seeds[l]));
+    while i.iter().any(|&v| v >= len) {
+        for l in 0..N {
+            let next = permutation_step(i[l], mask, seeds[l]);
+            i[l] = if i[l] >= len { next } else { i[l] };
+        }
+    }
+    i
+}
+
+/// One bijective hash step on `[0, mask]` (`mask + 1` a power of two) keyed by `seed`.
+#[inline(always)]
+fn permutation_step(mut i: u32, mask: u32, seed: u64) -> u32 {
+    let s0 = seed as u32;
+    let s1 = (seed >> 32) as u32 | 1;
+    i ^= s0;
+    i &= mask;
+    i = i.wrapping_mul(s1 | 1) & mask;
+    i ^= (i & mask) >> 4;
+    i = i.wrapping_mul(0x9e37_79b9 | 1) & mask;
+    i ^= (i & mask) >> 7;
+    i = i.wrapping_add(s0 >> 8) & mask;
+    i = i.wrapping_mul(0x2c1b_3c6d | 1) & mask;
+    i ^= (i & mask) >> 11;
+    i
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each lane gets `permutation_element`'s answer for its own index and seed, however many
+    /// steps the other lanes need.
+    #[test]
+    fn permutation_lanes_match_one_at_a_time() {
+        for len in [1u32, 2, 3, 7, 17, 100, 1000] {
+            for round in 0..50u64 {
+                let seeds: [u64; 16] = std::array::from_fn(|l| mix64(round * 16 + l as u64));
+                let index: [u32; 16] = std::array::from_fn(|l| (l as u32 * 7 + round as u32) % len);
+                let lanes = permutation_lanes(&index, len, &seeds);
+                for l in 0..16 {
+                    assert_eq!(lanes[l], permutation_element(index[l], len, seeds[l]), "len {len} lane {l}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn permutations_are_bijections() {

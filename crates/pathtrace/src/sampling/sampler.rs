@@ -151,6 +151,23 @@ impl Sampler {
         (self.round_hash, self.index, self.dimension, state, inc)
     }
 
+    /// The number of strata per round (the stratified sampler's samples per pixel).
+    pub(crate) fn strata_count(&self) -> u32 {
+        self.strata_count
+    }
+
+    /// The stratified sampler's 2D grid, `nx × ny` cells with nx = ⌈√n⌉, ny = ⌈n/nx⌉.
+    pub(crate) fn strata_grid(&self) -> (u32, u32) {
+        let n = self.strata_count;
+        let nx = (n as f32).sqrt().ceil() as u32;
+        (nx, n.div_ceil(nx))
+    }
+
+    /// The current sample's place in its round of strata.
+    pub(crate) fn index_in_round(&self) -> u32 {
+        self.index_in_round
+    }
+
     /// The hash from which sample `index`'s generator is made (see [`sample_generator`]).
     pub(crate) fn stream_prefix(&self) -> u64 {
         self.stream_prefix
@@ -194,9 +211,7 @@ impl Sampler {
                 Vec2::new(self.rng.next_f32(), self.rng.next_f32())
             }
             SamplerKind::Stratified => {
-                let n = self.strata_count;
-                let nx = (n as f32).sqrt().ceil() as u32;
-                let ny = n.div_ceil(nx);
+                let (nx, ny) = self.strata_grid();
                 let h = self.next_dimension_hash();
                 let cell = permutation_element(self.index_in_round, nx * ny, h);
                 let (cx, cy) = (cell % nx, cell / nx);
@@ -222,7 +237,7 @@ impl Sampler {
 }
 
 /// The largest f32 below 1, so `[0,1)` stays half-open after rounding.
-const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// The PCG generator `(state, increment)` of sample `index` of a pixel whose stream prefix is
 /// `prefix`: the stream is `hash_words(&[pixel_hash, index])`, seeding `Pcg32::new(stream,

@@ -1,5 +1,4 @@
-//! The samplers of a lane group: the independent and Sobol' samplers continue each lane's
-//! sequence in SIMD lanes, the stratified sampler one lane at a time.
+//! The samplers of a lane group: every sampler continues each lane's sequence in SIMD lanes.
 //!
 //! Why: drawing numbers lane by lane cost about a quarter of the wide kernel's time with the
 //! Sobol' sampler (its scrambles are hashes, bit reversals and multiplies, ~150 instructions per
@@ -10,9 +9,9 @@
 //! with the scalar sequences below.
 
 use super::simd::{F32s, Ms};
-use crate::sampling::hash::mix64;
+use crate::sampling::hash::{mix64, permutation_lanes};
 use crate::sampling::pcg;
-use crate::sampling::sampler::{dimension_hash, sample_generator};
+use crate::sampling::sampler::{dimension_hash, sample_generator, ONE_MINUS_EPSILON};
 use crate::sampling::sobol::{dim1_next_column, owen_scramble, to_unit, DIM1_FIRST_COLUMN};
 use crate::sampling::{Sampler, SamplerKind};
 
@@ -21,8 +20,13 @@ use crate::sampling::{Sampler, SamplerKind};
 enum Mode {
     Independent,
     Sobol,
-    /// One scalar sampler call per lane (the stratified sampler).
-    PerLane,
+    /// Jittered strata: `n` strata in 1D, an `nx × ny` grid in 2D (`Sampler::next_1d`,
+    /// `Sampler::next_2d`).
+    Stratified {
+        n: u32,
+        nx: u32,
+        ny: u32,
+    },
 }
 
 /// The samplers of `N` lanes.
@@ -30,8 +34,6 @@ pub(crate) struct LaneSamplers<const N: usize> {
     /// Starts every lane's samples: the queue hands out a pixel's samples one after another,
     /// so one sampler reuses the pixel's hashes across lanes.
     starter: Sampler,
-    /// Per lane (used by the stratified sampler only).
-    scalar: [Sampler; N],
     mode: Mode,
     /// The pixel the starter last began a sample of (the independent sampler's cache).
     started_pixel: (u32, u32),
@@ -39,6 +41,8 @@ pub(crate) struct LaneSamplers<const N: usize> {
     /// Each lane's pixel's generator-stream hash (see `sampler::sample_generator`).
     stream_prefix: [u64; N],
     index: [u32; N],
+    /// Each lane's sample's place in its round of strata (the stratified sampler's).
+    index_in_round: [u32; N],
     dimension: [u32; N],
     state: [u64; N],
     inc: [u64; N],
@@ -49,16 +53,19 @@ impl<const N: usize> LaneSamplers<N> {
         let mode = match proto.kind() {
             SamplerKind::Independent => Mode::Independent,
             SamplerKind::Sobol => Mode::Sobol,
-            SamplerKind::Stratified => Mode::PerLane,
+            SamplerKind::Stratified => {
+                let (n, (nx, ny)) = (proto.strata_count(), proto.strata_grid());
+                Mode::Stratified { n, nx, ny }
+            }
         };
         Self {
             starter: proto.clone(),
-            scalar: std::array::from_fn(|_| proto.clone()),
             mode,
             started_pixel: (u32::MAX, u32::MAX),
             round_hash: [0; N],
             stream_prefix: [0; N],
             index: [0; N],
+            index_in_round: [0; N],
             dimension: [0; N],
             state: [0; N],
             inc: [0; N],
@@ -90,14 +97,12 @@ impl<const N: usize> LaneSamplers<N> {
             }
             self.stream_prefix[i] = s.stream_prefix();
             self.index[i] = index;
-        } else if self.mode == Mode::PerLane {
-            s.start(x, y, index);
-            self.scalar[i].clone_from(s);
         } else {
             // The pixel's hashes lane by lane (the starter caches them across a pixel's
             // samples); the generators of all new lanes at once in `camera_points`.
             s.start_hashes(x, y, index);
             (self.round_hash[i], self.index[i], self.dimension[i], _, _) = s.lane_state();
+            self.index_in_round[i] = s.index_in_round();
             self.stream_prefix[i] = s.stream_prefix();
         }
     }
@@ -108,7 +113,8 @@ impl<const N: usize> LaneSamplers<N> {
     /// pinhole renders keep their sequences.
     #[inline(always)]
     pub fn camera_points(&mut self, fresh: Ms<N>, aperture: bool) -> ([F32s<N>; 2], [F32s<N>; 2]) {
-        if self.mode == Mode::Independent {
+        // The pseudo-random generators (the Sobol' sampler draws no pseudo-random numbers).
+        if self.mode != Mode::Sobol {
             for i in 0..N {
                 let (state, inc) = sample_generator(self.stream_prefix[i], self.index[i]);
                 let keep = fresh.0[i] as u64 | ((fresh.0[i] as u64) << 32);
@@ -136,7 +142,12 @@ impl<const N: usize> LaneSamplers<N> {
                 }
                 out
             }
-            Mode::PerLane => F32s::from_fn(|i| if mask.lane(i) { self.scalar[i].next_1d() } else { 0.0 }),
+            Mode::Stratified { n, .. } => {
+                let h = self.dimension_hash(mask);
+                let stratum = permutation_lanes(&self.index_in_round, n, &h);
+                let jitter = self.pcg(mask);
+                F32s::from_fn(|i| ((stratum[i] as f32 + jitter.0[i]) / n as f32).min(ONE_MINUS_EPSILON))
+            }
         }
     }
 
@@ -162,14 +173,13 @@ impl<const N: usize> LaneSamplers<N> {
                 }
                 (x, y)
             }
-            Mode::PerLane => {
-                let (mut x, mut y) = (F32s::default(), F32s::default());
-                for i in 0..N {
-                    if mask.lane(i) {
-                        let u = self.scalar[i].next_2d();
-                        (x.0[i], y.0[i]) = (u.x, u.y);
-                    }
-                }
+            Mode::Stratified { nx, ny, .. } => {
+                let h = self.dimension_hash(mask);
+                let cell = permutation_lanes(&self.index_in_round, nx * ny, &h);
+                let jx = self.pcg(mask);
+                let jy = self.pcg(mask);
+                let x = F32s::from_fn(|i| (((cell[i] % nx) as f32 + jx.0[i]) / nx as f32).min(ONE_MINUS_EPSILON));
+                let y = F32s::from_fn(|i| (((cell[i] / nx) as f32 + jy.0[i]) / ny as f32).min(ONE_MINUS_EPSILON));
                 (x, y)
             }
         }
