@@ -191,8 +191,7 @@ impl Sampler {
                 let n = self.strata_count;
                 let h = self.next_dimension_hash();
                 let stratum = permutation_element(self.index_in_round, n, h);
-                let jitter = self.rng.next_f32();
-                ((stratum as f32 + jitter) / n as f32).min(ONE_MINUS_EPSILON)
+                jittered(stratum, self.rng.next_f32(), n)
             }
             SamplerKind::Sobol => {
                 let h = self.next_dimension_hash();
@@ -214,13 +213,9 @@ impl Sampler {
                 let (nx, ny) = self.strata_grid();
                 let h = self.next_dimension_hash();
                 let cell = permutation_element(self.index_in_round, nx * ny, h);
-                let (cx, cy) = (cell % nx, cell / nx);
                 let jx = self.rng.next_f32();
                 let jy = self.rng.next_f32();
-                Vec2::new(
-                    ((cx as f32 + jx) / nx as f32).min(ONE_MINUS_EPSILON),
-                    ((cy as f32 + jy) / ny as f32).min(ONE_MINUS_EPSILON),
-                )
+                Vec2::new(jittered(cell % nx, jx, nx), jittered(cell / nx, jy, ny))
             }
             SamplerKind::Sobol => {
                 let h = self.next_dimension_hash();
@@ -237,7 +232,14 @@ impl Sampler {
 }
 
 /// The largest f32 below 1, so `[0,1)` stays half-open after rounding.
-pub(crate) const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// The point `jitter ∈ [0,1)` of the way through stratum `stratum` of `n` equal strata of
+/// `[0,1)` (the stratified sampler's numbers, scalar and in lanes).
+#[inline(always)]
+pub(crate) fn jittered(stratum: u32, jitter: f32, n: u32) -> f32 {
+    ((stratum as f32 + jitter) / n as f32).min(ONE_MINUS_EPSILON)
+}
 
 /// The PCG generator `(state, increment)` of sample `index` of a pixel whose stream prefix is
 /// `prefix`: the stream is `hash_words(&[pixel_hash, index])`, seeding `Pcg32::new(stream,

@@ -11,7 +11,7 @@
 use super::simd::{F32s, Ms};
 use crate::sampling::hash::{mix64, permutation_lanes};
 use crate::sampling::pcg;
-use crate::sampling::sampler::{dimension_hash, sample_generator, ONE_MINUS_EPSILON};
+use crate::sampling::sampler::{dimension_hash, jittered, sample_generator};
 use crate::sampling::sobol::{dim1_next_column, owen_scramble, to_unit, DIM1_FIRST_COLUMN};
 use crate::sampling::{Sampler, SamplerKind};
 
@@ -146,7 +146,7 @@ impl<const N: usize> LaneSamplers<N> {
                 let h = self.dimension_hash(mask);
                 let stratum = permutation_lanes(&self.index_in_round, n, &h);
                 let jitter = self.pcg(mask);
-                F32s::from_fn(|i| ((stratum[i] as f32 + jitter.0[i]) / n as f32).min(ONE_MINUS_EPSILON))
+                F32s::from_fn(|i| jittered(stratum[i], jitter.0[i], n))
             }
         }
     }
@@ -178,8 +178,8 @@ impl<const N: usize> LaneSamplers<N> {
                 let cell = permutation_lanes(&self.index_in_round, nx * ny, &h);
                 let jx = self.pcg(mask);
                 let jy = self.pcg(mask);
-                let x = F32s::from_fn(|i| (((cell[i] % nx) as f32 + jx.0[i]) / nx as f32).min(ONE_MINUS_EPSILON));
-                let y = F32s::from_fn(|i| (((cell[i] / nx) as f32 + jy.0[i]) / ny as f32).min(ONE_MINUS_EPSILON));
+                let x = F32s::from_fn(|i| jittered(cell[i] % nx, jx.0[i], nx));
+                let y = F32s::from_fn(|i| jittered(cell[i] / nx, jy.0[i], ny));
                 (x, y)
             }
         }
