@@ -284,7 +284,20 @@ pub(crate) fn reflect_about_lanes<const N: usize>(v: &Vec3s<N>, m: &Vec3s<N>) ->
 /// tangential part shrinks by 1/η).
 #[inline]
 pub fn refract_about(v: Vec3, m: Vec3, cos_vm: f32, cos_t: f32, eta: f32) -> Vec3 {
-    (-v / eta + (cos_vm / eta - cos_t) * m).normalize()
+    refract_about_lanes(&Vec3s::<1>::splat(v), &Vec3s::splat(m), F32s([cos_vm]), F32s([cos_t]), F32s([eta])).lane(0)
+}
+
+/// [`refract_about`] in every lane.
+#[inline(always)]
+pub(crate) fn refract_about_lanes<const N: usize>(
+    v: &Vec3s<N>,
+    m: &Vec3s<N>,
+    cos_vm: F32s<N>,
+    cos_t: F32s<N>,
+    eta: F32s<N>,
+) -> Vec3s<N> {
+    let tangential = Vec3s { x: -v.x / eta, y: -v.y / eta, z: -v.z / eta };
+    tangential.add(&m.scale(cos_vm / eta - cos_t)).normalize()
 }
 
 impl MicrofacetKind {

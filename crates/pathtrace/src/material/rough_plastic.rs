@@ -18,18 +18,16 @@
 //! - A textured α: [`RoughPlastic::with_alpha`] with the tables interpolated over α
 //!   (`rough_plastic_alpha.rs`).
 
-use super::dielectric::{fresnel_dielectric, fresnel_dielectric_lanes};
+use super::dielectric::fresnel_dielectric_lanes;
 use super::lanes::{rgb_lane, LaneSamples, LaneScattering};
-use super::microfacet::{
-    reflect_about, reflect_about_lanes, refract_about, visible_density_lanes, Microfacet, MicrofacetLanes,
-};
+use super::microfacet::{reflect_about_lanes, refract_about_lanes, visible_density_lanes, Microfacet, MicrofacetLanes};
 use super::plastic::{base_albedo, coating_pick_probability_lanes, specular_sampling_weight};
 use super::rough_plastic_alpha::RoughPlasticAlphaTable;
 use super::BsdfSample;
 use crate::math::special::gauss_legendre;
 use crate::math::{Rgb, Vec2, Vec3, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf_lanes;
-use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::simd::{F32s, Ms, Vec3s, LANES_256};
 use crate::wide::warp as warp_lanes;
 use rayon::prelude::*;
 
@@ -54,51 +52,69 @@ pub struct RoughPlastic {
     transmittance: [f32; TABLE_SIZE],
 }
 
-/// Directional albedo of microfacet reflection off an interface of relative index `eta` seen
-/// at cos θ = `mu`: ∫ F(wo·m) G1(wi, m) over the visible normals of wo, by an n×n
-/// Gauss–Legendre rule on the sample square.
-fn coating_reflectance(distribution: &Microfacet, mu: f32, eta: f32, n: usize) -> f32 {
-    let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
-    let rule = gauss_legendre(n);
+/// Points of a Gauss–Legendre rule on the sample square taken together: a row's points run in
+/// lanes (the table integrals call the visible-normal sampler about 10⁶ times per plastic,
+/// most of a scene's loading time when drawn one at a time).
+const RULE_LANES: usize = LANES_256;
+
+/// `f(wo, m, lanes)` at the points of the n×n Gauss–Legendre rule `rule` (nodes on [−1, 1])
+/// mapped to the visible-normal sample square of `wo`, summed with the rule's weights (times
+/// the square's Jacobian ¼) in f64, point by point in row order. `f` returns each lane's value
+/// and the lanes that count.
+fn integrate_visible_normals(
+    distribution: &Microfacet,
+    wo: Vec3,
+    rule: &[(f64, f64)],
+    f: impl Fn(&Vec3s<RULE_LANES>, &Vec3s<RULE_LANES>) -> (F32s<RULE_LANES>, Ms<RULE_LANES>),
+) -> f32 {
+    let lanes = distribution.lanes::<RULE_LANES>();
+    let wo = Vec3s::splat(wo);
+    let square = |x: f64| (0.5 * x + 0.5) as f32;
     let mut sum = 0.0f64;
-    for (x, wx) in &rule {
-        for (y, wy) in &rule {
-            let u = Vec2::new((0.5 * x + 0.5) as f32, (0.5 * y + 0.5) as f32);
-            let m = distribution.sample_visible(wo, u);
-            let wi = reflect_about(wo, m);
-            if wi.z <= 0.0 {
-                continue;
+    for &(x, wx) in rule {
+        for row in rule.chunks(RULE_LANES) {
+            let active = Ms::from_fn(|i| i < row.len());
+            let u2 = F32s::from_fn(|i| row.get(i).map_or(0.5, |&(y, _)| square(y)));
+            let m = lanes.sample_visible(&wo, F32s::splat(square(x)), u2, active);
+            let (value, counts) = f(&wo, &m);
+            for (i, &(_, wy)) in row.iter().enumerate() {
+                if counts.lane(i) {
+                    sum += 0.25 * wx * wy * f64::from(value.0[i]);
+                }
             }
-            let f = fresnel_dielectric(wo.dot(m), eta).0 * distribution.g1(wi, m);
-            sum += 0.25 * wx * wy * f64::from(f);
         }
     }
     sum as f32
 }
 
+/// Directional albedo of microfacet reflection off an interface of relative index `eta` seen
+/// at cos θ = `mu`: ∫ F(wo·m) G1(wi, m) over the visible normals of wo, by the n×n
+/// Gauss–Legendre rule `rule` on the sample square.
+fn coating_reflectance(distribution: &Microfacet, mu: f32, eta: f32, rule: &[(f64, f64)]) -> f32 {
+    let lanes = distribution.lanes::<RULE_LANES>();
+    integrate_visible_normals(distribution, direction_at(mu), rule, |wo, m| {
+        let wi = reflect_about_lanes(wo, m);
+        let f = fresnel_dielectric_lanes(wo.dot(m), F32s::splat(eta)).0 * lanes.g1(&wi, m);
+        (f, !wi.z.le(F32s::ZERO))
+    })
+}
+
 /// Directional transmittance of the same interface: ∫ (1 − F(wo·m)) G1(wt, m) over the visible
 /// normals of wo, wt = wo refracted through m (counted only if it crosses the surface).
-fn coating_transmittance(distribution: &Microfacet, mu: f32, eta: f32, n: usize) -> f32 {
-    let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
-    let rule = gauss_legendre(n);
-    let mut sum = 0.0f64;
-    for (x, wx) in &rule {
-        for (y, wy) in &rule {
-            let u = Vec2::new((0.5 * x + 0.5) as f32, (0.5 * y + 0.5) as f32);
-            let m = distribution.sample_visible(wo, u);
-            let cos_om = wo.dot(m);
-            let (f, cos_t, eta_t) = fresnel_dielectric(cos_om, eta);
-            if cos_om <= 0.0 || cos_t == 0.0 {
-                continue;
-            }
-            let wt = refract_about(wo, m, cos_om, cos_t, eta_t);
-            if wt.z >= 0.0 {
-                continue;
-            }
-            sum += 0.25 * wx * wy * f64::from((1.0 - f) * distribution.g1(wt, m));
-        }
-    }
-    sum as f32
+fn coating_transmittance(distribution: &Microfacet, mu: f32, eta: f32, rule: &[(f64, f64)]) -> f32 {
+    let lanes = distribution.lanes::<RULE_LANES>();
+    integrate_visible_normals(distribution, direction_at(mu), rule, |wo, m| {
+        let cos_om = wo.dot(m);
+        let (f, cos_t, eta_t) = fresnel_dielectric_lanes(cos_om, F32s::splat(eta));
+        let crosses = !cos_om.le(F32s::ZERO) & !cos_t.eq(F32s::ZERO);
+        let wt = refract_about_lanes(wo, m, cos_om, cos_t, eta_t);
+        ((1.0 - f) * lanes.g1(&wt, m), crosses & !wt.z.ge(F32s::ZERO))
+    })
+}
+
+/// The direction at cos θ = `mu` in the xz-plane.
+fn direction_at(mu: f32) -> Vec3 {
+    Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu)
 }
 
 impl RoughPlastic {
@@ -106,12 +122,13 @@ impl RoughPlastic {
         // The table's entries are independent (and about 0.3 s per plastic serially, most of
         // the loading time of a scene with a few plastics): computed on the thread pool, then
         // summed in order, so the tables do not depend on the thread count.
+        let (outside, inside) = (gauss_legendre(32), gauss_legendre(128));
         let entries: Vec<(f32, f32)> = (0..TABLE_SIZE)
             .into_par_iter()
             .map(|i| {
                 let mu = (i as f32 / (TABLE_SIZE - 1) as f32).max(1e-6);
-                let t = coating_transmittance(&distribution, mu, ior, 32);
-                (t, coating_reflectance(&distribution, mu, 1.0 / ior, 128) * mu)
+                let t = coating_transmittance(&distribution, mu, ior, &outside);
+                (t, coating_reflectance(&distribution, mu, 1.0 / ior, &inside) * mu)
             })
             .collect();
         let mut transmittance = [0.0; TABLE_SIZE];
