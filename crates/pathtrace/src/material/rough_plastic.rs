@@ -381,4 +381,58 @@ mod tests {
             assert!((p / pdf - 1.0).abs() < 5e-3, "θo {to} θi {ti}: pdf {p} vs Mitsuba {pdf}");
         }
     }
+
+    /// The tables' integrals taken a row of points at a time in lanes equal, bit for bit, the
+    /// same sums taken one point at a time through the one-lane forms, in the rule's order:
+    /// rules whose rows fill the lanes (32, 128) and one that leaves lanes empty (5).
+    #[test]
+    fn lane_rows_sum_what_one_point_at_a_time_sums() {
+        use crate::material::dielectric::fresnel_dielectric;
+        use crate::material::microfacet::{reflect_about, refract_about};
+        fn one_at_a_time(d: &Microfacet, mu: f32, rule: &[(f64, f64)], f: impl Fn(Vec3, Vec3) -> Option<f32>) -> f32 {
+            let wo = direction_at(mu);
+            let mut sum = 0.0f64;
+            for &(x, wx) in rule {
+                for &(y, wy) in rule {
+                    let m = d.sample_visible(wo, Vec2::new((0.5 * x + 0.5) as f32, (0.5 * y + 0.5) as f32));
+                    if let Some(value) = f(wo, m) {
+                        sum += 0.25 * wx * wy * f64::from(value);
+                    }
+                }
+            }
+            sum as f32
+        }
+        for kind in [MicrofacetKind::Beckmann, MicrofacetKind::Ggx] {
+            for alpha in [0.05, 0.3, 0.9] {
+                let d = Microfacet::isotropic(kind, alpha);
+                for n in [5, 32, 128] {
+                    let rule = gauss_legendre(n);
+                    for mu in [1e-6, 0.1, 0.5, 0.9, 1.0] {
+                        let (eta, inside) = (1.5, 1.0 / 1.5);
+                        let reflectance = one_at_a_time(&d, mu, &rule, |wo, m| {
+                            let wi = reflect_about(wo, m);
+                            if wi.z <= 0.0 {
+                                return None;
+                            }
+                            Some(fresnel_dielectric(wo.dot(m), inside).0 * d.g1(wi, m))
+                        });
+                        assert_eq!(coating_reflectance(&d, mu, inside, &rule).to_bits(), reflectance.to_bits());
+                        let transmittance = one_at_a_time(&d, mu, &rule, |wo, m| {
+                            let cos_om = wo.dot(m);
+                            let (f, cos_t, eta_t) = fresnel_dielectric(cos_om, eta);
+                            if cos_om <= 0.0 || cos_t == 0.0 {
+                                return None;
+                            }
+                            let wt = refract_about(wo, m, cos_om, cos_t, eta_t);
+                            if wt.z >= 0.0 {
+                                return None;
+                            }
+                            Some((1.0 - f) * d.g1(wt, m))
+                        });
+                        assert_eq!(coating_transmittance(&d, mu, eta, &rule).to_bits(), transmittance.to_bits());
+                    }
+                }
+            }
+        }
+    }
 }
