@@ -57,7 +57,7 @@ pub struct RoughPlastic {
 /// most of a scene's loading time when drawn one at a time).
 const RULE_LANES: usize = LANES_256;
 
-/// `f(wo, m, lanes)` at the points of the n×n Gauss–Legendre rule `rule` (nodes on [−1, 1])
+/// `f(wo, m)` at the points of the n×n Gauss–Legendre rule `rule` (nodes on [−1, 1])
 /// mapped to the visible-normal sample square of `wo`, summed with the rule's weights (times
 /// the square's Jacobian ¼) in f64, point by point in row order. `f` returns each lane's value
 /// and the lanes that count.
