@@ -177,48 +177,19 @@ impl<const N: usize> Paths<N> {
     /// (non-finite estimates are dropped with their feature sample, and counted).
     #[inline(always)]
     pub fn finish(&mut self, i: usize, out: &mut Output) {
-        if self.finish_unsplatted(i, out) {
-            self.splat_lanes(1 << i, out);
-        }
-    }
-
-    /// [`Paths::finish`] but for the splat: true if lane `i`'s estimate is to be splatted.
-    #[inline(always)]
-    fn finish_unsplatted(&mut self, i: usize, out: &mut Output) -> bool {
         self.active.0[i] = 0;
         self.feature_pending.0[i] = 0;
-        let l = self.estimate(i);
+        let l = Rgb::new(self.radiance[0].0[i], self.radiance[1].0[i], self.radiance[2].0[i]);
         if l.is_finite() {
             out.pixels[self.pixel[i] as usize].add(l);
             if let Some(features) = &mut out.features {
                 features[self.pixel[i] as usize].add(&self.feature[i], 1.0);
             }
-            true
+            if let Some(splat) = &mut out.splat {
+                splat.add(self.pixel[i], self.jitter[i], l);
+            }
         } else {
             out.dropped += 1;
-            false
-        }
-    }
-
-    /// Lane `i`'s estimate.
-    #[inline(always)]
-    fn estimate(&self, i: usize) -> Rgb {
-        Rgb::new(self.radiance[0].0[i], self.radiance[1].0[i], self.radiance[2].0[i])
-    }
-
-    /// Splats the (finite) estimates of the lanes whose bits `lanes` sets, when the filter
-    /// splats. [`Paths::finish`] and [`Paths::finish_all`] each have one call: the splat is
-    /// long, and always inlined (see `SplatBlock::splat`), so every call is a copy of it in
-    /// every kernel.
-    #[inline(always)]
-    fn splat_lanes(&self, lanes: u32, out: &mut Output) {
-        if let Some(splat) = &mut out.splat {
-            let mut rest = lanes;
-            while rest != 0 {
-                let i = rest.trailing_zeros() as usize;
-                rest &= rest - 1;
-                splat.add(self.pixel[i], self.jitter[i], self.estimate(i));
-            }
         }
     }
 
@@ -241,14 +212,11 @@ impl<const N: usize> Paths<N> {
     #[inline(always)]
     pub fn finish_all(&mut self, mask: Ms<N>, out: &mut Output) {
         let mut rest = mask;
-        // Finished lanes whose estimates are still to be splatted (all at the end).
-        let mut to_splat = 0u32;
         // Black estimates (a camera ray that left an unlit scene, a path that found no light;
         // 81% of the teapot's samples) only count towards their pixel when no feature sample
-        // takes them too (a splatting filter still spreads their weight): found for the group
-        // at once, they skip the lane-by-lane checks (which were about a tenth of an empty
-        // frame's render).
-        if out.features.is_none() {
+        // or splatting filter takes them too: found for the group at once, they skip the
+        // lane-by-lane checks (which were about a tenth of an empty frame's render).
+        if out.features.is_none() && out.splat.is_none() {
             let zero = F32s::ZERO;
             let black = mask & self.radiance[0].eq(zero) & self.radiance[1].eq(zero) & self.radiance[2].eq(zero);
             if black.any() {
@@ -260,7 +228,6 @@ impl<const N: usize> Paths<N> {
                         }
                     }
                 }
-                to_splat |= black.bitmask();
                 self.end(black);
                 rest = rest & !black;
             }
@@ -298,17 +265,13 @@ impl<const N: usize> Paths<N> {
                         }
                     }
                 }
-                to_splat |= small.bitmask();
                 self.end(small);
                 rest = rest & !small;
             }
         }
         for i in rest.lanes() {
-            if self.finish_unsplatted(i, out) {
-                to_splat |= 1 << i;
-            }
+            self.finish(i, out);
         }
-        self.splat_lanes(to_splat, out);
     }
 }
 
