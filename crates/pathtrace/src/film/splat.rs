@@ -26,7 +26,7 @@
 //! splat only moves each sample's weight within the block (except at its edge), so the block's
 //! variance is close to the box estimate's — what the block z-tests use.
 
-use super::accumulator::{fixed, fixed_small, i128_to_f64, SMALL_LIMIT};
+use super::accumulator::{fixed, fixed_small, SMALL_LIMIT};
 use super::filter::PixelFilter;
 use super::grid::Mergeable;
 use crate::math::{Rgb, Vec2};
@@ -41,13 +41,12 @@ pub struct SplatPixel {
 }
 
 impl SplatPixel {
-    /// Adds a sample's terms at this pixel: `wy` times its column's terms `[wₓ, wₓ·L_r, wₓ·L_g,
-    /// wₓ·L_b]` (see [`SplatBlock::splat`]).
+    /// Adds a sample of radiance `c` with filter weight `w`.
     #[inline(always)]
-    fn add_terms(&mut self, wy: f64, column: &[f64]) {
-        self.weight += fixed(wy * column[0]);
-        for k in 0..3 {
-            self.sum[k] += fixed(wy * column[k + 1]);
+    pub fn add(&mut self, w: f64, c: Rgb) {
+        self.weight += fixed(w);
+        for (k, x) in c.to_array().into_iter().enumerate() {
+            self.sum[k] += fixed(w * x as f64);
         }
     }
 
@@ -65,7 +64,7 @@ impl SplatPixel {
         if self.weight == 0 {
             return [0.0; 3];
         }
-        self.sum.map(|s| i128_to_f64(s) / i128_to_f64(self.weight))
+        self.sum.map(|s| s as f64 / self.weight as f64)
     }
 }
 
@@ -113,8 +112,6 @@ pub struct SplatBlock {
     /// f₁ at the footprint's columns and rows, reused from sample to sample.
     wx: Vec<f64>,
     wy: Vec<f64>,
-    /// Per footprint column, the terms a row multiplies by its weight: wₓ, wₓ·L per channel.
-    column_terms: Vec<f64>,
 }
 
 impl SplatBlock {
@@ -138,7 +135,6 @@ impl SplatBlock {
             margin,
             wx: vec![0.0; n],
             wy: vec![0.0; n],
-            column_terms: vec![0.0; 4 * n],
         }
     }
 
@@ -157,9 +153,7 @@ impl SplatBlock {
         // position all fit f64's 53 bits); the row's others follow at +1, +2, ….
         filter.profile_row(fx as f64 + 0.5 - px, &mut self.wx);
         filter.profile_row(fy as f64 + 0.5 - py, &mut self.wy);
-        // The footprint clipped to the block once, rather than tested pixel by pixel, and to its
-        // non-zero weights (of the σ = ½ gaussian's five columns, one at an end or both are zero:
-        // a fifth of the work or more).
+        // The footprint clipped to the block once, rather than tested pixel by pixel.
         let n = self.wx.len() as i64;
         let (bx0, by0) = (self.x0 as i64, self.y0 as i64);
         let (bw, bh) = (self.w as i64, self.h as i64);
@@ -168,36 +162,31 @@ impl SplatBlock {
         if i0 >= i1 || j0 >= j1 {
             return;
         }
-        let (i0, i1) = without_zero_ends(&self.wx, i0 as usize, i1 as usize);
-        let (j0, j1) = without_zero_ends(&self.wy, j0 as usize, j1 as usize);
-        if i0 >= i1 || j0 >= j1 {
-            return;
-        }
-        // A pixel's terms are w_y · [wₓ, wₓ·L_r, wₓ·L_g, wₓ·L_b]: the column's four products are
-        // made once, so a row is one product per term, in a loop over contiguous sums that
-        // compiles to vector instructions.
-        let cols = i1 - i0;
+        // Every weight is at most max wx · max wy (profiles are non-negative, rounding monotone).
+        let w_max = self.wx[i0 as usize..i1 as usize].iter().fold(0.0f64, |a, &b| a.max(b))
+            * self.wy[j0 as usize..j1 as usize].iter().fold(0.0f64, |a, &b| a.max(b));
+        let l_max = c.to_array().iter().fold(0.0f32, |a, &x| a.max(x.abs())) as f64;
+        // Small terms go to the `i64` partial sums, the others straight to the exact sums.
+        let small = c.is_finite() && w_max < SMALL_LIMIT && w_max * l_max < SMALL_LIMIT;
         let l = c.to_array().map(f64::from);
-        let terms = &mut self.column_terms[..4 * cols];
-        for (t, &wx) in terms.chunks_exact_mut(4).zip(&self.wx[i0..i1]) {
-            t.copy_from_slice(&[wx, wx * l[0], wx * l[1], wx * l[2]]);
-        }
-        // Every term is at most the largest w_y times the largest column term in magnitude
-        // (profiles are non-negative, rounding monotone). Small terms go to the `i64` partial
-        // sums, the others straight to the exact sums.
-        let wy_max = self.wy[j0..j1].iter().fold(0.0f64, |a, &b| a.max(b));
-        let term_max = terms.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
-        let small = c.is_finite() && wy_max * term_max < SMALL_LIMIT;
-        for (j, &wy) in (j0..j1).zip(&self.wy[j0..j1]) {
-            let start = ((fy + j as i64 - by0) * bw - bx0 + fx + i0 as i64) as usize;
-            if small {
-                let sums = self.small[start..start + cols].as_flattened_mut();
-                for (sum, &term) in sums.iter_mut().zip(terms.iter()) {
-                    *sum += fixed_small(wy * term);
-                }
-            } else {
-                for (pixel, column) in self.pixels[start..start + cols].iter_mut().zip(terms.chunks_exact(4)) {
-                    pixel.add_terms(wy, column);
+        for j in j0..j1 {
+            let wy = self.wy[j as usize];
+            if wy == 0.0 {
+                continue;
+            }
+            let row = (fy + j - by0) * bw - bx0 + fx;
+            for i in i0..i1 {
+                let wx = self.wx[i as usize];
+                let p = (row + i) as usize;
+                if small {
+                    // A zero weight adds zeros: no branch, so the four sums go as one vector.
+                    let w = wx * wy;
+                    let terms = [w, w * l[0], w * l[1], w * l[2]];
+                    for (sum, term) in self.small[p].iter_mut().zip(terms) {
+                        *sum += fixed_small(term);
+                    }
+                } else if wx != 0.0 {
+                    self.pixels[p].add(wx * wy, c);
                 }
             }
         }
@@ -228,19 +217,6 @@ impl SplatBlock {
     }
 }
 
-/// `lo..hi` without the zero weights at its ends (a filter's profile is non-zero on one
-/// interval, so none lie between).
-#[inline(always)]
-fn without_zero_ends(weights: &[f64], mut lo: usize, mut hi: usize) -> (usize, usize) {
-    while lo < hi && weights[lo] == 0.0 {
-        lo += 1;
-    }
-    while hi > lo && weights[hi - 1] == 0.0 {
-        hi -= 1;
-    }
-    (lo, hi)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -267,7 +243,7 @@ mod tests {
         // Pixel (0,0) gets f₁(0)², (1,0) f₁(1)·f₁(0), (2,0) f₁(2)·f₁(0) = 0 (the cut-off).
         // The row recurrence of `profile_row` agrees with f₁ to a few ulps: within two quanta
         // of the fixed-point grid (2⁻⁴⁰ each) for weights near 1.
-        let w = |x: f64, y: f64| fixed(f.profile(y) * f.profile(x));
+        let w = |x: f64, y: f64| fixed(f.profile(x) * f.profile(y));
         let near = |a: i128, b: i128| (a - b).abs() <= 2;
         assert!(near(block.sums()[0].weight, w(0.0, 0.0)), "{} vs {}", block.sums()[0].weight, w(0.0, 0.0));
         assert!(near(block.sums()[1].weight, w(1.0, 0.0)));
