@@ -12,13 +12,7 @@
 //! So an estimated relative error of 0.05 means the image is expected to be within about 5% RMS
 //! of the converged one, in the same units `pathtrace converge` measures against a reference.
 
-use rayon::prelude::*;
-
 use super::{Film, PixelStats};
-
-/// Pixels per partial sum of the estimate. The chunks are fixed, not per thread, so the
-/// estimate (which can stop an adaptive render) has the same bits for any thread count.
-const ESTIMATE_CHUNK: usize = 1 << 14;
 
 /// The `0.01` of relative MSE: keeps black pixels from dominating (Rousselle et al. 2011).
 pub const RELATIVE_EPSILON: f64 = 0.01;
@@ -33,29 +27,15 @@ pub fn relative_variance(p: &PixelStats) -> f64 {
 impl Film {
     /// The expected relative MSE of the current image against the converged one (see the module
     /// docs). `None` before every pixel has two samples (no variance estimate yet).
-    ///
-    /// A render computes it between waves, when its other threads would wait: the chunks' sums
-    /// are taken on the current rayon pool (the render's own, inside a render), then added in
-    /// order.
     pub fn relative_mse_estimate(&self) -> Option<f64> {
-        let pixels = self.pixels();
-        let chunk_sum = |chunk: &[PixelStats]| -> Option<f64> {
-            let mut sum = 0.0;
-            for p in chunk {
-                if p.count < 2 {
-                    return None;
-                }
-                sum += relative_variance(p) / p.count as f64;
+        let mut sum = 0.0;
+        for p in self.pixels() {
+            if p.count < 2 {
+                return None;
             }
-            Some(sum)
-        };
-        // A film short of two samples somewhere usually is everywhere: the first chunk says so
-        // before any thread is woken.
-        let first = chunk_sum(&pixels[..pixels.len().min(ESTIMATE_CHUNK)])?;
-        let rest: Option<Vec<f64>> =
-            pixels.get(ESTIMATE_CHUNK..).unwrap_or_default().par_chunks(ESTIMATE_CHUNK).map(chunk_sum).collect();
-        let sum = rest?.into_iter().fold(first, |a, b| a + b);
-        Some(sum / (3 * pixels.len()).max(1) as f64)
+            sum += relative_variance(p) / p.count as f64;
+        }
+        Some(sum / (3 * self.pixels().len()).max(1) as f64)
     }
 
     /// √ of [`Film::relative_mse_estimate`]: the RMS relative error the image is expected to hold.
@@ -109,35 +89,5 @@ mod tests {
         let estimate = film.relative_mse_estimate().unwrap();
         // Both are means of 1200 roughly independent terms: agreement within 10% is ~2.5σ.
         assert!((estimate / actual - 1.0).abs() < 0.1, "estimate {estimate} vs actual {actual}");
-    }
-
-    /// The estimate is the same number whatever the thread count (fixed chunks added in order),
-    /// on a film of several chunks, and `None` while any pixel, here the last one, lacks a
-    /// second sample.
-    #[test]
-    fn the_estimate_does_not_depend_on_the_thread_count() {
-        let (w, h) = (300u32, 200u32);
-        let mut film = Film::new(w, h);
-        for y in 0..h {
-            for x in 0..w {
-                let v = ((x * 7 + y * 13) % 17) as f32 * 0.1;
-                film.add_sample(x, y, Rgb::new(v, 0.5 * v, 1.0));
-                if (x, y) != (w - 1, h - 1) {
-                    film.add_sample(x, y, Rgb::new(0.3, v * v, 0.0));
-                }
-            }
-        }
-        let in_pool = |threads: usize, film: &Film| {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            pool.install(|| film.relative_mse_estimate())
-        };
-        assert_eq!(in_pool(2, &film), None);
-        film.add_sample(w - 1, h - 1, Rgb::splat(0.25));
-        let one = in_pool(1, &film).unwrap();
-        assert_eq!(one.to_bits(), in_pool(3, &film).unwrap().to_bits());
-        // And it is the sum the module docs define, up to the order of the additions.
-        let direct =
-            film.pixels().iter().map(|p| relative_variance(p) / p.count as f64).sum::<f64>() / (3 * w * h) as f64;
-        assert!((one / direct - 1.0).abs() < 1e-12, "{one} vs {direct}");
     }
 }
