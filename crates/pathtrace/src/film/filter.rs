@@ -17,6 +17,7 @@
 //!   border, where Mitsuba normalises by the clipped weights.)
 
 use crate::math::Vec2;
+use crate::wide::simd::F32s;
 
 /// How the samples of a pixel are spread over and around it.
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -100,6 +101,18 @@ impl PixelFilter {
         match self {
             PixelFilter::Box { radius } if *radius < 0.5 => {
                 Vec2::splat(0.5) + Vec2::new(2.0 * u.x - 1.0, 2.0 * u.y - 1.0) * *radius
+            }
+            _ => u,
+        }
+    }
+
+    /// [`PixelFilter::sample`] of every lane's point `(u[0], u[1])`, with the same operations
+    /// per lane (so the same bits), as whole vectors.
+    #[inline(always)]
+    pub fn sample_lanes<const N: usize>(&self, u: [F32s<N>; 2]) -> [F32s<N>; 2] {
+        match self {
+            PixelFilter::Box { radius } if *radius < 0.5 => {
+                u.map(|u| F32s::splat(0.5) + (F32s::splat(2.0) * u - F32s::splat(1.0)) * *radius)
             }
             _ => u,
         }
@@ -216,6 +229,31 @@ mod tests {
             let mut row = [0.0; 5];
             f.profile_row(-2.3, &mut row);
             assert_eq!(row, std::array::from_fn(|i| f.profile(-2.3 + i as f64)));
+        }
+    }
+
+    /// The lanes' film positions are each lane's [`PixelFilter::sample`], bit for bit.
+    #[test]
+    fn lanes_sample_the_filter_as_one_point_does() {
+        let us: [f32; 8] = [0.0, 1e-8, 0.25, 0.3, 0.5, 0.7, 0.999_999_9, 0.123_456_7];
+        let u = [F32s(us), F32s(std::array::from_fn(|i| us[7 - i]))];
+        let filters = [
+            PixelFilter::Pixel,
+            PixelFilter::Box { radius: 0.3 },
+            PixelFilter::Box { radius: 1.0 },
+            PixelFilter::Tent { radius: 1.5 },
+            PixelFilter::Gaussian(GaussianFilter::new(0.5).unwrap()),
+        ];
+        for f in filters {
+            let lanes = f.sample_lanes(u);
+            for i in 0..8 {
+                let one = f.sample(Vec2::new(u[0].0[i], u[1].0[i]));
+                assert_eq!(
+                    (lanes[0].0[i].to_bits(), lanes[1].0[i].to_bits()),
+                    (one.x.to_bits(), one.y.to_bits()),
+                    "{f:?}"
+                );
+            }
         }
     }
 

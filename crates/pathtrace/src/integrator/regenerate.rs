@@ -8,7 +8,6 @@ use super::path::vertex;
 use crate::camera::Camera;
 use crate::film::{FeaturePixel, PixelFilter, PixelStats, SplatBlock};
 use crate::integrator::PathStats;
-use crate::math::Vec2;
 use crate::render::tile::{Tile, TileResult, WaveSamples};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -88,6 +87,27 @@ impl<'a> Queue<'a> {
         self.next += 1;
         Some(Job { pixel: self.pixel, x: self.x, y: self.y, sample })
     }
+
+    /// The next `n` samples if they are all of one pixel (the first is returned): what `n`
+    /// calls of [`Queue::pop`] would give then. Otherwise `None`, and the next `pop` gives
+    /// what it would have.
+    #[inline(always)]
+    fn pop_run(&mut self, n: u32) -> Option<Job> {
+        // The same moves past finished pixels as `pop` makes first.
+        while self.next >= self.end {
+            if self.pixel >= self.tile.w * self.tile.h {
+                return None;
+            }
+            self.advance();
+            self.enter_pixel();
+        }
+        if self.pixel >= self.tile.w * self.tile.h || self.end - self.next < n {
+            return None;
+        }
+        let sample = self.next;
+        self.next += n;
+        Some(Job { pixel: self.pixel, x: self.x, y: self.y, sample })
+    }
 }
 
 /// Renders the wave's samples of every pixel in `tile` in groups of `N` lanes. Each pixel
@@ -130,22 +150,30 @@ pub(crate) fn render_tile_lanes<const N: usize>(
         let mut fresh = Ms::<N>::NONE;
         let mut pixel = [0u32; N];
         let mut at = [F32s::<N>::ZERO; 2];
-        let mut jitter = [F32s::<N>::ZERO; 2];
-        for i in (!paths.active).lanes() {
-            let Some(next) = queue.pop() else { break };
-            samplers.begin(i, next.x, next.y, next.sample);
-            fresh.0[i] = u32::MAX;
-            pixel[i] = next.pixel;
-            (at[0].0[i], at[1].0[i]) = (next.x as f32, next.y as f32);
+        // When every lane is free and the pixel has samples for all of them (a group of one
+        // pixel's samples, as waves of N or more samples per pixel give), the lanes are filled
+        // as whole vectors; otherwise lane by lane. Both give lane i the same sample.
+        let run = if paths.active.any() { None } else { queue.pop_run(N as u32) };
+        if let Some(next) = run {
+            samplers.begin_run(next.x, next.y, next.sample);
+            fresh = Ms::ALL;
+            pixel = [next.pixel; N];
+            at = [F32s::splat(next.x as f32), F32s::splat(next.y as f32)];
+        } else {
+            for i in (!paths.active).lanes() {
+                let Some(next) = queue.pop() else { break };
+                samplers.begin(i, next.x, next.y, next.sample);
+                fresh.0[i] = u32::MAX;
+                pixel[i] = next.pixel;
+                (at[0].0[i], at[1].0[i]) = (next.x as f32, next.y as f32);
+            }
         }
         if fresh.any() {
             let (u_filter, u_aperture) = samplers.camera_points(fresh, aperture);
-            for i in fresh.lanes() {
-                // Where in the pixel the ray goes (film/filter.rs); filters wider than the pixel
-                // weight the sample when it is splatted (film/splat.rs).
-                let offset = job.filter.sample(Vec2::new(u_filter[0].0[i], u_filter[1].0[i]));
-                (jitter[0].0[i], jitter[1].0[i]) = (offset.x, offset.y);
-            }
+            // Where in the pixel the ray goes (film/filter.rs); filters wider than the pixel
+            // weight the sample when it is splatted (film/splat.rs). Lanes not started are
+            // ignored from here on.
+            let jitter = job.filter.sample_lanes(u_filter);
             let (origin, dir) = job.camera.generate_rays(at, jitter, u_aperture);
             paths.start(fresh, &pixel, &origin, &dir, job.scene.camera_medium(), &jitter, job.features);
             if max_depth == 0 {
@@ -165,5 +193,45 @@ pub(crate) fn render_tile_lanes<const N: usize>(
         dropped: out.dropped,
         features: out.features,
         splat: out.splat.map(|s| s.block),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Taking runs of a pixel's samples where they fit, and single samples elsewhere, hands out
+    /// the same samples in the same order as taking them one by one: uniform waves of several
+    /// sizes and per-pixel counts (adaptive waves, with empty pixels).
+    #[test]
+    fn runs_hand_out_the_samples_one_by_one_pops_do() {
+        let tile = Tile { x0: 2, y0: 1, w: 3, h: 2 };
+        let counts: Vec<u32> = (0..5 * 4).map(|i| [0, 16, 5, 33, 16, 1][i % 6]).collect();
+        let firsts: Vec<u32> = (0..5 * 4).map(|i| 7 * i as u32).collect();
+        let waves = [
+            WaveSamples::Uniform { first: 0, count: 16 },
+            WaveSamples::Uniform { first: 3, count: 40 },
+            WaveSamples::Uniform { first: 0, count: 4 },
+            WaveSamples::PerPixel { width: 5, first: &firsts, count: &counts },
+        ];
+        let key = |j: Job| (j.pixel, j.x, j.y, j.sample);
+        for samples in waves {
+            let mut one = Queue::new(tile, samples);
+            let expected: Vec<_> = std::iter::from_fn(|| one.pop()).map(key).collect();
+            for n in [4, 16] {
+                let mut q = Queue::new(tile, samples);
+                let mut got = Vec::new();
+                loop {
+                    if let Some(j) = q.pop_run(n) {
+                        got.extend((0..n).map(|k| (j.pixel, j.x, j.y, j.sample + k)));
+                    } else if let Some(j) = q.pop() {
+                        got.push(key(j));
+                    } else {
+                        break;
+                    }
+                }
+                assert_eq!(got, expected, "runs of {n}");
+            }
+        }
     }
 }

@@ -107,6 +107,27 @@ impl<const N: usize> LaneSamplers<N> {
         }
     }
 
+    /// Begins samples `first`, `first + 1`, … of pixel `(x, y)` in lanes 0, 1, …, N − 1: the
+    /// same lane states as [`LaneSamplers::begin`] lane by lane. The independent sampler's
+    /// lanes are set as whole vectors (a pixel's run of samples filling the group, as in
+    /// renders of 16 or more samples per pixel per wave); built lane by lane, they were scalar
+    /// stores that the vector code drawing the numbers then had to wait for.
+    #[inline(always)]
+    pub fn begin_run(&mut self, x: u32, y: u32, first: u32) {
+        if self.mode != Mode::Independent {
+            for i in 0..N {
+                self.begin(i, x, y, first + i as u32);
+            }
+            return;
+        }
+        if self.started_pixel != (x, y) {
+            self.starter.start_hashes(x, y, first);
+            self.started_pixel = (x, y);
+        }
+        self.stream_prefix = [self.starter.stream_prefix(); N];
+        self.index = std::array::from_fn(|i| first + i as u32);
+    }
+
     /// The first 2D point (the pixel filter's) of every lane of `fresh`, begun with
     /// [`LaneSamplers::begin`], and, when `aperture` is set, its second (the camera's aperture
     /// point); without it the aperture point is the lens centre and no number is drawn, so
@@ -265,6 +286,25 @@ mod tests {
                         assert_eq!(Vec2::new(x.0[i], y.0[i]), r.next_2d(), "{kind} lane {i} step {step}");
                     }
                 }
+            }
+        }
+    }
+
+    /// A pixel's run of samples begun as whole vectors draws what the lanes begun one by one
+    /// draw, for every sampler, on the pixel the starter last began and on a new one.
+    #[test]
+    fn a_run_begun_at_once_draws_what_lanes_begun_one_by_one_draw() {
+        for kind in [SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::Stratified] {
+            let proto = Sampler::new(kind, 5, 64);
+            let (mut run, mut each) = (LaneSamplers::<N>::new(&proto), LaneSamplers::<N>::new(&proto));
+            for (x, y, first) in [(3, 4, 0), (3, 4, 16), (7, 2, 48)] {
+                run.begin_run(x, y, first);
+                for i in 0..N {
+                    each.begin(i, x, y, first + i as u32);
+                }
+                let (a, b) = (run.camera_points(Ms::ALL, true), each.camera_points(Ms::ALL, true));
+                assert_eq!(a, b, "{kind} pixel ({x}, {y}) from {first}");
+                assert_eq!(run.next_1d(Ms::ALL), each.next_1d(Ms::ALL), "{kind}");
             }
         }
     }
