@@ -46,6 +46,14 @@ struct Job {
     sample: u32,
 }
 
+/// Samples for a whole lane group at once: lane `i` takes sample `first.sample + i %
+/// per_pixel` of the pixel `i / per_pixel` to the right of `first`'s (`per_pixel` a power of
+/// two).
+struct Run {
+    first: Job,
+    per_pixel: u32,
+}
+
 impl<'a> Queue<'a> {
     fn new(tile: Tile, samples: WaveSamples<'a>) -> Self {
         let mut q = Self { tile, samples, pixel: 0, x: tile.x0, y: tile.y0, next: 0, end: 0 };
@@ -88,25 +96,46 @@ impl<'a> Queue<'a> {
         Some(Job { pixel: self.pixel, x: self.x, y: self.y, sample })
     }
 
-    /// The next `n` samples if they are all of one pixel (the first is returned): what `n`
-    /// calls of [`Queue::pop`] would give then. Otherwise `None`, and the next `pop` gives
-    /// what it would have.
+    /// The next `n` samples (`n` a power of two) as a [`Run`], when they are a whole number of
+    /// pixels' samples laid out evenly: `n` samples of one pixel, or the `c` samples of each of
+    /// `n / c` pixels of one tile row in a uniform wave of `c` samples per pixel. Then the queue
+    /// is where `n` calls of [`Queue::pop`] would leave it, and lane `i` of the run is what the
+    /// `i`-th of those calls would give. Otherwise `None`, and the next `pop` gives what it would
+    /// have.
     #[inline(always)]
-    fn pop_run(&mut self, n: u32) -> Option<Job> {
+    fn pop_run(&mut self, n: u32) -> Option<Run> {
+        debug_assert!(n.is_power_of_two());
+        let pixels = self.tile.w * self.tile.h;
         // The same moves past finished pixels as `pop` makes first.
         while self.next >= self.end {
-            if self.pixel >= self.tile.w * self.tile.h {
+            if self.pixel >= pixels {
                 return None;
             }
             self.advance();
             self.enter_pixel();
         }
-        if self.pixel >= self.tile.w * self.tile.h || self.end - self.next < n {
+        if self.pixel >= pixels {
             return None;
         }
-        let sample = self.next;
-        self.next += n;
-        Some(Job { pixel: self.pixel, x: self.x, y: self.y, sample })
+        let first = Job { pixel: self.pixel, x: self.x, y: self.y, sample: self.next };
+        let left = self.end - self.next;
+        if left >= n {
+            self.next += n;
+            return Some(Run { first, per_pixel: n });
+        }
+        // Several pixels: each with all of the wave's samples still to take (so `left` is
+        // the wave's count), the count dividing `n` (a power of two, so the lanes' pixel is a
+        // shift away), and every pixel in this row of the tile.
+        let WaveSamples::Uniform { count, .. } = self.samples else { return None };
+        let span = n / left;
+        if left != count || !n.is_multiple_of(left) || self.x + span > self.tile.x0 + self.tile.w {
+            return None;
+        }
+        // Onto the run's last pixel, its samples taken (`pop` moves on from there).
+        self.pixel += span - 1;
+        self.x += span - 1;
+        self.next = self.end;
+        Some(Run { first, per_pixel: left })
     }
 }
 
@@ -150,15 +179,18 @@ pub(crate) fn render_tile_lanes<const N: usize>(
         let mut fresh = Ms::<N>::NONE;
         let mut pixel = [0u32; N];
         let mut at = [F32s::<N>::ZERO; 2];
-        // When every lane is free and the pixel has samples for all of them (a group of one
-        // pixel's samples, as waves of N or more samples per pixel give), the lanes are filled
-        // as whole vectors; otherwise lane by lane. Both give lane i the same sample.
+        // When every lane is free and the next N samples are one pixel's (waves of N or more
+        // samples per pixel) or whole pixels' of one tile row (uniform waves of fewer), the
+        // lanes are filled as whole vectors; otherwise lane by lane. Both give lane i the same
+        // sample.
         let run = if paths.active.any() { None } else { queue.pop_run(N as u32) };
-        if let Some(next) = run {
-            samplers.begin_run(next.x, next.y, next.sample);
+        if let Some(Run { first, per_pixel }) = run {
+            let shift = per_pixel.trailing_zeros();
+            let step: [u32; N] = std::array::from_fn(|i| i as u32 >> shift);
+            samplers.begin_run(first.x, first.y, first.sample, per_pixel);
             fresh = Ms::ALL;
-            pixel = [next.pixel; N];
-            at = [F32s::splat(next.x as f32), F32s::splat(next.y as f32)];
+            pixel = step.map(|k| first.pixel + k);
+            at = [F32s(step.map(|k| (first.x + k) as f32)), F32s::splat(first.y as f32)];
         } else {
             for i in (!paths.active).lanes() {
                 let Some(next) = queue.pop() else { break };
@@ -200,38 +232,46 @@ pub(crate) fn render_tile_lanes<const N: usize>(
 mod tests {
     use super::*;
 
-    /// Taking runs of a pixel's samples where they fit, and single samples elsewhere, hands out
-    /// the same samples in the same order as taking them one by one: uniform waves of several
-    /// sizes and per-pixel counts (adaptive waves, with empty pixels).
+    /// Taking runs of samples where they fit, and single samples elsewhere, hands out the same
+    /// samples in the same order as taking them one by one: uniform waves of several sizes
+    /// (runs within a pixel, runs across a row's pixels, counts that do not divide the run) and
+    /// per-pixel counts (adaptive waves, with empty pixels), in a narrow and a wide tile.
     #[test]
     fn runs_hand_out_the_samples_one_by_one_pops_do() {
-        let tile = Tile { x0: 2, y0: 1, w: 3, h: 2 };
-        let counts: Vec<u32> = (0..5 * 4).map(|i| [0, 16, 5, 33, 16, 1][i % 6]).collect();
-        let firsts: Vec<u32> = (0..5 * 4).map(|i| 7 * i as u32).collect();
-        let waves = [
-            WaveSamples::Uniform { first: 0, count: 16 },
-            WaveSamples::Uniform { first: 3, count: 40 },
-            WaveSamples::Uniform { first: 0, count: 4 },
-            WaveSamples::PerPixel { width: 5, first: &firsts, count: &counts },
-        ];
+        let counts: Vec<u32> = (0..12 * 4).map(|i| [0, 16, 5, 33, 16, 1][i % 6]).collect();
+        let firsts: Vec<u32> = (0..12 * 4).map(|i| 7 * i as u32).collect();
         let key = |j: Job| (j.pixel, j.x, j.y, j.sample);
-        for samples in waves {
-            let mut one = Queue::new(tile, samples);
-            let expected: Vec<_> = std::iter::from_fn(|| one.pop()).map(key).collect();
-            for n in [4, 16] {
-                let mut q = Queue::new(tile, samples);
-                let mut got = Vec::new();
-                loop {
-                    if let Some(j) = q.pop_run(n) {
-                        got.extend((0..n).map(|k| (j.pixel, j.x, j.y, j.sample + k)));
-                    } else if let Some(j) = q.pop() {
-                        got.push(key(j));
-                    } else {
-                        break;
+        let mut across_pixels = 0;
+        for tile in [Tile { x0: 2, y0: 1, w: 3, h: 2 }, Tile { x0: 1, y0: 0, w: 9, h: 3 }] {
+            let waves = [
+                WaveSamples::Uniform { first: 0, count: 16 },
+                WaveSamples::Uniform { first: 3, count: 40 },
+                WaveSamples::Uniform { first: 0, count: 4 },
+                WaveSamples::Uniform { first: 5, count: 2 },
+                WaveSamples::Uniform { first: 0, count: 1 },
+                WaveSamples::Uniform { first: 1, count: 3 },
+                WaveSamples::PerPixel { width: 12, first: &firsts, count: &counts },
+            ];
+            for samples in waves {
+                let mut one = Queue::new(tile, samples);
+                let expected: Vec<_> = std::iter::from_fn(|| one.pop()).map(key).collect();
+                for n in [4, 8, 16] {
+                    let mut q = Queue::new(tile, samples);
+                    let mut got = Vec::new();
+                    loop {
+                        if let Some(Run { first: j, per_pixel: c }) = q.pop_run(n) {
+                            across_pixels += usize::from(c < n);
+                            got.extend((0..n).map(|k| (j.pixel + k / c, j.x + k / c, j.y, j.sample + k % c)));
+                        } else if let Some(j) = q.pop() {
+                            got.push(key(j));
+                        } else {
+                            break;
+                        }
                     }
+                    assert_eq!(got, expected, "{tile:?}, {samples:?}, runs of {n}");
                 }
-                assert_eq!(got, expected, "runs of {n}");
             }
         }
+        assert!(across_pixels > 0);
     }
 }

@@ -129,8 +129,8 @@ impl Sampler {
         };
         if self.hashed != Some((x, y, self.round)) {
             if !matches!(self.hashed, Some((hx, hy, _)) if (hx, hy) == (x, y)) {
-                self.pixel_hash = hash_words(&[self.seed, ((x as u64) << 32) | y as u64]);
-                self.stream_prefix = hash_word(HASH_START, self.pixel_hash);
+                self.pixel_hash = pixel_hash(self.seed, x, y);
+                self.stream_prefix = pixel_stream_prefix(self.pixel_hash);
             }
             // The independent sampler draws every number from its generator and never asks for
             // a dimension hash; its round is the sample index, so this hash (four SplitMix64
@@ -166,6 +166,11 @@ impl Sampler {
     /// The current sample's place in its round of strata.
     pub(crate) fn index_in_round(&self) -> u32 {
         self.index_in_round
+    }
+
+    /// The seed every pixel's hash starts from.
+    pub(crate) fn seed(&self) -> u64 {
+        self.seed
     }
 
     /// The hash from which sample `index`'s generator is made (see [`sample_generator`]).
@@ -239,6 +244,20 @@ const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 #[inline(always)]
 pub(crate) fn jittered(stratum: u32, jitter: f32, n: u32) -> f32 {
     ((stratum as f32 + jitter) / n as f32).min(ONE_MINUS_EPSILON)
+}
+
+/// The hash of pixel `(x, y)` under `seed`, from which all of the pixel's numbers derive.
+/// Always inlined, so the lane samplers' loop over it vectorises.
+#[inline(always)]
+pub(crate) fn pixel_hash(seed: u64, x: u32, y: u32) -> u64 {
+    // `hash_words(&[seed, (x << 32) | y])`, its fold written out.
+    hash_word(hash_word(HASH_START, seed), ((x as u64) << 32) | y as u64)
+}
+
+/// The stream prefix of the pixel whose hash is `pixel_hash` (see [`sample_generator`]).
+#[inline(always)]
+pub(crate) fn pixel_stream_prefix(pixel_hash: u64) -> u64 {
+    hash_word(HASH_START, pixel_hash)
 }
 
 /// The PCG generator `(state, increment)` of sample `index` of a pixel whose stream prefix is

@@ -11,7 +11,7 @@
 use super::simd::{F32s, Ms};
 use crate::sampling::hash::{mix64, permutation_lanes};
 use crate::sampling::pcg;
-use crate::sampling::sampler::{dimension_hash, jittered, sample_generator};
+use crate::sampling::sampler::{dimension_hash, jittered, pixel_hash, pixel_stream_prefix, sample_generator};
 use crate::sampling::sobol::{dim1_next_column, owen_scramble, to_unit, DIM1_FIRST_COLUMN};
 use crate::sampling::{Sampler, SamplerKind};
 
@@ -107,25 +107,32 @@ impl<const N: usize> LaneSamplers<N> {
         }
     }
 
-    /// Begins samples `first`, `first + 1`, … of pixel `(x, y)` in lanes 0, 1, …, N − 1: the
-    /// same lane states as [`LaneSamplers::begin`] lane by lane. The independent sampler's
-    /// lanes are set as whole vectors (a pixel's run of samples filling the group, as in
-    /// renders of 16 or more samples per pixel per wave); built lane by lane, they were scalar
-    /// stores that the vector code drawing the numbers then had to wait for.
+    /// Begins, in lane `i`, sample `first + i % per_pixel` of pixel `(x + i / per_pixel, y)`
+    /// (`per_pixel` a power of two): the same lane states as [`LaneSamplers::begin`] lane by
+    /// lane. The independent sampler's lanes are made as whole vectors (a run of one pixel's
+    /// samples, or of a row's pixels in small uniform waves); begun lane by lane, their scalar
+    /// stores held up the vector code that draws the lanes' first numbers.
     #[inline(always)]
-    pub fn begin_run(&mut self, x: u32, y: u32, first: u32) {
+    pub fn begin_run(&mut self, x: u32, y: u32, first: u32, per_pixel: u32) {
+        let shift = per_pixel.trailing_zeros();
         if self.mode != Mode::Independent {
             for i in 0..N {
-                self.begin(i, x, y, first + i as u32);
+                self.begin(i, x + (i as u32 >> shift), y, first + (i as u32 & (per_pixel - 1)));
             }
             return;
         }
-        if self.started_pixel != (x, y) {
-            self.starter.start_hashes(x, y, first);
-            self.started_pixel = (x, y);
+        if per_pixel as usize >= N {
+            if self.started_pixel != (x, y) {
+                self.starter.start_hashes(x, y, first);
+                self.started_pixel = (x, y);
+            }
+            self.stream_prefix = [self.starter.stream_prefix(); N];
+        } else {
+            let seed = self.starter.seed();
+            self.stream_prefix =
+                std::array::from_fn(|i| pixel_stream_prefix(pixel_hash(seed, x + (i as u32 >> shift), y)));
         }
-        self.stream_prefix = [self.starter.stream_prefix(); N];
-        self.index = std::array::from_fn(|i| first + i as u32);
+        self.index = std::array::from_fn(|i| first + (i as u32 & (per_pixel - 1)));
     }
 
     /// The first 2D point (the pixel filter's) of every lane of `fresh`, begun with
@@ -297,13 +304,22 @@ mod tests {
         for kind in [SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::Stratified] {
             let proto = Sampler::new(kind, 5, 64);
             let (mut run, mut each) = (LaneSamplers::<N>::new(&proto), LaneSamplers::<N>::new(&proto));
-            for (x, y, first) in [(3, 4, 0), (3, 4, 16), (7, 2, 48)] {
-                run.begin_run(x, y, first);
-                for i in 0..N {
-                    each.begin(i, x, y, first + i as u32);
+            let runs = [
+                (3, 4, 0, 16),
+                (3, 4, 16, 16),
+                (7, 2, 48, 32),
+                (0, 5, 0, 1),
+                (2, 5, 8, 4),
+                (2, 5, 12, 8),
+                (3, 4, 32, 16),
+            ];
+            for (x, y, first, per_pixel) in runs {
+                run.begin_run(x, y, first, per_pixel);
+                for i in 0..N as u32 {
+                    each.begin(i as usize, x + i / per_pixel, y, first + i % per_pixel);
                 }
                 let (a, b) = (run.camera_points(Ms::ALL, true), each.camera_points(Ms::ALL, true));
-                assert_eq!(a, b, "{kind} pixel ({x}, {y}) from {first}");
+                assert_eq!(a, b, "{kind} pixel ({x}, {y}) from {first}, {per_pixel} per pixel");
                 assert_eq!(run.next_1d(Ms::ALL), each.next_1d(Ms::ALL), "{kind}");
             }
         }
