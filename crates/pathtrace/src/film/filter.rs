@@ -19,6 +19,13 @@
 use crate::math::Vec2;
 use crate::wide::simd::F32s;
 
+/// One coordinate of a sample of a box narrower than the pixel (`radius` < ½): uniform over
+/// `[½ − radius, ½ + radius)` for `u` uniform in `[0, 1)`, relative to the pixel's corner.
+#[inline(always)]
+fn narrow_box_offset(u: f32, radius: f32) -> f32 {
+    0.5 + (2.0 * u - 1.0) * radius
+}
+
 /// How the samples of a pixel are spread over and around it.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub enum PixelFilter {
@@ -100,7 +107,7 @@ impl PixelFilter {
     pub fn sample(&self, u: Vec2) -> Vec2 {
         match self {
             PixelFilter::Box { radius } if *radius < 0.5 => {
-                Vec2::splat(0.5) + Vec2::new(2.0 * u.x - 1.0, 2.0 * u.y - 1.0) * *radius
+                Vec2::new(narrow_box_offset(u.x, *radius), narrow_box_offset(u.y, *radius))
             }
             _ => u,
         }
@@ -112,7 +119,13 @@ impl PixelFilter {
     pub fn sample_lanes<const N: usize>(&self, u: [F32s<N>; 2]) -> [F32s<N>; 2] {
         match self {
             PixelFilter::Box { radius } if *radius < 0.5 => {
-                u.map(|u| F32s::splat(0.5) + (F32s::splat(2.0) * u - F32s::splat(1.0)) * *radius)
+                let mut out = u;
+                for (o, u) in out.iter_mut().zip(u) {
+                    for i in 0..N {
+                        o.0[i] = narrow_box_offset(u.0[i], *radius);
+                    }
+                }
+                out
             }
             _ => u,
         }
