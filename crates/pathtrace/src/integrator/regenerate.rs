@@ -79,16 +79,23 @@ impl<'a> Queue<'a> {
         }
     }
 
+    /// Moves past finished pixels; false when the tile has no samples left.
     #[inline(always)]
-    fn pop(&mut self) -> Option<Job> {
+    fn skip_finished(&mut self) -> bool {
+        let pixels = self.tile.w * self.tile.h;
         while self.next >= self.end {
-            if self.pixel >= self.tile.w * self.tile.h {
-                return None;
+            if self.pixel >= pixels {
+                return false;
             }
             self.advance();
             self.enter_pixel();
         }
-        if self.pixel >= self.tile.w * self.tile.h {
+        self.pixel < pixels
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Job> {
+        if !self.skip_finished() {
             return None;
         }
         let sample = self.next;
@@ -105,16 +112,8 @@ impl<'a> Queue<'a> {
     #[inline(always)]
     fn pop_run(&mut self, n: u32) -> Option<Run> {
         debug_assert!(n.is_power_of_two());
-        let pixels = self.tile.w * self.tile.h;
         // The same moves past finished pixels as `pop` makes first.
-        while self.next >= self.end {
-            if self.pixel >= pixels {
-                return None;
-            }
-            self.advance();
-            self.enter_pixel();
-        }
-        if self.pixel >= pixels {
+        if !self.skip_finished() {
             return None;
         }
         let first = Job { pixel: self.pixel, x: self.x, y: self.y, sample: self.next };
