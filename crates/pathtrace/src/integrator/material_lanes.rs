@@ -52,8 +52,6 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
     let (s, t) = warp::basis(&n_s);
     let to_local = |w: &Vec3s<N>| Vec3s { x: w.dot(&s), y: w.dot(&t), z: w.dot(&n_s) };
     let wo = to_local(v.wo);
-    // shade.rs's `same_side`: both directions on one side of the true surface.
-    let same_side = |a: &Vec3s<N>, b: &Vec3s<N>| (n_g.dot(a) * n_g.dot(b)).gt(zero);
 
     // ---- Light sampling: the shadow ray and what it adds if unoccluded -------------------
     let ls = v.light;
@@ -62,8 +60,7 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
         let (f, pdf_material) = material.eval_pdf(&wo, &to_local(&ls.wi));
         // A point light cannot be found by material sampling: its sample counts in full.
         let pdf_material = F32s::select(ls.delta, zero, pdf_material);
-        let black = |c: &[F32s<N>; 3]| c[0].eq(zero) & c[1].eq(zero) & c[2].eq(zero);
-        let lit = lit & !black(&ls.radiance) & !black(&f) & same_side(v.wo, &ls.wi);
+        let lit = lit & !black(&ls.radiance) & !black(&f) & same_side(&n_g, v.wo, &ls.wi);
         if lit.any() {
             let origin = offset_ray_origin_lanes(v.p, &n_g, &ls.wi);
             let to_light = ls.point.sub(&origin);
@@ -92,10 +89,9 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
     // Reflection must stay on the viewer's side of the true surface (shading normals can
     // disagree with it), as in shade.rs.
     let reflects = (wi_world.dot(&n_s) * wo.z).gt(zero);
-    let black = sample.weight[0].eq(zero) & sample.weight[1].eq(zero) & sample.weight[2].eq(zero);
-    let stays = same_side(v.wo, &wi_world);
+    let stays = same_side(&n_g, v.wo, &wi_world);
     let agree = (reflects & stays) | (!reflects & !stays);
-    let goes_on = sample.valid & agree & !black;
+    let goes_on = sample.valid & agree & !black(&sample.weight);
     let origin = offset_ray_origin_lanes(v.p, &n_g, &wi_world);
     sc.goes_on = (sc.goes_on & !lanes) | goes_on;
     sc.origin = Vec3s::select(lanes, &origin, &sc.origin);
@@ -106,4 +102,21 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
     sc.pdf = F32s::select(lanes, sample.pdf, sc.pdf);
     sc.specular = sc.specular & !lanes;
     sc.eta = F32s::select(lanes, F32s::ONE, sc.eta);
+}
+
+// The two tests below are functions, not closures in `material_lanes`: as closures they were
+// compiled out of line, without the SIMD kernels' target features, and called from them.
+
+/// Lanes whose RGB value is zero in all three channels.
+#[inline(always)]
+fn black<const N: usize>(c: &[F32s<N>; 3]) -> Ms<N> {
+    let zero = F32s::ZERO;
+    c[0].eq(zero) & c[1].eq(zero) & c[2].eq(zero)
+}
+
+/// shade.rs's `same_side`: lanes whose `a` and `b` lie on one side of the true surface (normal
+/// `n_g`).
+#[inline(always)]
+fn same_side<const N: usize>(n_g: &Vec3s<N>, a: &Vec3s<N>, b: &Vec3s<N>) -> Ms<N> {
+    (n_g.dot(a) * n_g.dot(b)).gt(F32s::ZERO)
 }

@@ -44,7 +44,13 @@ pub(crate) fn fresnel_conductor_rgb_lanes<const N: usize>(
     eta: [F32s<N>; 3],
     k: [F32s<N>; 3],
 ) -> [F32s<N>; 3] {
-    std::array::from_fn(|c| fresnel_conductor_lanes(cos_theta_i, eta[c], k[c]))
+    // Channels written out: `array::from_fn`, or a closure per channel, was compiled out of
+    // the SIMD kernels (as a function for baseline SSE).
+    [
+        fresnel_conductor_lanes(cos_theta_i, eta[0], k[0]),
+        fresnel_conductor_lanes(cos_theta_i, eta[1], k[1]),
+        fresnel_conductor_lanes(cos_theta_i, eta[2], k[2]),
+    ]
 }
 
 /// `x.clamp(0, 1)` per lane, NaN kept (as `f32::clamp`).

@@ -101,7 +101,9 @@ impl<const N: usize> LaneScattering<N> for RoughConductorLanes<N> {
         let valid = active & !wi.z.le(zero) & !cos_om.le(zero) & pdf.is_finite() & pdf.gt(zero);
         let f = fresnel_conductor_rgb_lanes(cos_om, self.eta, self.k);
         let g1 = self.distribution.g1(&wi, &m);
-        let weight = std::array::from_fn(|c| self.reflectance[c] * f[c] * g1);
+        // Channels written out, as in `fresnel_conductor_rgb_lanes`.
+        let r = &self.reflectance;
+        let weight = [r[0] * f[0] * g1, r[1] * f[1] * g1, r[2] * f[2] * g1];
         LaneSamples { valid, wi, weight, pdf }
     }
 
@@ -119,7 +121,12 @@ impl<const N: usize> LaneScattering<N> for RoughConductorLanes<N> {
         let fresnel = fresnel_conductor_rgb_lanes(cos_om, self.eta, self.k);
         let scale = dg / (4.0 * wo.z);
         let black = below | dg.le(zero);
-        let f = std::array::from_fn(|c| F32s::select(black, zero, self.reflectance[c] * fresnel[c] * scale));
+        let r = &self.reflectance;
+        let f = [
+            F32s::select(black, zero, r[0] * fresnel[0] * scale),
+            F32s::select(black, zero, r[1] * fresnel[1] * scale),
+            F32s::select(black, zero, r[2] * fresnel[2] * scale),
+        ];
         // Jacobian of the reflection map dωm/dωi = 1/(4 wo·m) (Walter 2007 eq. 14).
         let pdf = visible_density_lanes(g1_o, cos_om, d, wo.z) / (4.0 * cos_om);
         let pdf = F32s::select(below | cos_om.le(zero), zero, pdf);

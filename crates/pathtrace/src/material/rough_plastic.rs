@@ -291,7 +291,13 @@ impl<const N: usize> LaneScattering<N> for RoughPlasticLanes<'_, N> {
         let fresnel = fresnel_dielectric_lanes(cos_om, self.ior).0;
         let coat = fresnel * d * (g1_o * self.distribution.g1(wi, &m)) / (4.0 * wo.z);
         let base = self.transmittance(wo.z) * self.transmittance(wi.z) * wi.z;
-        let value = std::array::from_fn(|c| F32s::select(below, zero, self.specular[c] * coat + self.base[c] * base));
+        // Channels written out, as in `fresnel_conductor_rgb_lanes`.
+        let (ks, kd) = (&self.specular, &self.base);
+        let value = [
+            F32s::select(below, zero, ks[0] * coat + kd[0] * base),
+            F32s::select(below, zero, ks[1] * coat + kd[1] * base),
+            F32s::select(below, zero, ks[2] * coat + kd[2] * base),
+        ];
         let p_coat = self.coating_probability(wo);
         // Jacobian of the reflection map dωm/dωi = 1/(4 wo·m) (Walter 2007 eq. 14).
         let coat_pdf = visible_density_lanes(g1_o, cos_om, d, wo.z) / (4.0 * cos_om);

@@ -66,10 +66,12 @@ impl Distribution2D {
         // may have none, and then searches the first row that has weight.
         let fallback = self.rows[self.first_row].as_ref().map(Distribution1D::search_table);
         let Some(fallback) = fallback else { return (x, y, F32s::ZERO) };
-        let searches: [(&CdfGuide, &[f32], f32); N] = std::array::from_fn(|i| {
+        // A loop, not `array::from_fn`: that was compiled out of the SIMD kernels.
+        let mut searches: [(&CdfGuide, &[f32], f32); N] = [(fallback.0, fallback.1, 0.0); N];
+        for (i, search) in searches.iter_mut().enumerate() {
             let row = self.rows[row_of[i]].as_ref().map_or(fallback, Distribution1D::search_table);
-            (row.0, row.1, u1.0[i])
-        });
+            *search = (row.0, row.1, u1.0[i]);
+        }
         let columns = find_interleaved(&searches);
         for i in active.lanes() {
             let Some(row) = &self.rows[row_of[i]] else {

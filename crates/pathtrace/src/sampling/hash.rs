@@ -56,7 +56,11 @@ pub fn permutation_lanes<const N: usize>(index: &[u32; N], len: u32, seeds: &[u6
         return [0; N];
     }
     let mask = u32::MAX >> (len - 1).leading_zeros();
-    let mut i = std::array::from_fn(|l| permutation_step(index[l], mask, seeds[l]));
+    // A loop, not `array::from_fn`: that was compiled out of the SIMD kernels.
+    let mut i = [0; N];
+    for (l, v) in i.iter_mut().enumerate() {
+        *v = permutation_step(index[l], mask, seeds[l]);
+    }
     while i.iter().any(|&v| v >= len) {
         for l in 0..N {
             let next = permutation_step(i[l], mask, seeds[l]);

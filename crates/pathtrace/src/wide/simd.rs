@@ -74,8 +74,14 @@ impl<const N: usize> F32s<N> {
 
     /// Lane `i` of the result is `f(i)`.
     #[inline(always)]
-    pub fn from_fn(f: impl FnMut(usize) -> f32) -> Self {
-        F32s(std::array::from_fn(f))
+    pub fn from_fn(mut f: impl FnMut(usize) -> f32) -> Self {
+        // A loop, not `array::from_fn`: that was compiled out of line, as a baseline-SSE
+        // function called from inside the AVX kernels.
+        let mut out = [0.0; N];
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = f(i);
+        }
+        F32s(out)
     }
 
     /// `a < b ? a : b` per lane (the SIMD min: with a NaN, `b`).
@@ -210,7 +216,12 @@ impl<const N: usize> Ms<N> {
     /// Lane `i` is `f(i)`.
     #[inline(always)]
     pub fn from_fn(mut f: impl FnMut(usize) -> bool) -> Self {
-        Ms(std::array::from_fn(|i| if f(i) { u32::MAX } else { 0 }))
+        // A loop for the reason given at `F32s::from_fn`.
+        let mut out = [0; N];
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = if f(i) { u32::MAX } else { 0 };
+        }
+        Ms(out)
     }
 
     #[inline(always)]
