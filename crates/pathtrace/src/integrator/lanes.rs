@@ -10,7 +10,7 @@ use crate::math::{Rgb, Vec2, Vec3, Vec4};
 use crate::medium::MediumId;
 use crate::scene::{Interaction, Primitive};
 use crate::shape::SurfacePoint;
-use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::simd::{rgb_black, F32s, Ms, Vec3s};
 
 /// The state of `N` paths (lanes outside `active` hold stale values).
 pub(crate) struct Paths<const N: usize> {
@@ -217,8 +217,7 @@ impl<const N: usize> Paths<N> {
         // or splatting filter takes them too: found for the group at once, they skip the
         // lane-by-lane checks (which were about a tenth of an empty frame's render).
         if out.features.is_none() && out.splat.is_none() {
-            let zero = F32s::ZERO;
-            let black = mask & self.radiance[0].eq(zero) & self.radiance[1].eq(zero) & self.radiance[2].eq(zero);
+            let black = mask & rgb_black(&self.radiance);
             if black.any() {
                 match self.shared_pixel(black) {
                     Some(pixel) => out.pixels[pixel as usize].add_blacks(black.bitmask().count_ones()),
@@ -244,7 +243,7 @@ impl<const N: usize> Paths<N> {
                 let (mut sum, mut sum_sq) = ([[0i64; N]; 3], [[0i64; N]; 3]);
                 for c in 0..3 {
                     // Other lanes convert zero (their values may be outside `small_terms`'s range).
-                    let x = F32s::select(small, self.radiance[c], zero);
+                    let x = F32s::select(small, self.radiance[c], F32s::ZERO);
                     for i in 0..N {
                         (sum[c][i], sum_sq[c][i]) = small_terms(f64::from(x.0[i]));
                     }

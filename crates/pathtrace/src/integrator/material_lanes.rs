@@ -9,11 +9,11 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::path::Scattered;
-use super::shade::SHADOW_EPSILON;
+use super::shade::{same_side_lanes, SHADOW_EPSILON};
 use super::Strategy;
 use crate::material::LaneScattering;
 use crate::math::offset_ray_origin_lanes;
-use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::simd::{rgb_black, F32s, Ms, Vec3s};
 use crate::wide::{warp, LightSamples};
 
 /// What the lane forms need of their vertex.
@@ -60,7 +60,7 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
         let (f, pdf_material) = material.eval_pdf(&wo, &to_local(&ls.wi));
         // A point light cannot be found by material sampling: its sample counts in full.
         let pdf_material = F32s::select(ls.delta, zero, pdf_material);
-        let lit = lit & !black(&ls.radiance) & !black(&f) & same_side(&n_g, v.wo, &ls.wi);
+        let lit = lit & !rgb_black(&ls.radiance) & !rgb_black(&f) & same_side_lanes(&n_g, v.wo, &ls.wi);
         if lit.any() {
             let origin = offset_ray_origin_lanes(v.p, &n_g, &ls.wi);
             let to_light = ls.point.sub(&origin);
@@ -89,9 +89,9 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
     // Reflection must stay on the viewer's side of the true surface (shading normals can
     // disagree with it), as in shade.rs.
     let reflects = (wi_world.dot(&n_s) * wo.z).gt(zero);
-    let stays = same_side(&n_g, v.wo, &wi_world);
+    let stays = same_side_lanes(&n_g, v.wo, &wi_world);
     let agree = (reflects & stays) | (!reflects & !stays);
-    let goes_on = sample.valid & agree & !black(&sample.weight);
+    let goes_on = sample.valid & agree & !rgb_black(&sample.weight);
     let origin = offset_ray_origin_lanes(v.p, &n_g, &wi_world);
     sc.goes_on = (sc.goes_on & !lanes) | goes_on;
     sc.origin = Vec3s::select(lanes, &origin, &sc.origin);
@@ -102,21 +102,4 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
     sc.pdf = F32s::select(lanes, sample.pdf, sc.pdf);
     sc.specular = sc.specular & !lanes;
     sc.eta = F32s::select(lanes, F32s::ONE, sc.eta);
-}
-
-// The two tests below are functions, not closures in `material_lanes`: as closures they were
-// compiled out of line, without the SIMD kernels' target features, and called from them.
-
-/// Lanes whose RGB value is zero in all three channels.
-#[inline(always)]
-fn black<const N: usize>(c: &[F32s<N>; 3]) -> Ms<N> {
-    let zero = F32s::ZERO;
-    c[0].eq(zero) & c[1].eq(zero) & c[2].eq(zero)
-}
-
-/// shade.rs's `same_side`: lanes whose `a` and `b` lie on one side of the true surface (normal
-/// `n_g`).
-#[inline(always)]
-fn same_side<const N: usize>(n_g: &Vec3s<N>, a: &Vec3s<N>, b: &Vec3s<N>) -> Ms<N> {
-    (n_g.dot(a) * n_g.dot(b)).gt(F32s::ZERO)
 }

@@ -12,6 +12,7 @@ use super::Strategy;
 use crate::material::{Material, Scattering};
 use crate::math::{offset_ray_origin, Frame, Rgb, Vec2, Vec3};
 use crate::scene::{Interaction, Scene};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 use crate::wide::LaneLightSample;
 
 /// Light-sampling shadow rays stop this fraction short of the light, so they do not hit it.
@@ -200,8 +201,18 @@ struct Scatter {
     eta: f32,
 }
 
+/// True if `a` and `b` lie on one side of the surface of true normal `n`: the one-lane instance
+/// of [`same_side_lanes`].
 fn same_side(n: Vec3, a: Vec3, b: Vec3) -> bool {
-    n.dot(a) * n.dot(b) > 0.0
+    same_side_lanes(&Vec3s::<1>::splat(n), &Vec3s::splat(a), &Vec3s::splat(b)).lane(0)
+}
+
+/// Lanes whose `a` and `b` lie on one side of the surface of true normal `n_g` (a function, not a
+/// closure in `material_lanes`: as a closure it was compiled out of line, without the SIMD
+/// kernels' target features, and called from them).
+#[inline(always)]
+pub(super) fn same_side_lanes<const N: usize>(n_g: &Vec3s<N>, a: &Vec3s<N>, b: &Vec3s<N>) -> Ms<N> {
+    (n_g.dot(a) * n_g.dot(b)).gt(F32s::ZERO)
 }
 
 /// The `light` strategy: continue towards a light point; pdf of the direction summed over all

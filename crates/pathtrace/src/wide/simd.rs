@@ -335,6 +335,14 @@ impl<const N: usize> Not for Ms<N> {
     }
 }
 
+/// Lanes whose RGB value (one lane group per channel) is zero in all three channels:
+/// [`crate::math::Rgb::is_black`] per lane.
+#[inline(always)]
+pub fn rgb_black<const N: usize>(c: &[F32s<N>; 3]) -> Ms<N> {
+    let zero = F32s::ZERO;
+    c[0].eq(zero) & c[1].eq(zero) & c[2].eq(zero)
+}
+
 /// Three coordinates of `N` vectors.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Vec3s<const N: usize> {
