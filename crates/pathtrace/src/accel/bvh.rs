@@ -3,6 +3,7 @@
 //! traversed as a four-wide tree (see `wide.rs`). Leaves test their quads and triangles four
 //! at a time (see `leaf.rs`).
 
+use arrayvec::ArrayVec;
 use rayon::prelude::*;
 
 use super::build::{BuildItem, BuildOptions};
@@ -88,18 +89,17 @@ pub struct Bvh {
     bounds: Aabb,
     stats: BvhStats,
     leaves: Leaves,
-    /// Traversal stack slots needed: a four-wide node visit pushes at most four children and
-    /// pops one, so 3 per level of the four-wide tree, plus 1.
-    stack_need: usize,
 }
 
-/// Depth ≤ 32 + log2(n) < 64 for any n below 2³², so 3 · 64 + 1 slots always suffice.
+/// Traversal stack slots: a four-wide node visit pushes at most four children and pops one,
+/// so 3 per level of the four-wide tree, plus 1; depth ≤ 32 + log2(n) < 64 for any n below 2³²,
+/// so 3 · 64 + 1 slots always suffice.
 const STACK_SIZE: usize = 3 * 64 + 1;
-/// Most trees fit one of these smaller stacks, which are cheaper to zero for every ray (zeroing
-/// the largest cost ~4% of all instructions on the Cornell box, and ~8% of the cycles of
-/// incoherent rays on 10⁵ triangles).
-const SMALL_STACK: usize = 16;
-const MEDIUM_STACK: usize = 64;
+/// A walk's stack: room for any tree, with nothing written before it is used. Zeroed arrays
+/// were a `memset` call per walk (1.5 KB for the group walks, 3.3% of the teapot's time; 512
+/// bytes for a single ray on trees of depth 6 to 21), and smaller arrays for shallower trees
+/// stamped each single-ray walk three times into the render loop.
+type WalkStack<T> = ArrayVec<T, STACK_SIZE>;
 /// A node that fewer rays of a group reach is traversed ray by ray (see
 /// [`Bvh::intersect_lanes`]).
 const SINGLE_RAY_BELOW: u32 = 3;
@@ -137,10 +137,10 @@ impl Bvh {
         leaves.shrink_to_fit();
         let mut wide = collapse(&nodes);
         wide.shrink_to_fit();
-        let stack_need = 3 * wide_depth(&wide) + 1;
+        debug_assert!(3 * wide_depth(&wide) < STACK_SIZE, "a tree deeper than the walks' stack");
         let bounds = nodes.first().map_or(Aabb::EMPTY, |n| n.bounds);
         let stats = binary_stats(&nodes);
-        Bvh { wide, bounds, stats, leaves, stack_need }
+        Bvh { wide, bounds, stats, leaves }
     }
 
     /// True if both trees have the same four-wide nodes (boxes and children) and the same
@@ -192,13 +192,7 @@ impl Bvh {
         t_max: f32,
         best: Option<(PrimHit, u32)>,
     ) -> Option<(PrimHit, u32)> {
-        if self.stack_need <= SMALL_STACK {
-            self.closest::<P, SMALL_STACK>(start, prims, ray, t_min, t_max, best)
-        } else if self.stack_need <= MEDIUM_STACK {
-            self.closest::<P, MEDIUM_STACK>(start, prims, ray, t_min, t_max, best)
-        } else {
-            self.closest::<P, STACK_SIZE>(start, prims, ray, t_min, t_max, best)
-        }
+        self.closest(start, prims, ray, t_min, t_max, best)
     }
 
     /// Closest hits of the rays of `active` (lane `i`: `origin[i] + t·dir[i]`, `t` in
@@ -230,12 +224,9 @@ impl Bvh {
         let rays = RayBoxes::new(origin, dir);
         let mut t_far = F32s::<N>::splat(t_max);
         let lo = F32s::<N>::splat(t_min);
-        let mut stack = [(0u32, 0u32); STACK_SIZE];
-        stack[0] = (0, active.bitmask());
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let (node, mask) = stack[sp];
+        let mut stack = WalkStack::new();
+        stack.push((0, active.bitmask()));
+        while let Some((node, mask)) = stack.pop() {
             if mask.count_ones() < SINGLE_RAY_BELOW {
                 let mut lanes = mask;
                 while lanes != 0 {
@@ -297,8 +288,7 @@ impl Bvh {
             }
             for &(child, hit, _) in &kids[..k] {
                 prefetch(&self.wide, child);
-                stack[sp] = (child, hit);
-                sp += 1;
+                stack.push((child, hit));
             }
         }
         best
@@ -309,7 +299,7 @@ impl Bvh {
     /// distances, so the nearest is visited next and a popped child that starts beyond the
     /// closest hit so far is skipped without loading it.
     #[inline(always)]
-    fn closest<P: PrimitiveSet + ?Sized, const N: usize>(
+    fn closest<P: PrimitiveSet + ?Sized>(
         &self,
         start: u32,
         prims: &P,
@@ -320,8 +310,7 @@ impl Bvh {
     ) -> Option<(PrimHit, u32)> {
         let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
-        let mut stack = [(0u32, 0f32); N];
-        let mut sp = 0;
+        let mut stack = WalkStack::<(u32, f32)>::new();
         let mut node = start;
         loop {
             let n = &self.wide[node as usize];
@@ -334,7 +323,7 @@ impl Bvh {
             // themselves (a separate buffer copied over afterwards compiled to a `memmove`
             // call per node: 4–6% of the time on small meshes).
             let (mut next, mut next_entry) = (EMPTY, f32::INFINITY);
-            let base = sp;
+            let base = stack.len();
             while lanes != 0 {
                 let lane = lanes.trailing_zeros() as usize;
                 let child = n.children[lane];
@@ -349,13 +338,14 @@ impl Bvh {
                             continue;
                         }
                     }
-                    let mut i = sp;
-                    while i > base && stack[i - 1].1 < entry {
-                        stack[i] = stack[i - 1];
+                    stack.push((child, entry));
+                    let pushed = stack.as_mut_slice();
+                    let mut i = pushed.len() - 1;
+                    while i > base && pushed[i - 1].1 < entry {
+                        pushed[i] = pushed[i - 1];
                         i -= 1;
                     }
-                    stack[i] = (child, entry);
-                    sp += 1;
+                    pushed[i] = (child, entry);
                 } else if child != EMPTY {
                     self.leaves.intersect(child & !LEAF, prims, ray, &rx4, t_min, &mut t_max, &mut best);
                 }
@@ -365,11 +355,7 @@ impl Bvh {
                 continue;
             }
             loop {
-                if sp == 0 {
-                    return best;
-                }
-                sp -= 1;
-                let (next, entry) = stack[sp];
+                let Some((next, entry)) = stack.pop() else { return best };
                 if entry <= t_max {
                     node = next;
                     break;
@@ -384,13 +370,7 @@ impl Bvh {
         if self.wide.is_empty() {
             return false;
         }
-        if self.stack_need <= SMALL_STACK {
-            self.any_hit::<P, SMALL_STACK>(0, prims, ray, t_min, t_max)
-        } else if self.stack_need <= MEDIUM_STACK {
-            self.any_hit::<P, MEDIUM_STACK>(0, prims, ray, t_min, t_max)
-        } else {
-            self.any_hit::<P, STACK_SIZE>(0, prims, ray, t_min, t_max)
-        }
+        self.any_hit(0, prims, ray, t_min, t_max)
     }
 
     /// [`Bvh::occluded`] in the subtree of wide node `start`.
@@ -403,13 +383,7 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
     ) -> bool {
-        if self.stack_need <= SMALL_STACK {
-            self.any_hit::<P, SMALL_STACK>(start, prims, ray, t_min, t_max)
-        } else if self.stack_need <= MEDIUM_STACK {
-            self.any_hit::<P, MEDIUM_STACK>(start, prims, ray, t_min, t_max)
-        } else {
-            self.any_hit::<P, STACK_SIZE>(start, prims, ray, t_min, t_max)
-        }
+        self.any_hit(start, prims, ray, t_min, t_max)
     }
 
     /// [`Bvh::occluded`] for the rays of `active` (lane `i`: `origin[i] + t·dir[i]`, `t` in
@@ -432,12 +406,9 @@ impl Bvh {
         let ray = |i: usize| Ray::new(origin.lane(i), dir.lane(i));
         let rays = RayBoxes::new(origin, dir);
         let lo = F32s::<N>::splat(t_min);
-        let mut stack = [(0u32, 0u32); STACK_SIZE];
-        stack[0] = (0, active.bitmask());
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let (node, mask) = stack[sp];
+        let mut stack = WalkStack::new();
+        stack.push((0, active.bitmask()));
+        while let Some((node, mask)) = stack.pop() {
             let mask = mask & !blocked;
             if mask.count_ones() < SINGLE_RAY_BELOW {
                 let mut lanes = mask;
@@ -462,8 +433,7 @@ impl Bvh {
                 }
                 if child & LEAF == 0 {
                     prefetch(&self.wide, child);
-                    stack[sp] = (child, hit);
-                    sp += 1;
+                    stack.push((child, hit));
                 } else if hit.count_ones() >= RAY_LANES_FROM {
                     blocked |= self.leaves.occluded_rays(child & !LEAF, prims, origin, dir, hit, t_min, t_max);
                 } else {
@@ -483,18 +453,10 @@ impl Bvh {
     }
 
     #[inline(always)]
-    fn any_hit<P: PrimitiveSet + ?Sized, const N: usize>(
-        &self,
-        start: u32,
-        prims: &P,
-        ray: &Ray,
-        t_min: f32,
-        t_max: f32,
-    ) -> bool {
+    fn any_hit<P: PrimitiveSet + ?Sized>(&self, start: u32, prims: &P, ray: &Ray, t_min: f32, t_max: f32) -> bool {
         let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
-        let mut stack = [0u32; N];
-        let mut sp = 0;
+        let mut stack = WalkStack::<u32>::new();
         let mut node = start;
         loop {
             let n = &self.wide[node as usize];
@@ -510,8 +472,7 @@ impl Bvh {
                 if child & LEAF == 0 {
                     prefetch(&self.wide, child);
                     if next != EMPTY {
-                        stack[sp] = next;
-                        sp += 1;
+                        stack.push(next);
                     }
                     next = child;
                 } else if child != EMPTY && self.leaves.occluded(child & !LEAF, prims, ray, &rx4, t_min, t_max) {
@@ -522,11 +483,8 @@ impl Bvh {
                 node = next;
                 continue;
             }
-            if sp == 0 {
-                return false;
-            }
-            sp -= 1;
-            node = stack[sp];
+            let Some(popped) = stack.pop() else { return false };
+            node = popped;
         }
     }
 

@@ -151,7 +151,8 @@ pub(crate) fn vertex<const N: usize>(
     let materials = scene.materials();
 
     // ---- Closest hits ----------------------------------------------------------------
-    let mut s = intersect(job, paths);
+    let mut s = Surfaces::none();
+    intersect(job, paths, &mut s);
     let wo = paths.dir.neg();
 
     // ---- Media and null surfaces (volumetric scenes only) ------------------------------
@@ -608,13 +609,14 @@ fn lambertian_lanes<const N: usize>(
     light
 }
 
-/// Closest hits of the active lanes' rays.
+/// Closest hits of the active lanes' rays, recorded in `s` (which has none yet). Filled in
+/// place, not returned: the hit callback below holds `s` by reference, so a returned value was
+/// copied out afterwards (a 1 KB `memcpy` call per vertex).
 #[inline(always)]
-fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
+fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N>) {
     let active = paths.active;
     if let Some(geometry) = &job.lanes.geometry {
         let hits = geometry.intersect(&paths.origin, &paths.dir, active, F32s::<N>::splat(f32::INFINITY));
-        let mut s = Surfaces::none();
         s.p = paths.origin.add(&paths.dir.scale(hits.t));
         for i in active.lanes() {
             if hits.polygon[i] != u32::MAX {
@@ -636,13 +638,12 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
             }
         }
         s.n_shading = s.n_geometric;
-        return s;
+        return;
     }
     // Larger scenes: the BVH. Camera rays (neighbouring samples of one or a few pixels) go
     // through it together, sharing node visits; the other rays, which scatter after a bounce,
     // go one by one (dragging them along a group would cost more than it shares). Scenes with
     // cut-outs trace every ray alone, passing the cut-out surfaces.
-    let mut s = Surfaces::none();
     let camera = if job.scene.has_cutouts() { Ms::NONE } else { active & Ms::from_fn(|i| paths.segments[i] == 1) };
     job.scene.intersect_lanes(&paths.origin, &paths.dir, camera, f32::INFINITY, |i, hit| {
         let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
@@ -654,7 +655,6 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>) -> Surfaces<N> {
             s.set_hit(i, &job.scene.interaction(&ray, &hit));
         }
     }
-    s
 }
 
 /// Lanes of `active` whose shadow ray is blocked before `t_max`; the rays of `together` are
