@@ -180,21 +180,6 @@ impl Bvh {
         self.closest_from(0, prims, ray, t_min, t_max, None)
     }
 
-    /// Closest hit in the subtree of wide node `start`, nearer than `t_max` or as near and on
-    /// a lower primitive than `best` (see `leaf::offer`).
-    #[inline(always)]
-    fn closest_from<P: PrimitiveSet + ?Sized>(
-        &self,
-        start: u32,
-        prims: &P,
-        ray: &Ray,
-        t_min: f32,
-        t_max: f32,
-        best: Option<(PrimHit, u32)>,
-    ) -> Option<(PrimHit, u32)> {
-        self.closest(start, prims, ray, t_min, t_max, best)
-    }
-
     /// Closest hits of the rays of `active` (lane `i`: `origin[i] + t·dir[i]`, `t` in
     /// `[t_min, t_max]`), the same as [`Bvh::intersect`] gives each (bit for bit, and the same
     /// primitive on ties), found by traversing the tree with the group: each node's boxes are
@@ -294,12 +279,14 @@ impl Bvh {
         best
     }
 
-    /// Near-child-first traversal with distance culling: a node's hit leaves are tested at once
-    /// (shrinking `t_max`); its hit interior children are pushed farthest first with their entry
-    /// distances, so the nearest is visited next and a popped child that starts beyond the
-    /// closest hit so far is skipped without loading it.
+    /// Closest hit in the subtree of wide node `start`, nearer than `t_max` or as near and on
+    /// a lower primitive than `best` (see `leaf::offer`). Near-child-first traversal with
+    /// distance culling: a node's hit leaves are tested at once (shrinking `t_max`); its hit
+    /// interior children are pushed farthest first with their entry distances, so the nearest
+    /// is visited next and a popped child that starts beyond the closest hit so far is skipped
+    /// without loading it.
     #[inline(always)]
-    fn closest<P: PrimitiveSet + ?Sized>(
+    fn closest_from<P: PrimitiveSet + ?Sized>(
         &self,
         start: u32,
         prims: &P,
@@ -370,20 +357,7 @@ impl Bvh {
         if self.wide.is_empty() {
             return false;
         }
-        self.any_hit(0, prims, ray, t_min, t_max)
-    }
-
-    /// [`Bvh::occluded`] in the subtree of wide node `start`.
-    #[inline(always)]
-    fn occluded_from<P: PrimitiveSet + ?Sized>(
-        &self,
-        start: u32,
-        prims: &P,
-        ray: &Ray,
-        t_min: f32,
-        t_max: f32,
-    ) -> bool {
-        self.any_hit(start, prims, ray, t_min, t_max)
+        self.occluded_from(0, prims, ray, t_min, t_max)
     }
 
     /// [`Bvh::occluded`] for the rays of `active` (lane `i`: `origin[i] + t·dir[i]`, `t` in
@@ -452,8 +426,16 @@ impl Bvh {
         blocked
     }
 
+    /// [`Bvh::occluded`] in the subtree of wide node `start`.
     #[inline(always)]
-    fn any_hit<P: PrimitiveSet + ?Sized>(&self, start: u32, prims: &P, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+    fn occluded_from<P: PrimitiveSet + ?Sized>(
+        &self,
+        start: u32,
+        prims: &P,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+    ) -> bool {
         let rb = RayBox4::new(ray);
         let rx4 = RayX4::new(ray);
         let mut stack = WalkStack::<u32>::new();
@@ -463,7 +445,7 @@ impl Bvh {
             // Any hit ends the search, so the order of children does not matter.
             let mut lanes = n.hit(&rb, t_min, t_max).0.bitmask();
             // The last interior child hit is visited next straight from a register (as in
-            // `closest`); the others are pushed. The visiting order is the same as pushing them
+            // `closest_from`); the others are pushed. The visiting order is the same as pushing them
             // all and popping the last.
             let mut next = EMPTY;
             while lanes != 0 {
