@@ -26,7 +26,7 @@
 //! splat only moves each sample's weight within the block (except at its edge), so the block's
 //! variance is close to the box estimate's — what the block z-tests use.
 
-use super::accumulator::{fixed, fixed_small, SMALL_LIMIT};
+use super::accumulator::{fixed, fixed_small, sum_to_f64, SMALL_LIMIT};
 use super::filter::PixelFilter;
 use super::grid::Mergeable;
 use crate::math::{Rgb, Vec2};
@@ -64,7 +64,7 @@ impl SplatPixel {
         if self.weight == 0 {
             return [0.0; 3];
         }
-        self.sum.map(|s| s as f64 / self.weight as f64)
+        self.sum.map(|s| sum_to_f64(s) / sum_to_f64(self.weight))
     }
 }
 
