@@ -116,12 +116,12 @@ pub(super) fn fixed_mean(sum: i128, count: u32) -> f64 {
 /// f64 (ties to even), so going through `i64` when the value fits gives the same bits, in one
 /// instruction where the `i128` conversion is a library call (`__floattidf`, about 40
 /// instructions). With nine of those a pixel, the error estimate's pass over the film cost
-/// about 1,400 instructions per pixel: a fifth of a fast 256² render's instructions.
+/// about 340 instructions per pixel: a fifth of a fast 256² render's instructions.
 #[inline(always)]
 pub(super) fn sum_to_f64(x: i128) -> f64 {
     match i64::try_from(x) {
         Ok(v) => v as f64,
-        Err(_) => x as f64,
+        Err(_) => wide_to_f64(x),
     }
 }
 
@@ -130,8 +130,24 @@ pub(super) fn sum_to_f64(x: i128) -> f64 {
 fn square_sum_to_f64(x: u128) -> f64 {
     match i64::try_from(x) {
         Ok(v) => v as f64,
-        Err(_) => x as f64,
+        Err(_) => wide_unsigned_to_f64(x),
     }
+}
+
+/// The library conversions, out of line and cold. Written in the `match` arms, LLVM judged the
+/// conversion cheap enough to compute for every value and pick afterwards (a select, not a
+/// branch), so each call was still made.
+#[cold]
+#[inline(never)]
+fn wide_to_f64(x: i128) -> f64 {
+    x as f64
+}
+
+/// [`wide_to_f64`] for `u128`.
+#[cold]
+#[inline(never)]
+fn wide_unsigned_to_f64(x: u128) -> f64 {
+    x as f64
 }
 
 /// `x² · 2⁴⁰` truncated, saturating at `u128::MAX` (`as` saturates). x² of an f32 is exact in f64.
