@@ -29,22 +29,12 @@ const _: () = assert!(std::mem::size_of::<Node4>() == 128);
 
 /// Asks the caches for node `index`'s two lines when it is pushed, ahead of its visit: a
 /// traversal is a chain of dependent loads, and a far child waits on the stack while the near
-/// one's subtree is searched, time in which its miss can be served. A hint only (it never
-/// faults and changes no value); out of range, nothing is asked.
+/// one's subtree is searched, time in which its miss can be served. A hint only (it changes no
+/// value); out of range, nothing is asked.
 #[inline(always)]
 pub(super) fn prefetch(nodes: &[Node4], index: u32) {
-    #[cfg(target_arch = "x86_64")]
     if let Some(node) = nodes.get(index as usize) {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        let first: *const i8 = (node as *const Node4).cast();
-        // SAFETY: a prefetch reads nothing into the program and never faults, whatever the
-        // address; both addresses lie inside the node (128 bytes: `size_of::<Node4>()`).
-        // Allowed for the measured gain recorded in docs/benchmarks.md (issue 14).
-        #[allow(unsafe_code)]
-        unsafe {
-            _mm_prefetch::<_MM_HINT_T0>(first);
-            _mm_prefetch::<_MM_HINT_T0>(first.add(64));
-        }
+        crate::wide::prefetch::prefetch(std::slice::from_ref(node));
     }
 }
 

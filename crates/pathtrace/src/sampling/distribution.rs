@@ -58,6 +58,15 @@ impl Distribution1D {
         }
     }
 
+    /// Asks the caches for what [`Distribution1D::pmf`] of item `i` reads (see
+    /// [`crate::wide::prefetch`]).
+    #[inline(always)]
+    pub fn prefetch(&self, i: usize) {
+        if i < self.cdf.len() {
+            crate::wide::prefetch::prefetch(&self.cdf[i.saturating_sub(1)..=i]);
+        }
+    }
+
     /// Picks an item for `u ∈ [0,1)`; returns (index, probability). Items of zero weight are
     /// never returned.
     #[inline(always)]

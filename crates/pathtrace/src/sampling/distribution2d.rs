@@ -92,11 +92,47 @@ impl Distribution2D {
     // plastic's profiles as its own symbol.
     #[inline(always)]
     pub fn pdf(&self, p: Vec2) -> f32 {
+        self.cell(p).map_or(0.0, |(i, j)| self.cell_pdf(i, j))
+    }
+
+    /// [`Distribution2D::pdf`] at `(x, y)` per lane of `active` (0 in the others). The rows'
+    /// entries are asked of the caches lane by lane before any is read: an environment map's
+    /// rows are as large as the L2 cache, and read lane by lane their misses waited one after
+    /// another.
+    #[inline(always)]
+    pub fn pdf_lanes<const N: usize>(&self, x: &F32s<N>, y: &F32s<N>, active: Ms<N>) -> F32s<N> {
+        let mut cells = [None; N];
+        for i in active.lanes() {
+            cells[i] = self.cell(Vec2::new(x.0[i], y.0[i]));
+            if let Some((u, v)) = cells[i] {
+                if let Some(row) = &self.rows[v] {
+                    row.prefetch(u);
+                }
+            }
+        }
+        let mut pdf = F32s::ZERO;
+        for i in active.lanes() {
+            if let Some((u, v)) = cells[i] {
+                pdf.0[i] = self.cell_pdf(u, v);
+            }
+        }
+        pdf
+    }
+
+    /// The cell (column, row) of `p ∈ [0,1]²`; `None` outside.
+    #[inline(always)]
+    fn cell(&self, p: Vec2) -> Option<(usize, usize)> {
         if !(0.0..=1.0).contains(&p.x) || !(0.0..=1.0).contains(&p.y) {
-            return 0.0;
+            return None;
         }
         let i = ((p.x * self.nu as f32) as usize).min(self.nu - 1);
         let j = ((p.y * self.nv as f32) as usize).min(self.nv - 1);
+        Some((i, j))
+    }
+
+    /// The density on cell `(i, j)`.
+    #[inline(always)]
+    fn cell_pdf(&self, i: usize, j: usize) -> f32 {
         let pv = self.marginal.pmf(j);
         match &self.rows[j] {
             Some(row) if pv > 0.0 => pv * row.pmf(i) * (self.nu * self.nv) as f32,

@@ -17,6 +17,7 @@ mod boxes;
 mod geometry;
 pub mod inverse_trig;
 mod lights;
+pub mod prefetch;
 mod sampler;
 pub mod simd;
 pub mod warp;
