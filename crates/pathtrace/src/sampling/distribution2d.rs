@@ -172,6 +172,34 @@ mod tests {
         assert!(Distribution2D::new(&[1.0; 3], 2, 2).is_none());
     }
 
+    /// The density in lanes is the density of each lane's point alone (0 in inactive lanes),
+    /// bit for bit, including points outside the square, on the edges and in a row of zero
+    /// weight.
+    #[test]
+    fn lane_densities_are_each_points_density() {
+        let (nu, nv) = (37, 9);
+        let w: Vec<f32> =
+            (0..nu * nv).map(|k| if k / nu == 4 { 0.0 } else { ((k * 7919) % 31) as f32 + 0.5 }).collect();
+        let d = Distribution2D::new(&w, nu, nv).unwrap();
+        let mut rng = crate::sampling::Pcg32::new(7, 3);
+        let coordinate = |r: &mut crate::sampling::Pcg32| match r.next_u32() % 8 {
+            0 => -0.25,
+            1 => 1.0,
+            2 => 1.5,
+            _ => r.next_f32(),
+        };
+        for _ in 0..2000 {
+            let x = F32s::<16>::from_fn(|_| coordinate(&mut rng));
+            let y = F32s::<16>::from_fn(|_| coordinate(&mut rng));
+            let active = Ms::<16>(std::array::from_fn(|_| if rng.next_u32().is_multiple_of(4) { 0 } else { u32::MAX }));
+            let pdf = d.pdf_lanes(&x, &y, active);
+            for i in 0..16 {
+                let alone = if active.0[i] != 0 { d.pdf(Vec2::new(x.0[i], y.0[i])) } else { 0.0 };
+                assert_eq!(pdf.0[i].to_bits(), alone.to_bits(), "lane {i}");
+            }
+        }
+    }
+
     /// Sixteen lanes at once give what each lane's numbers give alone, including a row of zero
     /// weight, inactive lanes and a grid whose rows are long enough to be searched through
     /// their guide tables.
