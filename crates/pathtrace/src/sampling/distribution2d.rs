@@ -172,15 +172,26 @@ mod tests {
         assert!(Distribution2D::new(&[1.0; 3], 2, 2).is_none());
     }
 
+    /// 37 × 9 cells of uneven weights, row 4 of zero weight: rows long enough to be searched
+    /// through their guide tables.
+    fn uneven_grid() -> Distribution2D {
+        let (nu, nv) = (37, 9);
+        let w: Vec<f32> =
+            (0..nu * nv).map(|k| if k / nu == 4 { 0.0 } else { ((k * 7919) % 31) as f32 + 0.5 }).collect();
+        Distribution2D::new(&w, nu, nv).unwrap()
+    }
+
+    /// Sixteen lanes, each active with probability ¾.
+    fn three_in_four_active(rng: &mut crate::sampling::Pcg32) -> Ms<16> {
+        Ms::<16>(std::array::from_fn(|_| if rng.next_u32().is_multiple_of(4) { 0 } else { u32::MAX }))
+    }
+
     /// The density in lanes is the density of each lane's point alone (0 in inactive lanes),
     /// bit for bit, including points outside the square, on the edges and in a row of zero
     /// weight.
     #[test]
     fn lane_densities_are_each_points_density() {
-        let (nu, nv) = (37, 9);
-        let w: Vec<f32> =
-            (0..nu * nv).map(|k| if k / nu == 4 { 0.0 } else { ((k * 7919) % 31) as f32 + 0.5 }).collect();
-        let d = Distribution2D::new(&w, nu, nv).unwrap();
+        let d = uneven_grid();
         let mut rng = crate::sampling::Pcg32::new(7, 3);
         let coordinate = |r: &mut crate::sampling::Pcg32| match r.next_u32() % 8 {
             0 => -0.25,
@@ -191,7 +202,7 @@ mod tests {
         for _ in 0..2000 {
             let x = F32s::<16>::from_fn(|_| coordinate(&mut rng));
             let y = F32s::<16>::from_fn(|_| coordinate(&mut rng));
-            let active = Ms::<16>(std::array::from_fn(|_| if rng.next_u32().is_multiple_of(4) { 0 } else { u32::MAX }));
+            let active = three_in_four_active(&mut rng);
             let pdf = d.pdf_lanes(&x, &y, active);
             for i in 0..16 {
                 let alone = if active.0[i] != 0 { d.pdf(Vec2::new(x.0[i], y.0[i])) } else { 0.0 };
@@ -205,15 +216,12 @@ mod tests {
     /// their guide tables.
     #[test]
     fn lanes_sample_what_each_lane_samples_alone() {
-        let (nu, nv) = (37, 9);
-        let w: Vec<f32> =
-            (0..nu * nv).map(|k| if k / nu == 4 { 0.0 } else { ((k * 7919) % 31) as f32 + 0.5 }).collect();
-        let d = Distribution2D::new(&w, nu, nv).unwrap();
+        let d = uneven_grid();
         let mut rng = crate::sampling::Pcg32::new(5, 9);
         for _ in 0..2000 {
             let u1 = F32s::<16>::from_fn(|_| rng.next_f32());
             let u2 = F32s::<16>::from_fn(|_| rng.next_f32());
-            let active = Ms::<16>(std::array::from_fn(|_| if rng.next_u32().is_multiple_of(4) { 0 } else { u32::MAX }));
+            let active = three_in_four_active(&mut rng);
             let (x, y, pdf) = d.sample_lanes(&u1, &u2, active);
             for i in 0..16 {
                 let alone = d.sample(Vec2::new(u1.0[i], u2.0[i]));
