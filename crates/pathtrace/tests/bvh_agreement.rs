@@ -480,3 +480,80 @@ fn ray_groups_find_what_single_rays_find() {
     assert!(hits > 2000 && ties_possible > 300, "{hits} hits, {ties_possible} edge rays");
     assert!(blocked_count > 1000 && blocked_count < 60 * 40 * N - 1000, "{blocked_count} blocked");
 }
+
+/// A group's rays that miss the box around the whole tree are dropped before the root is
+/// visited (`Bvh::intersect_lanes`); the others go on. Groups that mix rays passing beside the
+/// box, rays with a direction component of exactly zero (some along the planes of its faces,
+/// where slab distances meet 0 · ∞) and rays into it give each ray what it gets alone: the
+/// same primitive, and `t`, `u`, `v` bit for bit.
+#[test]
+fn ray_groups_beside_and_along_the_tree_box_find_what_single_rays_find() {
+    const N: usize = 8;
+    let mut rng = Pcg32::new(19, 5);
+    let (mut along, mut along_hits, mut hits) = (0, 0, 0);
+    for s in 0..40 {
+        let shapes = random_bounded_shapes(&mut rng, 30);
+        let (bounds, kinds) = accel_inputs(&shapes);
+        let bvh = Bvh::build(&bounds, &kinds);
+        let prims = primitives(&shapes);
+        let b = bvh.bounds();
+        for g in 0..30 {
+            let mut is_along = [false; N];
+            let rays: [Ray; N] = std::array::from_fn(|i| match rng.next_u32() % 3 {
+                // With a zero direction component (sometimes two), from a point inside the box
+                // or on the plane of one of its faces.
+                0 => {
+                    is_along[i] = true;
+                    let axis = rng.next_u32() as usize % 3;
+                    let mut o = b.min + (b.max - b.min) * Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+                    match rng.next_u32() % 3 {
+                        0 => o[axis] = b.min[axis],
+                        1 => o[axis] = b.max[axis],
+                        _ => {}
+                    }
+                    let mut d = direction(&mut rng);
+                    d[axis] = 0.0;
+                    if rng.next_u32().is_multiple_of(2) {
+                        d[(axis + 1 + rng.next_u32() as usize % 2) % 3] = 0.0;
+                    }
+                    let mut fallback = Vec3::ONE;
+                    fallback[axis] = 0.0;
+                    Ray::new(o, d.normalize_or(fallback.normalize()))
+                }
+                // From outside the box, beside it or into it.
+                1 => {
+                    let o = b.min + (b.max - b.min) * 0.5 + direction(&mut rng) * (b.max - b.min).length();
+                    let aim = b.min + (b.max - b.min) * Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+                    Ray::new(o, (aim - o + point(&mut rng, 3.0)).normalize())
+                }
+                _ => random_ray(&mut rng, &shapes),
+            });
+            let mut origin = pathtrace::wide::simd::Vec3s::<N>::default();
+            let mut dir = pathtrace::wide::simd::Vec3s::<N>::default();
+            let mut active = pathtrace::wide::simd::Ms::<N>::NONE;
+            for (i, r) in rays.iter().enumerate() {
+                origin.set(i, r.origin);
+                dir.set(i, r.dir);
+                if g % 4 != 3 || !rng.next_u32().is_multiple_of(3) {
+                    active.0[i] = u32::MAX;
+                }
+            }
+            let t_max = if g % 2 == 0 { f32::INFINITY } else { uniform(&mut rng, 1.0, 12.0) };
+            let together = bvh.intersect_lanes(&prims[..], &origin, &dir, active, 0.0, t_max);
+            for (i, r) in rays.iter().enumerate() {
+                let alone = if active.lane(i) { bvh.intersect(&prims[..], r, 0.0, t_max) } else { None };
+                let bits = |h: Option<(PrimHit, u32)>| h.map(|(h, p)| (p, [h.t, h.u, h.v].map(f32::to_bits)));
+                assert_eq!(bits(together[i]), bits(alone), "set {s} group {g} lane {i} {r:?}");
+                hits += alone.is_some() as usize;
+                if is_along[i] && active.lane(i) {
+                    along += 1;
+                    along_hits += alone.is_some() as usize;
+                }
+            }
+        }
+    }
+    assert!(
+        along > 2000 && along_hits > 100 && hits > 1000,
+        "{along} rays with zero components ({along_hits} hit), {hits} hits"
+    );
+}

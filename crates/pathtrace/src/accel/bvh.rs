@@ -209,8 +209,18 @@ impl Bvh {
         let rays = RayBoxes::new(origin, dir);
         let mut t_far = F32s::<N>::splat(t_max);
         let lo = F32s::<N>::splat(t_min);
+        // Rays that miss the box around the whole tree miss every child of the root: one slab
+        // test for the group where the root's visit makes four. Camera rays that pass beside
+        // the scene's geometry (most of the teapot's frame) stop here. The box contains each
+        // of the root's child boxes, so for rays whose test is monotone in the box this drops
+        // only rays the root would drop; the others go on to the root regardless.
+        let (inside, _) = rays.slab(self.bounds.min.to_array(), self.bounds.max.to_array(), lo, t_far);
+        let entering = active.bitmask() & (inside | !rays.monotone());
+        if entering == 0 {
+            return best;
+        }
         let mut stack = WalkStack::new();
-        stack.push((0, active.bitmask()));
+        stack.push((0, entering));
         while let Some((node, mask)) = stack.pop() {
             if mask.count_ones() < SINGLE_RAY_BELOW {
                 let mut lanes = mask;
