@@ -485,7 +485,8 @@ fn ray_groups_find_what_single_rays_find() {
 /// visited (`Bvh::intersect_lanes`); the others go on. Groups that mix rays passing beside the
 /// box, rays with a direction component of exactly zero (some along the planes of its faces,
 /// where slab distances meet 0 · ∞) and rays into it give each ray what it gets alone: the
-/// same primitive, and `t`, `u`, `v` bit for bit.
+/// same primitive, and `t`, `u`, `v` bit for bit. (Rays along a face's plane find nothing
+/// either way: the boxes are padded, so no primitive reaches the plane.)
 #[test]
 fn ray_groups_beside_and_along_the_tree_box_find_what_single_rays_find() {
     const N: usize = 8;

@@ -87,6 +87,8 @@ pub struct Bvh {
     /// The tree, four children per node, for traversal.
     wide: Vec<Node4>,
     bounds: Aabb,
+    /// `bounds` as a node's only child, for the group walk's first test.
+    outer: Node4,
     stats: BvhStats,
     leaves: Leaves,
 }
@@ -140,7 +142,7 @@ impl Bvh {
         debug_assert!(3 * wide_depth(&wide) < STACK_SIZE, "a tree deeper than the walks' stack");
         let bounds = nodes.first().map_or(Aabb::EMPTY, |n| n.bounds);
         let stats = binary_stats(&nodes);
-        Bvh { wide, bounds, stats, leaves }
+        Bvh { wide, bounds, outer: Node4::single(bounds), stats, leaves }
     }
 
     /// True if both trees have the same four-wide nodes (boxes and children) and the same
@@ -209,13 +211,14 @@ impl Bvh {
         let rays = RayBoxes::new(origin, dir);
         let mut t_far = F32s::<N>::splat(t_max);
         let lo = F32s::<N>::splat(t_min);
-        // Rays that miss the box around the whole tree miss every child of the root: one slab
-        // test for the group where the root's visit makes four. Camera rays that pass beside
-        // the scene's geometry (most of the teapot's frame) stop here. The box contains each
-        // of the root's child boxes, so for rays whose test is monotone in the box this drops
-        // only rays the root would drop; the others go on to the root regardless.
-        let (inside, _) = rays.slab(self.bounds.min.to_array(), self.bounds.max.to_array(), lo, t_far);
-        let entering = active.bitmask() & (inside | !rays.monotone());
+        // Rays that miss the box around the whole tree stop here: one slab test for the group
+        // where the root's visit makes four, for camera rays that pass beside the scene's
+        // geometry (most of the teapot's frame). They hit nothing: every primitive lies inside
+        // its padded box (`Aabb::padded`), so inside this box, and a ray that meets a
+        // primitive within `[t_min, t_max]` passes the slab test of every box around it, as
+        // the walk below already relies on for each node on the way to a leaf.
+        let (inside, _) = self.outer.child_hit_lanes(0, &rays, lo, t_far);
+        let entering = active.bitmask() & inside;
         if entering == 0 {
             return best;
         }

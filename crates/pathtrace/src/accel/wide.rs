@@ -6,7 +6,7 @@ use glam::{BVec4A, Vec4};
 
 use super::bvh::Node;
 use crate::math::Ray;
-use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::simd::{F32s, Vec3s};
 
 /// Child tag for leaves (the low bits are the leaf record).
 pub(super) const LEAF: u32 = 1 << 31;
@@ -69,43 +69,30 @@ impl<const N: usize> RayBoxes<N> {
     pub fn new(origin: &Vec3s<N>, dir: &Vec3s<N>) -> Self {
         Self { origin: [origin.x, origin.y, origin.z], inv_dir: [dir.x, dir.y, dir.z].map(|d| F32s::ONE / d) }
     }
+}
 
-    /// Bitmask of the rays whose slab test against the box `[lo, hi]` passes within
-    /// `[t_min, t_far]` (per ray), and their entry distances: per ray, the same operations as
-    /// [`Node4::hit`] (the lane type's `min`/`max` have the SIMD instructions' NaN rule too).
-    #[inline(always)]
-    pub fn slab(&self, lo: [f32; 3], hi: [f32; 3], t_min: F32s<N>, t_far: F32s<N>) -> (u32, F32s<N>) {
-        let mut near = t_min;
-        let mut far = t_far;
-        for axis in 0..3 {
-            let t0 = (F32s::splat(lo[axis]) - self.origin[axis]) * self.inv_dir[axis];
-            let t1 = (F32s::splat(hi[axis]) - self.origin[axis]) * self.inv_dir[axis];
-            near = near.max(t0.min(t1));
-            far = far.min(t0.max(t1));
-        }
-        (near.le(far).bitmask(), near)
-    }
-
-    /// Bitmask of the rays whose slab distances can never be NaN: a finite origin, and
-    /// direction components that are finite and not zero (reciprocals finite and not zero), so
-    /// that `(plane − origin) · (1/d)` is a number or ±∞ for every plane. For these rays the
-    /// slab test is monotone in the box (each step rounds monotonically, so a box's distances
-    /// enclose those of every box inside it): one that misses a box misses every box inside.
-    /// The others (a ray along an axis plane) may meet `0 · ∞`, whose NaN the slab test's
-    /// `min`/`max` let through in ways that break that order.
-    #[inline(always)]
-    pub fn monotone(&self) -> u32 {
-        let mut ok = Ms::<N>::ALL;
-        for axis in 0..3 {
-            let inv = self.inv_dir[axis].abs();
-            ok = ok & self.origin[axis].is_finite() & inv.is_finite() & inv.gt(F32s::ZERO);
-        }
-        ok.bitmask()
+impl Default for Node4 {
+    /// No children.
+    fn default() -> Self {
+        Node4 { bounds: [Vec4::INFINITY; 6], children: [EMPTY; 4] }
     }
 }
 
 impl Node4 {
-    /// [`RayBoxes::slab`] against child `lane`'s box.
+    /// A node whose only child (lane 0, no index) has the box `b`: for testing rays against
+    /// one box with the same operations as a child box.
+    pub fn single(b: crate::math::Aabb) -> Node4 {
+        let mut n = Node4::default();
+        for axis in 0..3 {
+            n.bounds[axis][0] = b.min[axis];
+            n.bounds[axis + 3][0] = b.max[axis];
+        }
+        n
+    }
+
+    /// Bitmask of the rays whose slab test against child `lane`'s box passes within
+    /// `[t_min, t_far]` (per ray), and their entry distances: per ray, the same operations as
+    /// [`Node4::hit`] (the lane type's `min`/`max` have the SIMD instructions' NaN rule too).
     #[inline(always)]
     pub fn child_hit_lanes<const N: usize>(
         &self,
@@ -114,8 +101,15 @@ impl Node4 {
         t_min: F32s<N>,
         t_far: F32s<N>,
     ) -> (u32, F32s<N>) {
-        let b = &self.bounds;
-        r.slab([b[0][lane], b[1][lane], b[2][lane]], [b[3][lane], b[4][lane], b[5][lane]], t_min, t_far)
+        let mut near = t_min;
+        let mut far = t_far;
+        for axis in 0..3 {
+            let t0 = (F32s::splat(self.bounds[axis][lane]) - r.origin[axis]) * r.inv_dir[axis];
+            let t1 = (F32s::splat(self.bounds[axis + 3][lane]) - r.origin[axis]) * r.inv_dir[axis];
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        (near.le(far).bitmask(), near)
     }
 
     /// Same boxes (bit for bit) and children.
