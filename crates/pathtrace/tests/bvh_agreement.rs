@@ -399,6 +399,26 @@ fn identical(a: &Option<Hit>, b: &Option<Hit>) -> bool {
     }
 }
 
+/// The rays of a group in lanes: origins, directions and the active mask. With `some_off`,
+/// about a third of the lanes are switched off at random (one draw per lane, in lane order).
+fn group_lanes<const N: usize>(
+    rays: &[Ray; N],
+    rng: &mut Pcg32,
+    some_off: bool,
+) -> (pathtrace::wide::simd::Vec3s<N>, pathtrace::wide::simd::Vec3s<N>, pathtrace::wide::simd::Ms<N>) {
+    let mut origin = pathtrace::wide::simd::Vec3s::<N>::default();
+    let mut dir = pathtrace::wide::simd::Vec3s::<N>::default();
+    let mut active = pathtrace::wide::simd::Ms::<N>::NONE;
+    for (i, r) in rays.iter().enumerate() {
+        origin.set(i, r.origin);
+        dir.set(i, r.dir);
+        if !some_off || !rng.next_u32().is_multiple_of(3) {
+            active.0[i] = u32::MAX;
+        }
+    }
+    (origin, dir, active)
+}
+
 /// Groups of 16 rays traversed together (`Scene::intersect_lanes`, `Scene::occluded_lanes`)
 /// give each ray exactly what it gets alone — the primitive, and `t`, `u`, `v` bit for bit — whether the group is coherent
 /// (one origin, directions within a few degrees: the tree is walked as a packet), incoherent
@@ -441,17 +461,8 @@ fn ray_groups_find_what_single_rays_find() {
                     }
                 }
             }
-            let mut origin = pathtrace::wide::simd::Vec3s::<N>::default();
-            let mut dir = pathtrace::wide::simd::Vec3s::<N>::default();
-            let mut active = pathtrace::wide::simd::Ms::<N>::NONE;
-            for (i, r) in rays.iter().enumerate() {
-                origin.set(i, r.origin);
-                dir.set(i, r.dir);
-                // Every fifth group has some lanes switched off.
-                if g % 5 != 4 || !rng.next_u32().is_multiple_of(3) {
-                    active.0[i] = u32::MAX;
-                }
-            }
+            // Every fifth group has some lanes switched off.
+            let (origin, dir, active) = group_lanes(&rays, &mut rng, g % 5 == 4);
             let t_max = if g % 2 == 0 { f32::INFINITY } else { uniform(&mut rng, 1.0, 12.0) };
             let mut together = [None; N];
             let mut order = Vec::new();
@@ -529,16 +540,7 @@ fn ray_groups_beside_and_along_the_tree_box_find_what_single_rays_find() {
                 }
                 _ => random_ray(&mut rng, &shapes),
             });
-            let mut origin = pathtrace::wide::simd::Vec3s::<N>::default();
-            let mut dir = pathtrace::wide::simd::Vec3s::<N>::default();
-            let mut active = pathtrace::wide::simd::Ms::<N>::NONE;
-            for (i, r) in rays.iter().enumerate() {
-                origin.set(i, r.origin);
-                dir.set(i, r.dir);
-                if g % 4 != 3 || !rng.next_u32().is_multiple_of(3) {
-                    active.0[i] = u32::MAX;
-                }
-            }
+            let (origin, dir, active) = group_lanes(&rays, &mut rng, g % 4 == 3);
             let t_max = if g % 2 == 0 { f32::INFINITY } else { uniform(&mut rng, 1.0, 12.0) };
             let together = bvh.intersect_lanes(&prims[..], &origin, &dir, active, 0.0, t_max);
             for (i, r) in rays.iter().enumerate() {
