@@ -93,6 +93,15 @@ impl<const N: usize> Lane for F32s<N> {
     }
 }
 
+/// Lane `k` of `v`, loaded from its place in memory. glam's `Index` for `Vec4` is a `match`
+/// on the index, which LLVM kept as compares and branches wherever the index is not a
+/// constant: about 4% of the teapot's render-loop instructions (callgrind; docs/benchmarks.md,
+/// "Lanes of four-wide vectors read by address").
+#[inline(always)]
+pub(super) fn lane_of(v: &Vec4, k: usize) -> f32 {
+    v.as_ref()[k]
+}
+
 /// Three coordinates in lanes, one lane type per axis.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Vec3L<L> {
@@ -157,7 +166,7 @@ impl Vec3x4 {
     /// Coordinates of lane `k`.
     #[inline(always)]
     pub fn lane(&self, k: usize) -> Vec3 {
-        Vec3::new(self.x[k], self.y[k], self.z[k])
+        Vec3::new(lane_of(&self.x, k), lane_of(&self.y, k), lane_of(&self.z, k))
     }
 }
 

@@ -1,7 +1,7 @@
 //! BVH leaves: their quads and triangles packed four to a SIMD packet (lanes = primitives, as
 //! in Embree's "quad4"/"triangle4" leaves), other shapes kept as indices tested one by one.
 
-use super::lanes::{HitL, HitX4, RayX4, Rays};
+use super::lanes::{lane_of, HitL, HitX4, RayX4, Rays};
 use super::quad4::Quad4;
 use super::tri4::Tri4;
 use super::PrimitiveSet;
@@ -85,7 +85,8 @@ fn closest_in<G: Packet>(
         while lanes != 0 {
             let lane = lanes.trailing_zeros() as usize;
             lanes &= lanes - 1;
-            offer(PrimHit { t: h.t[lane], u: h.u[lane], v: h.v[lane] }, p.ids[lane], t_max, best);
+            let hit = PrimHit { t: lane_of(&h.t, lane), u: lane_of(&h.u, lane), v: lane_of(&h.v, lane) };
+            offer(hit, p.ids[lane], t_max, best);
         }
     }
 }

@@ -5,6 +5,7 @@
 use glam::{BVec4A, Vec4};
 
 use super::bvh::Node;
+use super::lanes::lane_of;
 use crate::math::Ray;
 use crate::wide::simd::{F32s, Vec3s};
 
@@ -104,8 +105,8 @@ impl Node4 {
         let mut near = t_min;
         let mut far = t_far;
         for axis in 0..3 {
-            let t0 = (F32s::splat(self.bounds[axis][lane]) - r.origin[axis]) * r.inv_dir[axis];
-            let t1 = (F32s::splat(self.bounds[axis + 3][lane]) - r.origin[axis]) * r.inv_dir[axis];
+            let t0 = (F32s::splat(lane_of(&self.bounds[axis], lane)) - r.origin[axis]) * r.inv_dir[axis];
+            let t1 = (F32s::splat(lane_of(&self.bounds[axis + 3], lane)) - r.origin[axis]) * r.inv_dir[axis];
             near = near.max(t0.min(t1));
             far = far.min(t0.max(t1));
         }
@@ -124,7 +125,13 @@ impl Node4 {
 
     /// The box of child `lane`.
     pub fn child_bounds(&self, lane: usize) -> crate::math::Aabb {
-        let axis = |k: usize| glam::Vec3::new(self.bounds[k][lane], self.bounds[k + 1][lane], self.bounds[k + 2][lane]);
+        let axis = |k: usize| {
+            glam::Vec3::new(
+                lane_of(&self.bounds[k], lane),
+                lane_of(&self.bounds[k + 1], lane),
+                lane_of(&self.bounds[k + 2], lane),
+            )
+        };
         crate::math::Aabb { min: axis(0), max: axis(3) }
     }
 
