@@ -94,9 +94,9 @@ impl<const N: usize> Lane for F32s<N> {
 }
 
 /// Lane `k` of `v`, loaded from its place in memory. glam's `Index` for `Vec4` is a `match`
-/// on the index, which LLVM kept as compares and branches wherever the index is not a
-/// constant: about 4% of the teapot's render-loop instructions (callgrind; docs/benchmarks.md,
-/// "Lanes of four-wide vectors read by address").
+/// on the index, which LLVM kept as a jump table (an indirect jump per read) wherever the index
+/// is not a constant: about 4% of the teapot's render-loop instructions (callgrind;
+/// docs/benchmarks.md, "Lanes of four-wide vectors read by address").
 #[inline(always)]
 pub(super) fn lane_of(v: &Vec4, k: usize) -> f32 {
     v.as_ref()[k]
