@@ -7,8 +7,9 @@
 //! and into 128-bit instructions in the portable build. That needs the loops to reach LLVM's loop
 //! vectoriser as loops: `.cargo/config.toml` stops LLVM from fully unrolling loops of more than 4
 //! iterations first, after which only its SLP vectoriser could rebuild the vectors, and inside the
-//! tile functions it left whole routines scalar (docs/benchmarks.md, "Lane loops kept as loops"). The code stays safe, portable and bit-identical
-//! across both builds (no fused multiply-adds are formed in either).
+//! tile functions it left whole routines scalar (docs/benchmarks.md, "Lane loops kept as loops").
+//! The code stays safe, portable and bit-identical across both builds (no fused multiply-adds are
+//! formed in either).
 
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
