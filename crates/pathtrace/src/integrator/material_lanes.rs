@@ -11,7 +11,7 @@
 use super::path::Scattered;
 use super::shade::{same_side_lanes, SHADOW_EPSILON};
 use super::Strategy;
-use crate::material::LaneScattering;
+use crate::material::{DielectricLanes, LaneSamples, LaneScattering};
 use crate::math::offset_ray_origin_lanes;
 use crate::wide::simd::{rgb_black, F32s, Ms, Vec3s};
 use crate::wide::{warp, LightSamples};
@@ -46,11 +46,9 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
 ) {
     let zero = F32s::<N>::ZERO;
     // The frame, turned over for the back of a two-sided surface (shade.rs: `flipped`).
-    let flipped = !v.one_sided & v.n_geometric.dot(v.wo).lt(zero);
-    let n_g = Vec3s::select(flipped, &v.n_geometric.neg(), v.n_geometric);
-    let n_s = Vec3s::select(flipped, &v.n_shading.neg(), v.n_shading);
-    let (s, t) = warp::basis(&n_s);
-    let to_local = |w: &Vec3s<N>| Vec3s { x: w.dot(&s), y: w.dot(&t), z: w.dot(&n_s) };
+    let frame = LaneFrame::new(v, !v.one_sided);
+    let (n_g, n_s, s, t) = (&frame.n_g, &frame.n_s, &frame.s, &frame.t);
+    let to_local = |w: &Vec3s<N>| Vec3s { x: w.dot(s), y: w.dot(t), z: w.dot(n_s) };
     let wo = to_local(v.wo);
 
     // ---- Light sampling: the shadow ray and what it adds if unoccluded -------------------
@@ -60,9 +58,9 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
         let (f, pdf_material) = material.eval_pdf(&wo, &to_local(&ls.wi));
         // A point light cannot be found by material sampling: its sample counts in full.
         let pdf_material = F32s::select(ls.delta, zero, pdf_material);
-        let lit = lit & !rgb_black(&ls.radiance) & !rgb_black(&f) & same_side_lanes(&n_g, v.wo, &ls.wi);
+        let lit = lit & !rgb_black(&ls.radiance) & !rgb_black(&f) & same_side_lanes(n_g, v.wo, &ls.wi);
         if lit.any() {
-            let origin = offset_ray_origin_lanes(v.p, &n_g, &ls.wi);
+            let origin = offset_ray_origin_lanes(v.p, n_g, &ls.wi);
             let to_light = ls.point.sub(&origin);
             let dist = to_light.length();
             let finite = ls.dist_finite;
@@ -84,15 +82,68 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
 
     // ---- Direction: sampled by the material -----------------------------------------------
     let sample = material.sample(&wo, v.u_lobe, v.u1, v.u2, lanes);
-    let wi = sample.wi;
+    continue_lanes(v, lanes, &frame, &wo, &sample, sc);
+}
+
+/// Shades the vertex's `lanes` on smooth dielectrics (`material`): as `shade` does for a
+/// material of Dirac lobes only, no light sample (the lanes have none), and the reflected or
+/// refracted direction as the continuation. The frame is never turned over: the side the
+/// ray comes from decides whether it enters or leaves.
+#[inline(always)]
+pub(super) fn dielectric_lanes<const N: usize>(
+    v: &LaneVertex<N>,
+    lanes: Ms<N>,
+    material: &DielectricLanes<N>,
+    sc: &mut Scattered<N>,
+) {
+    let frame = LaneFrame::new(v, Ms::NONE);
+    let wo = Vec3s { x: v.wo.dot(&frame.s), y: v.wo.dot(&frame.t), z: v.wo.dot(&frame.n_s) };
+    let sample = material.sample(&wo, v.u_lobe, lanes);
+    continue_lanes(v, lanes, &frame, &wo, &sample, sc);
+}
+
+/// A vertex's frame per lane: the true and shading normals (turned over where asked) and the
+/// shading normal's tangents.
+struct LaneFrame<const N: usize> {
+    n_g: Vec3s<N>,
+    n_s: Vec3s<N>,
+    s: Vec3s<N>,
+    t: Vec3s<N>,
+}
+
+impl<const N: usize> LaneFrame<N> {
+    /// The frame of `v`, turned over in the lanes of `flippable` that see the back.
+    #[inline(always)]
+    fn new(v: &LaneVertex<N>, flippable: Ms<N>) -> Self {
+        let flipped = flippable & v.n_geometric.dot(v.wo).lt(F32s::ZERO);
+        let n_g = Vec3s::select(flipped, &v.n_geometric.neg(), v.n_geometric);
+        let n_s = Vec3s::select(flipped, &v.n_shading.neg(), v.n_shading);
+        let (s, t) = warp::basis(&n_s);
+        LaneFrame { n_g, n_s, s, t }
+    }
+}
+
+/// Queues the continuations of `lanes` from their sampled directions (`sample`, local to
+/// `frame`; `wo` too).
+#[inline(always)]
+fn continue_lanes<const N: usize>(
+    v: &LaneVertex<N>,
+    lanes: Ms<N>,
+    frame: &LaneFrame<N>,
+    wo: &Vec3s<N>,
+    sample: &LaneSamples<N>,
+    sc: &mut Scattered<N>,
+) {
+    let LaneFrame { n_g, n_s, s, t } = frame;
+    let wi = &sample.wi;
     let wi_world = s.scale(wi.x).add(&t.scale(wi.y)).add(&n_s.scale(wi.z));
     // Reflection must stay on the viewer's side of the true surface (shading normals can
-    // disagree with it), as in shade.rs.
-    let reflects = (wi_world.dot(&n_s) * wo.z).gt(zero);
-    let stays = same_side_lanes(&n_g, v.wo, &wi_world);
+    // disagree with it), transmission must cross it, as in shade.rs.
+    let reflects = (wi_world.dot(n_s) * wo.z).gt(F32s::ZERO);
+    let stays = same_side_lanes(n_g, v.wo, &wi_world);
     let agree = (reflects & stays) | (!reflects & !stays);
     let goes_on = sample.valid & agree & !rgb_black(&sample.weight);
-    let origin = offset_ray_origin_lanes(v.p, &n_g, &wi_world);
+    let origin = offset_ray_origin_lanes(v.p, n_g, &wi_world);
     sc.goes_on = (sc.goes_on & !lanes) | goes_on;
     sc.origin = Vec3s::select(lanes, &origin, &sc.origin);
     sc.dir = Vec3s::select(lanes, &wi_world, &sc.dir);
@@ -100,6 +151,6 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
         sc.weight[c] = F32s::select(lanes, sample.weight[c], sc.weight[c]);
     }
     sc.pdf = F32s::select(lanes, sample.pdf, sc.pdf);
-    sc.specular = sc.specular & !lanes;
-    sc.eta = F32s::select(lanes, F32s::ONE, sc.eta);
+    sc.specular = (sc.specular & !lanes) | (lanes & sample.specular);
+    sc.eta = F32s::select(lanes, sample.eta, sc.eta);
 }

@@ -18,12 +18,12 @@
 
 use super::features::record_features;
 use super::lanes::{Output, Paths, Surfaces};
-use super::material_lanes::{material_lanes, LaneVertex};
+use super::material_lanes::{dielectric_lanes, material_lanes, LaneVertex};
 use super::media::{leaving_medium, medium_vertex, shadow_transmittance, travel};
 use super::regenerate::LaneJob;
 use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
 use super::Strategy;
-use crate::material::{lambertian, Material, RoughConductorLanes, RoughPlasticLanes};
+use crate::material::{lambertian, DielectricLanes, Material, RoughConductorLanes, RoughPlasticLanes};
 use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2};
 use crate::scene::{Interaction, Primitive, Scene};
 use crate::wide::simd::{F32s, Ms, Vec3s};
@@ -219,6 +219,8 @@ pub(crate) fn vertex<const N: usize>(
     let mut conductors: Option<RoughConductorLanes<N>> = None;
     let mut plastic = Ms::<N>::NONE;
     let mut plastics: Option<RoughPlasticLanes<N>> = None;
+    let mut dielectric = Ms::<N>::NONE;
+    let mut dielectrics: Option<DielectricLanes<N>> = None;
     for i in (alive & !scatter).lanes() {
         let class = &lanes.classes[s.material[i] as usize];
         // A one-sided material seen from behind (the shading normal facing away, Mitsuba's
@@ -248,6 +250,10 @@ pub(crate) fn vertex<const N: usize>(
                 (LaneForm::RoughPlastic, Material::RoughPlastic(m)) => {
                     plastic.0[i] = u32::MAX;
                     plastics.get_or_insert_with(|| m.lanes()).set(i, m);
+                }
+                (LaneForm::Dielectric, Material::Dielectric(m)) => {
+                    dielectric.0[i] = u32::MAX;
+                    dielectrics.get_or_insert_with(|| m.lanes()).set(i, m);
                 }
                 // `WideScene::new` gives each form to its model only.
                 _ => unreachable!("lane form {form:?} on another material"),
@@ -296,7 +302,7 @@ pub(crate) fn vertex<const N: usize>(
     } else {
         LambertLight::none()
     };
-    let lane_forms = conductor | plastic;
+    let lane_forms = conductor | plastic | dielectric;
     if lane_forms.any() {
         let v = LaneVertex {
             strategy,
@@ -320,6 +326,9 @@ pub(crate) fn vertex<const N: usize>(
         if let Some(mut m) = plastics {
             m.distribution = m.distribution.only(plastic);
             material_lanes(&v, plastic, &m, &mut sc);
+        }
+        if let Some(m) = dielectrics {
+            dielectric_lanes(&v, dielectric, &m, &mut sc);
         }
     }
     for i in (alive & !simd & !lane_forms & !scatter).lanes() {

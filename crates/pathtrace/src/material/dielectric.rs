@@ -4,9 +4,10 @@
 //! compresses into the denser medium; Veach's thesis §5.2), so a closed glass object is
 //! energy-neutral.
 
+use super::lanes::LaneSamples;
 use super::BsdfSample;
 use crate::math::{Rgb, Vec3};
-use crate::wide::simd::F32s;
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Smooth dielectric interface with interior index of refraction `ior` (exterior 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,17 +46,58 @@ pub(crate) fn fresnel_dielectric_lanes<const N: usize>(
 }
 
 impl Dielectric {
+    /// A reflection with probability F, else the refraction: the one-lane instance of
+    /// [`DielectricLanes::sample`].
     pub fn sample(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
-        let (f, cos_t, eta) = fresnel_dielectric(wo.z, self.ior);
-        if u_lobe < f {
-            let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-            return Some(BsdfSample { wi, weight: self.tint, pdf: f, delta: true, eta: 1.0 });
+        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s::splat(u_lobe), Ms::ALL).lane(0)
+    }
+
+    /// This material in every lane.
+    #[inline(always)]
+    pub(crate) fn lanes<const N: usize>(&self) -> DielectricLanes<N> {
+        DielectricLanes { ior: F32s::splat(self.ior), tint: self.tint.to_array().map(F32s::splat) }
+    }
+}
+
+/// A smooth dielectric per lane (lanes can hold different ones), the tint's channels as lane
+/// groups.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct DielectricLanes<const N: usize> {
+    pub ior: F32s<N>,
+    pub tint: [F32s<N>; 3],
+}
+
+impl<const N: usize> DielectricLanes<N> {
+    /// Lane `i` holds `m`.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, m: &Dielectric) {
+        self.ior.0[i] = m.ior;
+        for (c, tint) in m.tint.to_array().into_iter().enumerate() {
+            self.tint[c].0[i] = tint;
         }
+    }
+
+    /// Per lane of `active`: the mirror direction when `u_lobe < F`, else the refracted one.
+    #[inline(always)]
+    pub fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, active: Ms<N>) -> LaneSamples<N> {
+        let (f, cos_t, eta) = fresnel_dielectric_lanes(wo.z, self.ior);
+        let reflect = u_lobe.lt(f);
+        let mirrored = Vec3s { x: -wo.x, y: -wo.y, z: wo.z };
         // Snell: wi = -wo/η + (cos θo/η - cos θt)·n with n on wo's side; the tangential part is
-        // -wo/η and the normal part -cos θt·n (the two cos θo terms cancel).
-        let n_sign = if wo.z >= 0.0 { 1.0 } else { -1.0 };
-        let wi = Vec3::new(-wo.x / eta, -wo.y / eta, -n_sign * cos_t).normalize();
-        Some(BsdfSample { wi, weight: self.tint * (1.0 / (eta * eta)), pdf: 1.0 - f, delta: true, eta })
+        // -wo/η and the normal part -cos θt·n (the two cos θo terms cancel). `!(z >= 0)` puts
+        // a NaN on the inside, as the comparison does.
+        let minus_n_sign = F32s::select(wo.z.ge(F32s::ZERO), F32s::splat(-1.0), F32s::ONE);
+        let refracted = Vec3s { x: -wo.x / eta, y: -wo.y / eta, z: minus_n_sign * cos_t }.normalize();
+        // Radiance compresses by 1/η² into the denser medium.
+        let compression = 1.0 / (eta * eta);
+        LaneSamples {
+            valid: active,
+            wi: Vec3s::select(reflect, &mirrored, &refracted),
+            weight: self.tint.map(|c| F32s::select(reflect, c, c * compression)),
+            pdf: F32s::select(reflect, f, 1.0 - f),
+            specular: active,
+            eta: F32s::select(reflect, F32s::ONE, eta),
+        }
     }
 }
 
@@ -79,6 +121,48 @@ mod tests {
         let (f, cos_t, _) = fresnel_dielectric(-cos60, 1.5);
         assert_eq!(f, 1.0);
         assert_eq!(cos_t, 0.0);
+    }
+
+    /// Each lane of a group of mixed dielectrics, seen from outside and inside (past the
+    /// critical angle too), gives the bits of its own one-lane sample.
+    #[test]
+    fn lanes_of_mixed_dielectrics_match_each_scalar_one() {
+        const N: usize = 8;
+        let glass =
+            |i: usize| Dielectric { ior: 1.1 + 0.15 * i as f32, tint: Rgb::new(1.0, 0.9 - 0.05 * i as f32, 0.8) };
+        let mut lanes = glass(0).lanes::<N>();
+        for i in 0..N {
+            lanes.set(i, &glass(i));
+        }
+        let mut x = 0x2545_f491u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / (1u32 << 24) as f32
+        };
+        let (mut reflected, mut refracted, mut total) = (0, 0, 0);
+        for _ in 0..300 {
+            let wo: [Vec3; N] =
+                std::array::from_fn(|_| Vec3::new(next() - 0.5, next() - 0.5, 2.0 * next() - 1.0).normalize());
+            let u = F32s::from_fn(|_| next());
+            let s = lanes.sample(&Vec3s::from_fn(|i| wo[i]), u, Ms::ALL);
+            for i in 0..N {
+                let one = glass(i).sample(wo[i], u.0[i]).unwrap();
+                assert!(s.valid.lane(i) && s.specular.lane(i));
+                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
+                let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
+                assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
+                assert_eq!([s.pdf.0[i], s.eta.0[i]].map(f32::to_bits), [one.pdf, one.eta].map(f32::to_bits));
+                if one.wi.z * wo[i].z > 0.0 {
+                    reflected += 1;
+                    total += usize::from(one.pdf == 1.0);
+                } else {
+                    refracted += 1;
+                }
+            }
+        }
+        assert!(reflected > 100 && refracted > 1000 && total > 50, "{reflected} {refracted} {total}");
     }
 
     #[test]

@@ -8,24 +8,28 @@ use crate::math::Rgb;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Sampled directions per lane: the valid lanes' direction `wi` (local frame), weight
-/// f·cos/pdf per RGB channel and solid-angle density.
+/// f·cos/pdf per RGB channel and density (solid angle; for a Dirac lobe, the lobe's
+/// probability), whether the lobe is a Dirac one, and the relative index crossed (1 for
+/// reflection).
 pub(crate) struct LaneSamples<const N: usize> {
     pub valid: Ms<N>,
     pub wi: Vec3s<N>,
     pub weight: [F32s<N>; 3],
     pub pdf: F32s<N>,
+    pub specular: Ms<N>,
+    pub eta: F32s<N>,
 }
 
 impl<const N: usize> LaneSamples<N> {
-    /// Lane `i`'s sample, if valid (a non-Dirac one: these models have no Dirac lobe).
+    /// Lane `i`'s sample, if valid.
     #[inline(always)]
     pub fn lane(&self, i: usize) -> Option<BsdfSample> {
         self.valid.lane(i).then(|| BsdfSample {
             wi: self.wi.lane(i),
             weight: rgb_lane(&self.weight, i),
             pdf: self.pdf.0[i],
-            delta: false,
-            eta: 1.0,
+            delta: self.specular.lane(i),
+            eta: self.eta.0[i],
         })
     }
 }

@@ -30,13 +30,14 @@ mod thin_dielectric;
 
 pub use blend::{Blend, Mixture};
 pub use conductor::Conductor;
+pub(crate) use dielectric::DielectricLanes;
 pub use dielectric::{fresnel_dielectric, Dielectric};
 pub use diffuse::Diffuse;
 pub use fresnel::{fresnel_conductor, fresnel_conductor_rgb};
 pub use glossy::Glossy;
 pub use ior::{ior_names, named_ior};
 pub use lambertian::Lambertian;
-pub(crate) use lanes::LaneScattering;
+pub(crate) use lanes::{LaneSamples, LaneScattering};
 pub use metals::{metal, metal_names};
 pub use microfacet::{Microfacet, MicrofacetKind};
 pub use mirror::Mirror;

@@ -104,7 +104,7 @@ impl<const N: usize> LaneScattering<N> for RoughConductorLanes<N> {
         // Channels written out, as in `fresnel_conductor_rgb_lanes`.
         let r = &self.reflectance;
         let weight = [r[0] * f[0] * g1, r[1] * f[1] * g1, r[2] * f[2] * g1];
-        LaneSamples { valid, wi, weight, pdf }
+        LaneSamples { valid, wi, weight, pdf, specular: Ms::NONE, eta: F32s::ONE }
     }
 
     /// f·cos θi and the density of `wi` per lane.

@@ -276,7 +276,7 @@ impl<const N: usize> LaneScattering<N> for RoughPlasticLanes<'_, N> {
         let (f, pdf) = self.eval_pdf(wo, &wi);
         let valid = active & !wi.z.le(zero) & pdf.is_finite() & pdf.gt(zero);
         let inv_pdf = 1.0 / pdf;
-        LaneSamples { valid, wi, weight: f.map(|c| c * inv_pdf), pdf }
+        LaneSamples { valid, wi, weight: f.map(|c| c * inv_pdf), pdf, specular: Ms::NONE, eta: F32s::ONE }
     }
 
     /// f·cos θi and the density of `wi` per lane.

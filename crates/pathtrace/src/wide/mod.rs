@@ -109,6 +109,7 @@ pub(crate) struct MaterialClass {
 pub(crate) enum LaneForm {
     RoughConductor,
     RoughPlastic,
+    Dielectric,
 }
 
 /// What a scene offers the lane-parallel forms, prepared once per render.
@@ -149,9 +150,13 @@ impl WideScene {
                     && !m.is_anisotropic()
                     && !scene.is_material_textured(id as u32)
                     && scene.normal_perturbation(id as u32).is_none();
+                // Smooth glass has Dirac lobes only: every strategy continues it by the material.
+                let untextured_plain =
+                    !scene.is_material_textured(id as u32) && scene.normal_perturbation(id as u32).is_none();
                 let lane_form = match m {
                     Material::RoughConductor(_) if plain => Some(LaneForm::RoughConductor),
                     Material::RoughPlastic(_) if plain => Some(LaneForm::RoughPlastic),
+                    Material::Dielectric(_) if untextured_plain => Some(LaneForm::Dielectric),
                     _ => None,
                 };
                 MaterialClass {
