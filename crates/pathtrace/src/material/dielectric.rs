@@ -147,14 +147,14 @@ mod tests {
                 std::array::from_fn(|_| Vec3::new(next() - 0.5, next() - 0.5, 2.0 * next() - 1.0).normalize());
             let u = F32s::from_fn(|_| next());
             let s = lanes.sample(&Vec3s::from_fn(|i| wo[i]), u, Ms::ALL);
-            for i in 0..N {
-                let one = glass(i).sample(wo[i], u.0[i]).unwrap();
+            for (i, &wo_i) in wo.iter().enumerate() {
+                let one = glass(i).sample(wo_i, u.0[i]).unwrap();
                 assert!(s.valid.lane(i) && s.specular.lane(i));
                 assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
                 let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
                 assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
                 assert_eq!([s.pdf.0[i], s.eta.0[i]].map(f32::to_bits), [one.pdf, one.eta].map(f32::to_bits));
-                if one.wi.z * wo[i].z > 0.0 {
+                if one.wi.z * wo_i.z > 0.0 {
                     reflected += 1;
                     total += usize::from(one.pdf == 1.0);
                 } else {
