@@ -1,5 +1,5 @@
-//! The lane-parallel form of a vertex on a material with a lane form (rough conductors and
-//! rough plastics, untextured, isotropic, without a normal map): the same steps as
+//! The lane-parallel form of a vertex on a material with a lane form (untextured, isotropic,
+//! without a normal map; `wide::LaneForm` lists them): the same steps as
 //! `integrator::shade` (shading frame, the light sample's shadow ray with its MIS weight, a
 //! direction sampled by the material), computed for all those lanes together through the
 //! material's lane form ([`LaneScattering`], whose one-lane instance is the scalar material).
@@ -11,7 +11,7 @@
 use super::path::Scattered;
 use super::shade::{same_side_lanes, SHADOW_EPSILON};
 use super::Strategy;
-use crate::material::{DielectricLanes, LaneSamples, LaneScattering};
+use crate::material::{LaneDeltaScattering, LaneSamples, LaneScattering};
 use crate::math::offset_ray_origin_lanes;
 use crate::wide::simd::{rgb_black, F32s, Ms, Vec3s};
 use crate::wide::{warp, LightSamples};
@@ -85,18 +85,18 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
     continue_lanes(v, lanes, &frame, &wo, &sample, sc);
 }
 
-/// Shades the vertex's `lanes` on smooth dielectrics (`material`): as `shade` does for a
-/// material of Dirac lobes only, no light sample (the lanes have none), and the reflected or
-/// refracted direction as the continuation. The frame is never turned over: the side the
-/// ray comes from decides whether it enters or leaves.
+/// Shades the vertex's `lanes` on a model of Dirac lobes only (`material`: smooth glass,
+/// conductors, mirrors): as `shade` does for such a model, no light sample (the lanes have
+/// none), and the reflected or refracted direction as the continuation.
 #[inline(always)]
-pub(super) fn dielectric_lanes<const N: usize>(
+pub(super) fn delta_lanes<const N: usize, M: LaneDeltaScattering<N>>(
     v: &LaneVertex<N>,
     lanes: Ms<N>,
-    material: &DielectricLanes<N>,
+    material: &M,
     sc: &mut Scattered<N>,
 ) {
-    let frame = LaneFrame::new(v, Ms::NONE);
+    let flippable = if M::TWO_SIDED { !v.one_sided } else { Ms::NONE };
+    let frame = LaneFrame::new(v, flippable);
     let wo = Vec3s { x: v.wo.dot(&frame.s), y: v.wo.dot(&frame.t), z: v.wo.dot(&frame.n_s) };
     let sample = material.sample(&wo, v.u_lobe, lanes);
     continue_lanes(v, lanes, &frame, &wo, &sample, sc);

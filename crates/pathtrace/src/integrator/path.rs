@@ -4,10 +4,10 @@
 //! Paths run in groups of `N` SIMD lanes (8 with AVX2, 16 with AVX-512, 1 for the one-lane
 //! instance of `Kernel::Scalar`); `integrator::regenerate` refills a lane with the tile's next
 //! camera sample as soon as its path ends. Each phase runs for all live lanes: lanes whose
-//! surface and lights have a lane-parallel form (Lambertian surfaces under flat area lights)
-//! are computed together in SIMD, every other lane by `integrator::shade` through the scene's
-//! own materials and lights. Both take the same random numbers in the same order, so every
-//! sampler keeps its properties.
+//! material has a lane form (Lambertian surfaces, and the models `wide::LaneForm` lists) are
+//! shaded together in SIMD, every other lane by `integrator::shade` through the scene's own
+//! materials; light samples are drawn for the group together. Both take the same random
+//! numbers in the same order, so every sampler keeps its properties.
 //!
 //! Depth counts path segments, as Mitsuba does: `max_depth = 1` shows only emitters seen
 //! directly, 2 adds direct lighting, -1 is unlimited.
@@ -18,12 +18,14 @@
 
 use super::features::record_features;
 use super::lanes::{Output, Paths, Surfaces};
-use super::material_lanes::{dielectric_lanes, material_lanes, LaneVertex};
+use super::material_lanes::{delta_lanes, material_lanes, LaneVertex};
 use super::media::{leaving_medium, medium_vertex, shadow_transmittance, travel};
 use super::regenerate::LaneJob;
 use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
 use super::Strategy;
-use crate::material::{lambertian, DielectricLanes, Material, RoughConductorLanes, RoughPlasticLanes};
+use crate::material::{
+    lambertian, DielectricLanes, Material, PlasticLanes, RoughConductorLanes, RoughPlasticLanes, SmoothConductorLanes,
+};
 use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2};
 use crate::scene::{Interaction, Primitive, Scene};
 use crate::wide::simd::{F32s, Ms, Vec3s};
@@ -219,8 +221,12 @@ pub(crate) fn vertex<const N: usize>(
     let mut conductors: Option<RoughConductorLanes<N>> = None;
     let mut plastic = Ms::<N>::NONE;
     let mut plastics: Option<RoughPlasticLanes<N>> = None;
+    let mut smooth_plastic = Ms::<N>::NONE;
+    let mut smooth_plastics: Option<PlasticLanes<N>> = None;
     let mut dielectric = Ms::<N>::NONE;
     let mut dielectrics: Option<DielectricLanes<N>> = None;
+    let mut reflector = Ms::<N>::NONE;
+    let mut reflectors: Option<SmoothConductorLanes<N>> = None;
     for i in (alive & !scatter).lanes() {
         let class = &lanes.classes[s.material[i] as usize];
         // A one-sided material seen from behind (the shading normal facing away, Mitsuba's
@@ -251,9 +257,21 @@ pub(crate) fn vertex<const N: usize>(
                     plastic.0[i] = u32::MAX;
                     plastics.get_or_insert_with(|| m.lanes()).set(i, m);
                 }
+                (LaneForm::Plastic, Material::Plastic(m)) => {
+                    smooth_plastic.0[i] = u32::MAX;
+                    smooth_plastics.get_or_insert_with(|| m.lanes()).set(i, m);
+                }
                 (LaneForm::Dielectric, Material::Dielectric(m)) => {
                     dielectric.0[i] = u32::MAX;
                     dielectrics.get_or_insert_with(|| m.lanes()).set(i, m);
+                }
+                (LaneForm::SmoothConductor, Material::Conductor(m)) => {
+                    reflector.0[i] = u32::MAX;
+                    reflectors.get_or_insert_with(SmoothConductorLanes::none).set_conductor(i, m);
+                }
+                (LaneForm::SmoothConductor, Material::Mirror(m)) => {
+                    reflector.0[i] = u32::MAX;
+                    reflectors.get_or_insert_with(SmoothConductorLanes::none).set_mirror(i, m);
                 }
                 // `WideScene::new` gives each form to its model only.
                 _ => unreachable!("lane form {form:?} on another material"),
@@ -302,7 +320,7 @@ pub(crate) fn vertex<const N: usize>(
     } else {
         LambertLight::none()
     };
-    let lane_forms = conductor | plastic | dielectric;
+    let lane_forms = conductor | plastic | smooth_plastic | dielectric | reflector;
     if lane_forms.any() {
         let v = LaneVertex {
             strategy,
@@ -327,8 +345,14 @@ pub(crate) fn vertex<const N: usize>(
             m.distribution = m.distribution.only(plastic);
             material_lanes(&v, plastic, &m, &mut sc);
         }
+        if let Some(m) = smooth_plastics {
+            material_lanes(&v, smooth_plastic, &m, &mut sc);
+        }
         if let Some(m) = dielectrics {
-            dielectric_lanes(&v, dielectric, &m, &mut sc);
+            delta_lanes(&v, dielectric, &m, &mut sc);
+        }
+        if let Some(m) = reflectors {
+            delta_lanes(&v, reflector, &m, &mut sc);
         }
     }
     for i in (alive & !simd & !lane_forms & !scatter).lanes() {

@@ -4,8 +4,8 @@
 //! compresses into the denser medium; Veach's thesis §5.2), so a closed glass object is
 //! energy-neutral.
 
-use super::lanes::LaneSamples;
-use super::BsdfSample;
+use super::lanes::{LaneDeltaScattering, LaneSamples};
+use super::{reflect_local_lanes, BsdfSample};
 use crate::math::{Rgb, Vec3};
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
@@ -76,13 +76,17 @@ impl<const N: usize> DielectricLanes<N> {
             self.tint[c].0[i] = tint;
         }
     }
+}
+
+impl<const N: usize> LaneDeltaScattering<N> for DielectricLanes<N> {
+    const TWO_SIDED: bool = false;
 
     /// Per lane of `active`: the mirror direction when `u_lobe < F`, else the refracted one.
     #[inline(always)]
-    pub fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, active: Ms<N>) -> LaneSamples<N> {
+    fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, active: Ms<N>) -> LaneSamples<N> {
         let (f, cos_t, eta) = fresnel_dielectric_lanes(wo.z, self.ior);
         let reflect = u_lobe.lt(f);
-        let mirrored = Vec3s { x: -wo.x, y: -wo.y, z: wo.z };
+        let mirrored = reflect_local_lanes(wo);
         // Snell: wi = -wo/η + (cos θo/η - cos θt)·n with n on wo's side; the tangential part is
         // -wo/η and the normal part -cos θt·n (the two cos θo terms cancel). `!(z >= 0)` puts
         // a NaN on the inside, as the comparison does.

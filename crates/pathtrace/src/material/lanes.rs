@@ -41,11 +41,22 @@ pub(crate) fn rgb_lane<const N: usize>(c: &[F32s<N>; 3], i: usize) -> Rgb {
 }
 
 /// A model's lane form, in the local frame (normal = +z), as [`crate::material::Material`]'s
-/// `eval_pdf` and `sample`; none of them has a Dirac lobe.
+/// `eval_pdf` and `sample`: the models with a smooth lobe, which take part in light sampling
+/// (`eval_pdf` covers the smooth lobes; a Dirac lobe's samples are flagged `specular`).
 pub(crate) trait LaneScattering<const N: usize> {
     /// f·cos θi and the density of `wi` per lane.
     fn eval_pdf(&self, wo: &Vec3s<N>, wi: &Vec3s<N>) -> ([F32s<N>; 3], F32s<N>);
     /// A direction per lane of `active`, from the lobe number `u_lobe` and the direction's
     /// `u1`, `u2`.
     fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, u1: F32s<N>, u2: F32s<N>, active: Ms<N>) -> LaneSamples<N>;
+}
+
+/// The lane form of a model of Dirac lobes only (mirrors, smooth conductors and glass): no
+/// light sampling, a sampled direction only.
+pub(crate) trait LaneDeltaScattering<const N: usize> {
+    /// Scatters from both sides: the frame turns over to the viewer's side (a dielectric does
+    /// not: the side the ray comes from decides whether it enters or leaves).
+    const TWO_SIDED: bool;
+    /// A direction per lane of `active`, from the lobe number `u_lobe`.
+    fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, active: Ms<N>) -> LaneSamples<N>;
 }

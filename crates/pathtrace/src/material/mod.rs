@@ -30,6 +30,7 @@ mod thin_dielectric;
 
 pub use blend::{Blend, Mixture};
 pub use conductor::Conductor;
+pub(crate) use conductor::SmoothConductorLanes;
 pub(crate) use dielectric::DielectricLanes;
 pub use dielectric::{fresnel_dielectric, Dielectric};
 pub use diffuse::Diffuse;
@@ -37,11 +38,12 @@ pub use fresnel::{fresnel_conductor, fresnel_conductor_rgb};
 pub use glossy::Glossy;
 pub use ior::{ior_names, named_ior};
 pub use lambertian::Lambertian;
-pub(crate) use lanes::{LaneSamples, LaneScattering};
+pub(crate) use lanes::{LaneDeltaScattering, LaneSamples, LaneScattering};
 pub use metals::{metal, metal_names};
 pub use microfacet::{Microfacet, MicrofacetKind};
 pub use mirror::Mirror;
 pub use plastic::Plastic;
+pub(crate) use plastic::PlasticLanes;
 pub use rough_conductor::RoughConductor;
 pub(crate) use rough_conductor::RoughConductorLanes;
 pub use rough_dielectric::RoughDielectric;
@@ -53,6 +55,7 @@ pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Rgb, Vec2, Vec3};
 use crate::texture::ColourSlot;
+use crate::wide::simd::Vec3s;
 
 /// A sampled scattering direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -338,5 +341,11 @@ impl Material {
 /// R = L - 2(L·N)N with L = -wo.
 #[inline]
 pub(crate) fn reflect_local(wo: Vec3) -> Vec3 {
-    Vec3::new(-wo.x, -wo.y, wo.z)
+    reflect_local_lanes(&Vec3s::<1>::splat(wo)).lane(0)
+}
+
+/// [`reflect_local`] in every lane.
+#[inline(always)]
+pub(crate) fn reflect_local_lanes<const N: usize>(wo: &Vec3s<N>) -> Vec3s<N> {
+    Vec3s { x: -wo.x, y: -wo.y, z: wo.z }
 }

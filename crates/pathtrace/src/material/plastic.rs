@@ -15,12 +15,14 @@
 //! The model mixes a Dirac lobe with a smooth one: `eval`/`pdf` cover only the base, which takes
 //! part in light sampling; a coating sample is flagged `delta`.
 
-use super::dielectric::fresnel_dielectric;
-use super::{reflect_local, BsdfSample};
+use super::dielectric::{fresnel_dielectric, fresnel_dielectric_lanes};
+use super::lanes::{rgb_lane, LaneSamples, LaneScattering};
+use super::{reflect_local_lanes, BsdfSample};
 use crate::math::special::gauss_legendre;
 use crate::math::{Rgb, Vec2, Vec3, INV_PI};
-use crate::sampling::warp;
-use crate::wide::simd::F32s;
+use crate::sampling::warp::cosine_hemisphere_pdf_lanes;
+use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::warp as warp_lanes;
 
 /// A smooth plastic. Build it with [`Plastic::new`], which precomputes the coating terms.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -81,30 +83,20 @@ impl Plastic {
         Self { albedo, base, ..*self }
     }
 
-    /// Probability of sampling the coating for a viewer at cos θo.
-    fn coating_probability(&self, f_o: f32) -> f32 {
-        coating_pick_probability(f_o, 1.0 - f_o, self.specular_weight)
+    /// This plastic in every lane of a group (the scalar methods are the one-lane instances of
+    /// [`PlasticLanes`]'s).
+    #[inline(always)]
+    pub(crate) fn lanes<const N: usize>(&self) -> PlasticLanes<N> {
+        PlasticLanes {
+            specular: self.specular.to_array().map(F32s::splat),
+            base: self.base.to_array().map(F32s::splat),
+            ior: F32s::splat(self.ior),
+            specular_weight: F32s::splat(self.specular_weight),
+        }
     }
 
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        if wo.z <= 0.0 {
-            return None;
-        }
-        let f_o = fresnel_dielectric(wo.z, self.ior).0;
-        let p_coat = self.coating_probability(f_o);
-        if u_lobe < p_coat {
-            let weight = self.specular * (f_o / p_coat);
-            return Some(BsdfSample { wi: reflect_local(wo), weight, pdf: p_coat, delta: true, eta: 1.0 });
-        }
-        let wi = warp::square_to_cosine_hemisphere(u);
-        if wi.z <= 0.0 {
-            return None;
-        }
-        let pdf = (1.0 - p_coat) * warp::cosine_hemisphere_pdf(wi);
-        let f_i = fresnel_dielectric(wi.z, self.ior).0;
-        // f cos θi / pdf with pdf = (1 − p) cos θi / π.
-        let weight = self.base * (std::f32::consts::PI * (1.0 - f_o) * (1.0 - f_i) / (1.0 - p_coat));
-        Some(BsdfSample { wi, weight, pdf, delta: false, eta: 1.0 })
+        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
@@ -118,24 +110,95 @@ impl Plastic {
     /// `eval` and `pdf` together, sharing F(cos θo).
     #[inline]
     pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return (Rgb::BLACK, 0.0);
-        }
-        let f_o = fresnel_dielectric(wo.z, self.ior).0;
-        let f_i = fresnel_dielectric(wi.z, self.ior).0;
-        let f = self.base * ((1.0 - f_o) * (1.0 - f_i) * wi.z);
-        (f, (1.0 - self.coating_probability(f_o)) * warp::cosine_hemisphere_pdf(wi))
+        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
+        (rgb_lane(&f, 0), pdf.0[0])
     }
 }
 
-/// Mitsuba's lobe choice for both plastics: the coating's reflected fraction weighted by the
-/// specular sampling weight, against the transmitted (diffuse) fraction weighted by its
-/// complement; 0 when both vanish.
-pub(super) fn coating_pick_probability(reflected: f32, transmitted: f32, specular_weight: f32) -> f32 {
-    coating_pick_probability_lanes(F32s([reflected]), F32s([transmitted]), F32s([specular_weight])).0[0]
+/// A smooth plastic per lane (lanes can hold different ones), RGB channels as lane groups.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PlasticLanes<const N: usize> {
+    pub specular: [F32s<N>; 3],
+    /// ρ' / (π η²).
+    pub base: [F32s<N>; 3],
+    pub ior: F32s<N>,
+    pub specular_weight: F32s<N>,
 }
 
-/// [`coating_pick_probability`] in every lane.
+impl<const N: usize> PlasticLanes<N> {
+    /// Lane `i` holds `m`.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, m: &Plastic) {
+        for c in 0..3 {
+            self.specular[c].0[i] = m.specular.to_array()[c];
+            self.base[c].0[i] = m.base.to_array()[c];
+        }
+        self.ior.0[i] = m.ior;
+        self.specular_weight.0[i] = m.specular_weight;
+    }
+
+    /// The probability of sampling the coating for a viewer whose Fresnel reflectance is `f_o`.
+    #[inline(always)]
+    fn coating_probability(&self, f_o: F32s<N>) -> F32s<N> {
+        coating_pick_probability_lanes(f_o, 1.0 - f_o, self.specular_weight)
+    }
+}
+
+impl<const N: usize> LaneScattering<N> for PlasticLanes<N> {
+    /// The coating's mirror direction (a Dirac lobe, flagged `specular`) or the base's
+    /// cosine-weighted one, chosen by `u_lobe`.
+    #[inline(always)]
+    fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, u1: F32s<N>, u2: F32s<N>, active: Ms<N>) -> LaneSamples<N> {
+        let zero = F32s::ZERO;
+        // `!(x <= 0)` keeps the scalar rule for NaN.
+        let active = active & !wo.z.le(zero);
+        let f_o = fresnel_dielectric_lanes(wo.z, self.ior).0;
+        let p_coat = self.coating_probability(f_o);
+        let coat = u_lobe.lt(p_coat);
+        let base = active & !coat;
+        let diffuse = if base.any() { warp_lanes::square_to_cosine_hemisphere(u1, u2) } else { Vec3s::default() };
+        let f_i = fresnel_dielectric_lanes(diffuse.z, self.ior).0;
+        // The base: f·cos θi / pdf with pdf = (1 − p) cos θi / π.
+        let base_scale = std::f32::consts::PI * (1.0 - f_o) * (1.0 - f_i) / (1.0 - p_coat);
+        let coat_scale = f_o / p_coat;
+        let (ks, kd) = (&self.specular, &self.base);
+        LaneSamples {
+            valid: active & (coat | !diffuse.z.le(zero)),
+            wi: Vec3s::select(coat, &reflect_local_lanes(wo), &diffuse),
+            // Channels written out, as in `fresnel_conductor_rgb_lanes`.
+            weight: [
+                F32s::select(coat, ks[0] * coat_scale, kd[0] * base_scale),
+                F32s::select(coat, ks[1] * coat_scale, kd[1] * base_scale),
+                F32s::select(coat, ks[2] * coat_scale, kd[2] * base_scale),
+            ],
+            pdf: F32s::select(coat, p_coat, (1.0 - p_coat) * cosine_hemisphere_pdf_lanes(diffuse.z)),
+            specular: active & coat,
+            eta: F32s::ONE,
+        }
+    }
+
+    /// The base's f·cos θi and density (the coating, a Dirac lobe, has neither).
+    #[inline(always)]
+    fn eval_pdf(&self, wo: &Vec3s<N>, wi: &Vec3s<N>) -> ([F32s<N>; 3], F32s<N>) {
+        let zero = F32s::ZERO;
+        let below = wo.z.le(zero) | wi.z.le(zero);
+        let f_o = fresnel_dielectric_lanes(wo.z, self.ior).0;
+        let f_i = fresnel_dielectric_lanes(wi.z, self.ior).0;
+        let scale = (1.0 - f_o) * (1.0 - f_i) * wi.z;
+        let kd = &self.base;
+        let value = [
+            F32s::select(below, zero, kd[0] * scale),
+            F32s::select(below, zero, kd[1] * scale),
+            F32s::select(below, zero, kd[2] * scale),
+        ];
+        let pdf = (1.0 - self.coating_probability(f_o)) * cosine_hemisphere_pdf_lanes(wi.z);
+        (value, F32s::select(below, zero, pdf))
+    }
+}
+
+/// Mitsuba's lobe choice for both plastics, per lane: the coating's reflected fraction weighted
+/// by the specular sampling weight, against the transmitted (diffuse) fraction weighted by its
+/// complement; 0 when both vanish.
 #[inline(always)]
 pub(super) fn coating_pick_probability_lanes<const N: usize>(
     reflected: F32s<N>,
@@ -150,6 +213,63 @@ pub(super) fn coating_pick_probability_lanes<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each lane of a group of mixed plastics gives the bits of its own one-lane evaluation and
+    /// sample (both lobes, seen from the front and from behind): the lanes stay apart.
+    #[test]
+    fn lanes_of_mixed_plastics_match_each_scalar_one() {
+        const N: usize = 8;
+        let plastic = |i: usize| {
+            let k = (i % 4) as f32;
+            Plastic::new(Rgb::new(0.2, 0.5, 0.8 - 0.1 * k), Rgb::splat(1.0 - 0.2 * k), 1.3 + 0.2 * k, i % 4 == 3)
+        };
+        let mut lanes = plastic(0).lanes::<N>();
+        for i in 0..N {
+            lanes.set(i, &plastic(i));
+        }
+        let mut x = 0x2545_f491u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / (1u32 << 24) as f32
+        };
+        let (mut coat, mut base, mut none) = (0, 0, 0);
+        for _ in 0..300 {
+            let mut direction = || Vec3::new(next() - 0.5, next() - 0.5, 0.7 * next() - 0.05).normalize();
+            let wo: [Vec3; N] = std::array::from_fn(|_| direction());
+            let wi: [Vec3; N] = std::array::from_fn(|_| direction());
+            let (wo_l, wi_l) = (Vec3s::from_fn(|i| wo[i]), Vec3s::from_fn(|i| wi[i]));
+            let u = [0; 3].map(|_| F32s::<N>::from_fn(|_| next()));
+            let (f, pdf) = lanes.eval_pdf(&wo_l, &wi_l);
+            let s = lanes.sample(&wo_l, u[0], u[1], u[2], Ms::ALL);
+            for i in 0..N {
+                let m = plastic(i);
+                let (f1, pdf1) = m.eval_pdf(wo[i], wi[i]);
+                assert_eq!(rgb_lane(&f, i).to_array().map(f32::to_bits), f1.to_array().map(f32::to_bits));
+                assert_eq!(pdf.0[i].to_bits(), pdf1.to_bits());
+                let one = m.sample(wo[i], u[0].0[i], Vec2::new(u[1].0[i], u[2].0[i]));
+                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}");
+                let Some(one) = one else {
+                    none += 1;
+                    continue;
+                };
+                assert_eq!(s.specular.lane(i), one.delta);
+                if one.delta {
+                    coat += 1;
+                } else {
+                    base += 1;
+                }
+                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
+                assert_eq!(
+                    rgb_lane(&s.weight, i).to_array().map(f32::to_bits),
+                    one.weight.to_array().map(f32::to_bits)
+                );
+                assert_eq!(s.pdf.0[i].to_bits(), one.pdf.to_bits());
+            }
+        }
+        assert!(coat > 100 && base > 1000 && none > 50, "{coat} {base} {none}");
+    }
 
     #[test]
     fn diffuse_fresnel_reflectance_matches_published_fits() {

@@ -109,7 +109,10 @@ pub(crate) struct MaterialClass {
 pub(crate) enum LaneForm {
     RoughConductor,
     RoughPlastic,
+    Plastic,
     Dielectric,
+    /// Smooth conductors and mirrors.
+    SmoothConductor,
 }
 
 /// What a scene offers the lane-parallel forms, prepared once per render.
@@ -150,13 +153,15 @@ impl WideScene {
                     && !m.is_anisotropic()
                     && !scene.is_material_textured(id as u32)
                     && scene.normal_perturbation(id as u32).is_none();
-                // Smooth glass has Dirac lobes only: every strategy continues it by the material.
+                // Models of Dirac lobes only: every strategy continues them by the material.
                 let untextured_plain =
                     !scene.is_material_textured(id as u32) && scene.normal_perturbation(id as u32).is_none();
                 let lane_form = match m {
                     Material::RoughConductor(_) if plain => Some(LaneForm::RoughConductor),
                     Material::RoughPlastic(_) if plain => Some(LaneForm::RoughPlastic),
+                    Material::Plastic(_) if plain => Some(LaneForm::Plastic),
                     Material::Dielectric(_) if untextured_plain => Some(LaneForm::Dielectric),
+                    Material::Conductor(_) | Material::Mirror(_) if untextured_plain => Some(LaneForm::SmoothConductor),
                     _ => None,
                 };
                 MaterialClass {
