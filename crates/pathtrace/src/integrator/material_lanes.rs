@@ -46,7 +46,8 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
 ) {
     let zero = F32s::<N>::ZERO;
     // The frame, turned over for the back of a two-sided surface (shade.rs: `flipped`).
-    let frame = LaneFrame::new(v, !v.one_sided);
+    let flippable = if M::TWO_SIDED { !v.one_sided } else { Ms::NONE };
+    let frame = LaneFrame::new(v, flippable);
     let (n_g, n_s, s, t) = (&frame.n_g, &frame.n_s, &frame.s, &frame.t);
     let to_local = |w: &Vec3s<N>| Vec3s { x: w.dot(s), y: w.dot(t), z: w.dot(n_s) };
     let wo = to_local(v.wo);

@@ -24,7 +24,8 @@ use super::regenerate::LaneJob;
 use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
 use super::Strategy;
 use crate::material::{
-    lambertian, DielectricLanes, Material, PlasticLanes, RoughConductorLanes, RoughPlasticLanes, SmoothConductorLanes,
+    lambertian, DielectricLanes, DiffuseLanes, GlossyLanes, Material, PlasticLanes, RoughConductorLanes,
+    RoughDielectricLanes, RoughPlasticLanes, SmoothConductorLanes, ThinDielectricLanes,
 };
 use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2};
 use crate::scene::{Interaction, Primitive, Scene};
@@ -227,6 +228,14 @@ pub(crate) fn vertex<const N: usize>(
     let mut dielectrics: Option<DielectricLanes<N>> = None;
     let mut reflector = Ms::<N>::NONE;
     let mut reflectors: Option<SmoothConductorLanes<N>> = None;
+    let mut uniform = Ms::<N>::NONE;
+    let mut uniforms: Option<DiffuseLanes<N>> = None;
+    let mut phong = Ms::<N>::NONE;
+    let mut phongs: Option<GlossyLanes<N>> = None;
+    let mut rough_glass = Ms::<N>::NONE;
+    let mut rough_glasses: Option<RoughDielectricLanes<N>> = None;
+    let mut slab = Ms::<N>::NONE;
+    let mut slabs: Option<ThinDielectricLanes<N>> = None;
     for i in (alive & !scatter).lanes() {
         let class = &lanes.classes[s.material[i] as usize];
         // A one-sided material seen from behind (the shading normal facing away, Mitsuba's
@@ -272,6 +281,22 @@ pub(crate) fn vertex<const N: usize>(
                 (LaneForm::SmoothConductor, Material::Mirror(m)) => {
                     reflector.0[i] = u32::MAX;
                     reflectors.get_or_insert_with(SmoothConductorLanes::none).set_mirror(i, m);
+                }
+                (LaneForm::Diffuse, Material::Diffuse(m)) => {
+                    uniform.0[i] = u32::MAX;
+                    uniforms.get_or_insert_with(|| m.lanes()).set(i, m);
+                }
+                (LaneForm::Glossy, Material::Glossy(m)) => {
+                    phong.0[i] = u32::MAX;
+                    phongs.get_or_insert_with(|| m.lanes()).set(i, m);
+                }
+                (LaneForm::RoughDielectric, Material::RoughDielectric(m)) => {
+                    rough_glass.0[i] = u32::MAX;
+                    rough_glasses.get_or_insert_with(|| m.lanes()).set(i, m);
+                }
+                (LaneForm::ThinDielectric, Material::ThinDielectric(m)) => {
+                    slab.0[i] = u32::MAX;
+                    slabs.get_or_insert_with(|| m.lanes()).set(i, m);
                 }
                 // `WideScene::new` gives each form to its model only.
                 _ => unreachable!("lane form {form:?} on another material"),
@@ -320,7 +345,8 @@ pub(crate) fn vertex<const N: usize>(
     } else {
         LambertLight::none()
     };
-    let lane_forms = conductor | plastic | smooth_plastic | dielectric | reflector;
+    let lane_forms =
+        conductor | plastic | smooth_plastic | uniform | phong | rough_glass | dielectric | reflector | slab;
     if lane_forms.any() {
         let v = LaneVertex {
             strategy,
@@ -345,6 +371,16 @@ pub(crate) fn vertex<const N: usize>(
             m.distribution = m.distribution.only(plastic);
             material_lanes(&v, plastic, &m, &mut sc);
         }
+        if let Some(m) = uniforms {
+            material_lanes(&v, uniform, &m, &mut sc);
+        }
+        if let Some(m) = phongs {
+            material_lanes(&v, phong, &m, &mut sc);
+        }
+        if let Some(mut m) = rough_glasses {
+            m.distribution = m.distribution.only(rough_glass);
+            material_lanes(&v, rough_glass, &m, &mut sc);
+        }
         if let Some(m) = smooth_plastics {
             material_lanes(&v, smooth_plastic, &m, &mut sc);
         }
@@ -353,6 +389,9 @@ pub(crate) fn vertex<const N: usize>(
         }
         if let Some(m) = reflectors {
             delta_lanes(&v, reflector, &m, &mut sc);
+        }
+        if let Some(m) = slabs {
+            delta_lanes(&v, slab, &m, &mut sc);
         }
     }
     for i in (alive & !simd & !lane_forms & !scatter).lanes() {

@@ -44,6 +44,9 @@ pub(crate) fn rgb_lane<const N: usize>(c: &[F32s<N>; 3], i: usize) -> Rgb {
 /// `eval_pdf` and `sample`: the models with a smooth lobe, which take part in light sampling
 /// (`eval_pdf` covers the smooth lobes; a Dirac lobe's samples are flagged `specular`).
 pub(crate) trait LaneScattering<const N: usize> {
+    /// Scatters from both sides: the frame turns over to the viewer's side (a dielectric's
+    /// does not: the side the ray comes from decides whether it enters or leaves).
+    const TWO_SIDED: bool = true;
     /// f·cos θi and the density of `wi` per lane.
     fn eval_pdf(&self, wo: &Vec3s<N>, wi: &Vec3s<N>) -> ([F32s<N>; 3], F32s<N>);
     /// A direction per lane of `active`, from the lobe number `u_lobe` and the direction's

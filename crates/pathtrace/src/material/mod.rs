@@ -34,8 +34,10 @@ pub(crate) use conductor::SmoothConductorLanes;
 pub(crate) use dielectric::DielectricLanes;
 pub use dielectric::{fresnel_dielectric, Dielectric};
 pub use diffuse::Diffuse;
+pub(crate) use diffuse::DiffuseLanes;
 pub use fresnel::{fresnel_conductor, fresnel_conductor_rgb};
 pub use glossy::Glossy;
+pub(crate) use glossy::GlossyLanes;
 pub use ior::{ior_names, named_ior};
 pub use lambertian::Lambertian;
 pub(crate) use lanes::{LaneDeltaScattering, LaneSamples, LaneScattering};
@@ -47,11 +49,13 @@ pub(crate) use plastic::PlasticLanes;
 pub use rough_conductor::RoughConductor;
 pub(crate) use rough_conductor::RoughConductorLanes;
 pub use rough_dielectric::RoughDielectric;
+pub(crate) use rough_dielectric::RoughDielectricLanes;
 pub use rough_plastic::RoughPlastic;
 pub(crate) use rough_plastic::RoughPlasticLanes;
 pub use rough_plastic_alpha::RoughPlasticAlphaTable;
 pub use scattering::Scattering;
 pub use thin_dielectric::ThinDielectric;
+pub(crate) use thin_dielectric::ThinDielectricLanes;
 
 use crate::math::{Rgb, Vec2, Vec3};
 use crate::texture::ColourSlot;
@@ -176,6 +180,7 @@ impl Material {
             Material::RoughConductor(m) => m.eval_pdf(wo, wi),
             Material::Plastic(m) => m.eval_pdf(wo, wi),
             Material::RoughPlastic(m) => m.eval_pdf(wo, wi),
+            Material::RoughDielectric(m) => m.eval_pdf(wo, wi),
             Material::Black
             | Material::Null
             | Material::Diffuse(_)
@@ -184,7 +189,6 @@ impl Material {
             | Material::Glossy(_)
             | Material::Dielectric(_)
             | Material::Conductor(_)
-            | Material::RoughDielectric(_)
             | Material::ThinDielectric(_)
             | Material::Blend(_) => (self.eval(wo, wi), self.pdf(wo, wi)),
         }
@@ -337,14 +341,8 @@ impl Material {
     }
 }
 
-/// Mirror reflection about the local normal: R = -wo + 2(wo·n)n, i.e. the book form
+/// Mirror reflection about the local normal per lane: R = -wo + 2(wo·n)n, i.e. the book form
 /// R = L - 2(L·N)N with L = -wo.
-#[inline]
-pub(crate) fn reflect_local(wo: Vec3) -> Vec3 {
-    reflect_local_lanes(&Vec3s::<1>::splat(wo)).lane(0)
-}
-
-/// [`reflect_local`] in every lane.
 #[inline(always)]
 pub(crate) fn reflect_local_lanes<const N: usize>(wo: &Vec3s<N>) -> Vec3s<N> {
     Vec3s { x: -wo.x, y: -wo.y, z: wo.z }

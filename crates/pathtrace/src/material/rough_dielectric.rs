@@ -11,10 +11,12 @@
 //!
 //! As `dielectric`, it sees both sides: z > 0 is outside (index 1), z < 0 inside (index `ior`).
 
-use super::dielectric::fresnel_dielectric;
-use super::microfacet::{reflect_about, refract_about, Microfacet};
+use super::dielectric::fresnel_dielectric_lanes;
+use super::lanes::{rgb_lane, LaneSamples, LaneScattering};
+use super::microfacet::{reflect_about_lanes, refract_about_lanes, Microfacet, MicrofacetLanes};
 use super::BsdfSample;
 use crate::math::{Rgb, Vec2, Vec3};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// A rough dielectric interface with interior index `ior` (exterior 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,103 +27,231 @@ pub struct RoughDielectric {
     pub tint: Rgb,
 }
 
-/// Directions and indices seen from wo's side: both flipped so that wo is above (z > 0);
-/// `eta` = index below / index above.
-struct Oriented {
-    wo: Vec3,
-    sign: f32,
-    eta: f32,
-}
-
 impl RoughDielectric {
-    fn orient(&self, wo: Vec3) -> Oriented {
-        if wo.z >= 0.0 {
-            Oriented { wo, sign: 1.0, eta: self.ior }
-        } else {
-            Oriented { wo: -wo, sign: -1.0, eta: 1.0 / self.ior }
+    /// This interface in every lane of a group (the scalar methods are the one-lane instances
+    /// of [`RoughDielectricLanes`]'s).
+    #[inline(always)]
+    pub(crate) fn lanes<const N: usize>(&self) -> RoughDielectricLanes<N> {
+        RoughDielectricLanes {
+            distribution: self.distribution.lanes(),
+            ior: F32s::splat(self.ior),
+            tint: self.tint.to_array().map(F32s::splat),
         }
     }
 
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        if wo.z == 0.0 {
-            return None;
-        }
-        let o = self.orient(wo);
-        let m = self.distribution.sample_visible(o.wo, u);
-        let cos_om = o.wo.dot(m);
-        if cos_om <= 0.0 {
-            return None;
-        }
-        let pdf_m = self.distribution.pdf_visible(o.wo, m);
-        let (f, cos_t, eta) = fresnel_dielectric(cos_om, o.eta);
-        if u_lobe < f {
-            let wi = reflect_about(o.wo, m);
-            if wi.z <= 0.0 {
-                return None;
-            }
-            let pdf = f * pdf_m / (4.0 * cos_om);
-            let weight = self.tint * self.distribution.g1(wi, m);
-            return (pdf > 0.0).then_some(BsdfSample { wi: wi * o.sign, weight, pdf, delta: false, eta: 1.0 });
-        }
-        let wi = refract_about(o.wo, m, cos_om, cos_t, eta);
-        if wi.z >= 0.0 {
-            return None;
-        }
-        let cos_im = wi.dot(m);
-        let denom = cos_om + eta * cos_im;
-        let pdf = (1.0 - f) * pdf_m * eta * eta * cos_im.abs() / (denom * denom);
-        let weight = self.tint * (self.distribution.g1(wi, m) / (eta * eta));
-        (pdf > 0.0).then_some(BsdfSample { wi: wi * o.sign, weight, pdf, delta: false, eta })
-    }
-
-    /// The microfacet normal joining wo and wi (both oriented), with Fresnel and the
-    /// reflection flag; `None` where no microfacet normal can connect them.
-    fn half_vector(&self, o: &Oriented, wi: Vec3) -> Option<(Vec3, bool)> {
-        let reflect = wi.z > 0.0;
-        let h = if reflect { o.wo + wi } else { o.wo + o.eta * wi };
-        let m = h.normalize() * h.z.signum();
-        // Neither direction may see the back of m (Walter 2007 §5.3).
-        let ok = m.is_finite() && m.z > 0.0 && o.wo.dot(m) > 0.0 && wi.dot(m) * wi.z > 0.0;
-        ok.then_some((m, reflect))
+        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        if wo.z == 0.0 || wi.z == 0.0 {
-            return Rgb::BLACK;
-        }
-        let o = self.orient(wo);
-        let wi = wi * o.sign;
-        let Some((m, reflect)) = self.half_vector(&o, wi) else { return Rgb::BLACK };
-        let cos_om = o.wo.dot(m);
-        let (f, _, _) = fresnel_dielectric(cos_om, o.eta);
-        let dg = self.distribution.d(m) * self.distribution.g(o.wo, wi, m);
-        let value = if reflect {
-            f * dg / (4.0 * o.wo.z)
-        } else {
-            let cos_im = wi.dot(m);
-            let denom = cos_om + o.eta * cos_im;
-            (1.0 - f) * dg * (cos_im * cos_om).abs() / (o.wo.z * denom * denom)
-        };
-        self.tint * value.max(0.0)
+        self.eval_pdf(wo, wi).0
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z == 0.0 || wi.z == 0.0 {
-            return 0.0;
+        self.eval_pdf(wo, wi).1
+    }
+
+    /// `eval` and `pdf` together, sharing the half vector, Fresnel, D and G1(wo).
+    #[inline]
+    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
+        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
+        (rgb_lane(&f, 0), pdf.0[0])
+    }
+}
+
+/// Rough dielectrics per lane (lanes can hold different ones), the tint's channels as lane
+/// groups.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RoughDielectricLanes<const N: usize> {
+    pub distribution: MicrofacetLanes<N>,
+    pub ior: F32s<N>,
+    pub tint: [F32s<N>; 3],
+}
+
+/// Directions and indices seen from wo's side per lane: both turned over where wo is below, so
+/// that wo is above (z > 0); `eta` = index below / index above.
+struct Oriented<const N: usize> {
+    wo: Vec3s<N>,
+    sign: F32s<N>,
+    eta: F32s<N>,
+}
+
+// Always inlined, as the lane loop's helpers (see `MicrofacetLanes`).
+impl<const N: usize> RoughDielectricLanes<N> {
+    /// Lane `i` holds `m`.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, m: &RoughDielectric) {
+        self.distribution.set(i, &m.distribution);
+        self.ior.0[i] = m.ior;
+        for (c, tint) in m.tint.to_array().into_iter().enumerate() {
+            self.tint[c].0[i] = tint;
         }
+    }
+
+    /// `wo` seen from its own side (`z ≥ 0` is outside; a NaN counts as inside).
+    #[inline(always)]
+    fn orient(&self, wo: &Vec3s<N>) -> Oriented<N> {
+        let outside = wo.z.ge(F32s::ZERO);
+        Oriented {
+            wo: Vec3s::select(outside, wo, &wo.neg()),
+            sign: F32s::select(outside, F32s::ONE, F32s::splat(-1.0)),
+            eta: F32s::select(outside, self.ior, 1.0 / self.ior),
+        }
+    }
+
+    /// `v · sign` per component.
+    #[inline(always)]
+    fn signed(v: &Vec3s<N>, sign: F32s<N>) -> Vec3s<N> {
+        Vec3s { x: v.x * sign, y: v.y * sign, z: v.z * sign }
+    }
+
+    /// `tint · x` per channel.
+    #[inline(always)]
+    fn tinted(&self, x: F32s<N>) -> [F32s<N>; 3] {
+        [self.tint[0] * x, self.tint[1] * x, self.tint[2] * x]
+    }
+}
+
+impl<const N: usize> LaneScattering<N> for RoughDielectricLanes<N> {
+    /// The side wo comes from decides whether light enters or leaves: the frame is never
+    /// turned over.
+    const TWO_SIDED: bool = false;
+
+    /// A visible normal m of wo, then reflection about m with probability F(wo·m), refraction
+    /// through it otherwise; the weight is the tint times G1(wi, m) (over η² through m).
+    #[inline(always)]
+    fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, u1: F32s<N>, u2: F32s<N>, active: Ms<N>) -> LaneSamples<N> {
+        let zero = F32s::ZERO;
+        let active = active & !wo.z.eq(zero);
         let o = self.orient(wo);
-        let wi = wi * o.sign;
-        let Some((m, reflect)) = self.half_vector(&o, wi) else { return 0.0 };
-        let cos_om = o.wo.dot(m);
-        let (f, _, _) = fresnel_dielectric(cos_om, o.eta);
-        let pdf_m = self.distribution.pdf_visible(o.wo, m);
-        if reflect {
-            f * pdf_m / (4.0 * cos_om)
-        } else {
-            // Jacobian of refraction dωm/dωi = η² |wi·m| / (wo·m + η wi·m)² (Walter 2007 eq. 17).
-            let cos_im = wi.dot(m);
-            let denom = cos_om + o.eta * cos_im;
-            (1.0 - f) * pdf_m * o.eta * o.eta * cos_im.abs() / (denom * denom)
+        let m = self.distribution.sample_visible(&o.wo, u1, u2, active);
+        let cos_om = o.wo.dot(&m);
+        // `!(x <= 0)` keeps the scalar rule for NaN.
+        let active = active & !cos_om.le(zero);
+        let pdf_m = self.distribution.pdf_visible(&o.wo, &m);
+        let (f, cos_t, eta) = fresnel_dielectric_lanes(cos_om, o.eta);
+        let reflect = u_lobe.lt(f);
+        let reflected = reflect_about_lanes(&o.wo, &m);
+        let refracted = refract_about_lanes(&o.wo, &m, cos_om, cos_t, eta);
+        let wi = Vec3s::select(reflect, &reflected, &refracted);
+        let g1 = self.distribution.g1(&wi, &m);
+        // Reflection: pdf F·D_v/(4 wo·m). Refraction: the Jacobian η²|wi·m|/(wo·m + η wi·m)²
+        // (Walter 2007 eq. 17).
+        let pdf_reflect = f * pdf_m / (4.0 * cos_om);
+        let cos_im = refracted.dot(&m);
+        let denom = cos_om + eta * cos_im;
+        let pdf_refract = (1.0 - f) * pdf_m * eta * eta * cos_im.abs() / (denom * denom);
+        let pdf = F32s::select(reflect, pdf_reflect, pdf_refract);
+        let sides = (reflect & !reflected.z.le(zero)) | (!reflect & !refracted.z.ge(zero));
+        LaneSamples {
+            valid: active & sides & pdf.gt(zero),
+            wi: Self::signed(&wi, o.sign),
+            weight: self.tinted(F32s::select(reflect, g1, g1 / (eta * eta))),
+            pdf,
+            specular: Ms::NONE,
+            eta: F32s::select(reflect, F32s::ONE, eta),
         }
+    }
+
+    /// f·cos θi and the density of `wi` per lane, through the microfacet normal joining wo and
+    /// wi (zero where none can, Walter 2007 §5.3: neither direction may see m's back).
+    #[inline(always)]
+    fn eval_pdf(&self, wo: &Vec3s<N>, wi: &Vec3s<N>) -> ([F32s<N>; 3], F32s<N>) {
+        let zero = F32s::ZERO;
+        let o = self.orient(wo);
+        let wi = Self::signed(wi, o.sign);
+        // The half vector: wo + wi for reflection, the generalised wo + η wi for refraction.
+        let reflect = wi.z.gt(zero);
+        let eta_wi = Vec3s { x: o.eta * wi.x, y: o.eta * wi.y, z: o.eta * wi.z };
+        let h = o.wo.add(&Vec3s::select(reflect, &wi, &eta_wi));
+        let m = Self::signed(&h.normalize(), h.z.signum());
+        let cos_om = o.wo.dot(&m);
+        let cos_im = wi.dot(&m);
+        let connects = m.x.is_finite()
+            & m.y.is_finite()
+            & m.z.is_finite()
+            & m.z.gt(zero)
+            & cos_om.gt(zero)
+            & (cos_im * wi.z).gt(zero);
+        let ok = connects & !wo.z.eq(zero) & !wi.z.eq(zero);
+        let f = fresnel_dielectric_lanes(cos_om, o.eta).0;
+        let d = self.distribution.d(&m);
+        let g1_o = self.distribution.g1(&o.wo, &m);
+        let dg = d * (g1_o * self.distribution.g1(&wi, &m));
+        let denom = cos_om + o.eta * cos_im;
+        let value_reflect = f * dg / (4.0 * o.wo.z);
+        let value_refract = (1.0 - f) * dg * (cos_im * cos_om).abs() / (o.wo.z * denom * denom);
+        let value = F32s::select(reflect, value_reflect, value_refract);
+        // `f32::max`, whose NaN and signed-zero rules the scalar form had.
+        let value = F32s::from_fn(|i| value.0[i].max(0.0));
+        let pdf_m = self.distribution.pdf_visible(&o.wo, &m);
+        let pdf_reflect = f * pdf_m / (4.0 * cos_om);
+        let pdf_refract = (1.0 - f) * pdf_m * o.eta * o.eta * cos_im.abs() / (denom * denom);
+        let pdf = F32s::select(reflect, pdf_reflect, pdf_refract);
+        (self.tinted(value).map(|c| F32s::select(ok, c, zero)), F32s::select(ok, pdf, zero))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::MicrofacetKind;
+
+    /// Each lane of a group of mixed rough dielectrics (both distributions, several roughnesses
+    /// and indices), seen from outside and inside, gives the bits of its own one-lane
+    /// evaluation and sample, through reflection and refraction.
+    #[test]
+    fn lanes_of_mixed_rough_dielectrics_match_each_scalar_one() {
+        const N: usize = 8;
+        let glass = |i: usize| {
+            let kind = if i.is_multiple_of(2) { MicrofacetKind::Beckmann } else { MicrofacetKind::Ggx };
+            let distribution = Microfacet::isotropic(kind, [0.02, 0.1, 0.3, 0.7][i % 4]);
+            RoughDielectric {
+                distribution,
+                ior: 1.2 + 0.15 * i as f32,
+                tint: Rgb::new(1.0, 0.9, 0.8 - 0.05 * i as f32),
+            }
+        };
+        let mut lanes = glass(0).lanes::<N>();
+        for i in 0..N {
+            lanes.set(i, &glass(i));
+        }
+        let mut x = 0x2545_f491u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / (1u32 << 24) as f32
+        };
+        let (mut reflected, mut refracted, mut evaluated) = (0, 0, 0);
+        for _ in 0..300 {
+            let mut direction = || Vec3::new(next() - 0.5, next() - 0.5, 2.0 * next() - 1.0).normalize();
+            let wo: [Vec3; N] = std::array::from_fn(|_| direction());
+            let wi: [Vec3; N] = std::array::from_fn(|_| direction());
+            let (wo_l, wi_l) = (Vec3s::from_fn(|i| wo[i]), Vec3s::from_fn(|i| wi[i]));
+            let u = [0; 3].map(|_| F32s::<N>::from_fn(|_| next()));
+            let (f, pdf) = lanes.eval_pdf(&wo_l, &wi_l);
+            let s = lanes.sample(&wo_l, u[0], u[1], u[2], Ms::ALL);
+            for i in 0..N {
+                let m = glass(i);
+                let (f1, pdf1) = (m.eval(wo[i], wi[i]), m.pdf(wo[i], wi[i]));
+                assert_eq!(rgb_lane(&f, i).to_array().map(f32::to_bits), f1.to_array().map(f32::to_bits));
+                assert_eq!(pdf.0[i].to_bits(), pdf1.to_bits());
+                evaluated += usize::from(pdf1 > 0.0);
+                let one = m.sample(wo[i], u[0].0[i], Vec2::new(u[1].0[i], u[2].0[i]));
+                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}");
+                let Some(one) = one else { continue };
+                if one.wi.z * wo[i].z > 0.0 {
+                    reflected += 1;
+                } else {
+                    refracted += 1;
+                }
+                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
+                let w = rgb_lane(&s.weight, i).to_array().map(f32::to_bits);
+                assert_eq!(w, one.weight.to_array().map(f32::to_bits));
+                assert_eq!([s.pdf.0[i], s.eta.0[i]].map(f32::to_bits), [one.pdf, one.eta].map(f32::to_bits));
+            }
+        }
+        assert!(reflected > 100 && refracted > 1000 && evaluated > 1000, "{reflected} {refracted} {evaluated}");
     }
 }

@@ -5,8 +5,11 @@
 //! and transmits T' = 1 − R'. The two refractions cancel, so the transmitted ray continues along
 //! −wo with no offset and no change of η (Mitsuba 3, src/bsdfs/thindielectric.cpp).
 
-use super::{fresnel_dielectric, BsdfSample};
+use super::dielectric::fresnel_dielectric_lanes;
+use super::lanes::{LaneDeltaScattering, LaneSamples};
+use super::{reflect_local_lanes, BsdfSample};
 use crate::math::{Rgb, Vec3};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Thin dielectric slab of index `ior` (relative to the outside).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,23 +22,65 @@ pub struct ThinDielectric {
 impl ThinDielectric {
     /// Slab reflectance R' at incidence cosine `cos_theta` (either side: the slab is symmetric).
     pub fn reflectance(&self, cos_theta: f32) -> f32 {
-        let (r, _, _) = fresnel_dielectric(cos_theta.abs(), self.ior);
-        if r >= 1.0 {
-            return 1.0;
-        }
-        let t = 1.0 - r;
-        r + t * t * r / (1.0 - r * r)
+        self.lanes::<1>().reflectance(F32s([cos_theta])).0[0]
     }
 
-    /// Reflects with probability R', else passes straight through; both lobes are Dirac deltas,
-    /// so the weight is the tint alone.
+    /// Reflects with probability R', else passes straight through: the one-lane instance of
+    /// [`ThinDielectricLanes::sample`].
     pub fn sample(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), Ms::ALL).lane(0)
+    }
+
+    /// This slab in every lane.
+    #[inline(always)]
+    pub(crate) fn lanes<const N: usize>(&self) -> ThinDielectricLanes<N> {
+        ThinDielectricLanes { ior: F32s::splat(self.ior), tint: self.tint.to_array().map(F32s::splat) }
+    }
+}
+
+/// Thin dielectric slabs per lane (lanes can hold different ones), the tint's channels as lane
+/// groups.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ThinDielectricLanes<const N: usize> {
+    pub ior: F32s<N>,
+    pub tint: [F32s<N>; 3],
+}
+
+impl<const N: usize> ThinDielectricLanes<N> {
+    /// Lane `i` holds `m`.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, m: &ThinDielectric) {
+        self.ior.0[i] = m.ior;
+        for (c, tint) in m.tint.to_array().into_iter().enumerate() {
+            self.tint[c].0[i] = tint;
+        }
+    }
+
+    /// R' per lane: 1 where one interface already reflects everything.
+    #[inline(always)]
+    fn reflectance(&self, cos_theta: F32s<N>) -> F32s<N> {
+        let r = fresnel_dielectric_lanes(cos_theta.abs(), self.ior).0;
+        let t = 1.0 - r;
+        F32s::select(r.ge(F32s::ONE), F32s::ONE, r + t * t * r / (1.0 - r * r))
+    }
+}
+
+impl<const N: usize> LaneDeltaScattering<N> for ThinDielectricLanes<N> {
+    const TWO_SIDED: bool = true;
+
+    /// Per lane of `active`: the mirror direction when `u_lobe < R'`, else straight on (−wo);
+    /// both lobes are Dirac deltas, so the weight is the tint alone.
+    #[inline(always)]
+    fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, active: Ms<N>) -> LaneSamples<N> {
         let r = self.reflectance(wo.z);
-        if u_lobe < r {
-            let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-            Some(BsdfSample { wi, weight: self.tint, pdf: r, delta: true, eta: 1.0 })
-        } else {
-            Some(BsdfSample { wi: -wo, weight: self.tint, pdf: 1.0 - r, delta: true, eta: 1.0 })
+        let reflect = u_lobe.lt(r);
+        LaneSamples {
+            valid: active,
+            wi: Vec3s::select(reflect, &reflect_local_lanes(wo), &wo.neg()),
+            weight: self.tint,
+            pdf: F32s::select(reflect, r, 1.0 - r),
+            specular: active,
+            eta: F32s::ONE,
         }
     }
 }
@@ -50,5 +95,46 @@ mod tests {
         let slab = ThinDielectric { ior: 1.5, tint: Rgb::WHITE };
         assert!((slab.reflectance(1.0) - 2.0 * 0.04 / 1.04).abs() < 1e-6);
         assert_eq!(slab.reflectance(-1.0), slab.reflectance(1.0));
+    }
+
+    /// Each lane of a group of mixed slabs, seen from both sides, gives the bits of its own
+    /// one-lane sample, through both lobes.
+    #[test]
+    fn lanes_of_mixed_slabs_match_each_scalar_one() {
+        const N: usize = 8;
+        let slab =
+            |i: usize| ThinDielectric { ior: 1.1 + 0.2 * i as f32, tint: Rgb::new(1.0, 0.9, 0.8 - 0.05 * i as f32) };
+        let mut lanes = slab(0).lanes::<N>();
+        for i in 0..N {
+            lanes.set(i, &slab(i));
+        }
+        let mut x = 0x1234_5679u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / (1u32 << 24) as f32
+        };
+        let (mut reflected, mut through) = (0, 0);
+        for _ in 0..200 {
+            let wo: [Vec3; N] =
+                std::array::from_fn(|_| Vec3::new(next() - 0.5, next() - 0.5, 2.0 * next() - 1.0).normalize());
+            let u = F32s::from_fn(|_| next());
+            let s = lanes.sample(&Vec3s::from_fn(|i| wo[i]), u, Ms::ALL);
+            for (i, &wo_i) in wo.iter().enumerate() {
+                let one = slab(i).sample(wo_i, u.0[i]).unwrap();
+                assert!(s.valid.lane(i) && s.specular.lane(i) && one.delta);
+                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
+                let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
+                assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
+                assert_eq!([s.pdf.0[i], s.eta.0[i]].map(f32::to_bits), [one.pdf, one.eta].map(f32::to_bits));
+                if one.wi == -wo_i {
+                    through += 1;
+                } else {
+                    reflected += 1;
+                }
+            }
+        }
+        assert!(reflected > 100 && through > 1000, "{reflected} {through}");
     }
 }

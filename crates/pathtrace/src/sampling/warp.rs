@@ -4,8 +4,8 @@
 //! Tested in `tests/warps.rs`: every pdf integrates to 1 and a chi-square test accepts each
 //! sampler against its pdf.
 
-use crate::math::{Vec2, Vec3, INV_2PI, INV_4PI, INV_PI, PI};
-use crate::wide::simd::F32s;
+use crate::math::{Vec2, Vec3, INV_2PI, INV_4PI, INV_PI};
+use crate::wide::simd::{F32s, Ms};
 use crate::wide::warp as lanes;
 
 /// Concentric map from square to unit disk (Shirley & Chiu, "A Low Distortion Map Between Disk
@@ -27,10 +27,7 @@ pub fn uniform_sphere_pdf() -> f32 {
 
 /// Uniform direction on the upper hemisphere (z ≥ 0): z = u, φ = 2πv; pdf = 1/(2π).
 pub fn square_to_uniform_hemisphere(u: Vec2) -> Vec3 {
-    let z = u.x;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    lanes::square_to_uniform_hemisphere(F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
 }
 
 pub fn uniform_hemisphere_pdf(w: Vec3) -> f32 {
@@ -74,10 +71,7 @@ pub fn uniform_cone_pdf(w: Vec3, cos_theta_max: f32) -> f32 {
 /// Power-cosine lobe around +z, density ∝ cosⁿ θ over the sphere cap z > 0:
 /// cos θ = u^(1/(n+1)); pdf = (n+1)/(2π) cosⁿ θ (the Phong lobe of Lafortune & Willems 1994).
 pub fn square_to_power_cosine(u: Vec2, exponent: f32) -> Vec3 {
-    let z = u.x.powf(1.0 / (exponent + 1.0));
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    lanes::square_to_power_cosine(F32s([u.x]), F32s([u.y]), F32s([exponent]), Ms::ALL).lane(0)
 }
 
 pub fn power_cosine_pdf(w: Vec3, exponent: f32) -> f32 {

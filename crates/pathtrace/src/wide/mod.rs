@@ -113,6 +113,10 @@ pub(crate) enum LaneForm {
     Dielectric,
     /// Smooth conductors and mirrors.
     SmoothConductor,
+    ThinDielectric,
+    RoughDielectric,
+    Diffuse,
+    Glossy,
 }
 
 /// What a scene offers the lane-parallel forms, prepared once per render.
@@ -156,13 +160,31 @@ impl WideScene {
                 // Models of Dirac lobes only: every strategy continues them by the material.
                 let untextured_plain =
                     !scene.is_material_textured(id as u32) && scene.normal_perturbation(id as u32).is_none();
+                // Every model is named, so a new one must say here whether it has a lane form.
                 let lane_form = match m {
                     Material::RoughConductor(_) if plain => Some(LaneForm::RoughConductor),
                     Material::RoughPlastic(_) if plain => Some(LaneForm::RoughPlastic),
+                    Material::RoughDielectric(_) if plain => Some(LaneForm::RoughDielectric),
                     Material::Plastic(_) if plain => Some(LaneForm::Plastic),
+                    Material::Diffuse(_) if plain => Some(LaneForm::Diffuse),
+                    Material::Glossy(_) if plain => Some(LaneForm::Glossy),
                     Material::Dielectric(_) if untextured_plain => Some(LaneForm::Dielectric),
                     Material::Conductor(_) | Material::Mirror(_) if untextured_plain => Some(LaneForm::SmoothConductor),
-                    _ => None,
+                    Material::ThinDielectric(_) if untextured_plain => Some(LaneForm::ThinDielectric),
+                    // Textured, anisotropic or bump-mapped instances of the models above.
+                    Material::RoughConductor(_)
+                    | Material::RoughPlastic(_)
+                    | Material::RoughDielectric(_)
+                    | Material::Plastic(_)
+                    | Material::Diffuse(_)
+                    | Material::Glossy(_)
+                    | Material::Dielectric(_)
+                    | Material::Conductor(_)
+                    | Material::Mirror(_)
+                    | Material::ThinDielectric(_) => None,
+                    // Lambertian surfaces take the SIMD Lambertian form (`simd`) instead; black and
+                    // null surfaces are never shaded; a blend is resolved per hit into its two models.
+                    Material::Lambertian(_) | Material::Black | Material::Null | Material::Blend(_) => None,
                 };
                 MaterialClass {
                     lane_form,

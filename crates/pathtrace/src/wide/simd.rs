@@ -128,6 +128,12 @@ impl<const N: usize> F32s<N> {
         map(self, f32::abs)
     }
 
+    /// `f32::signum` per lane: ±1 by the sign bit (zeros included), NaN kept.
+    #[inline(always)]
+    pub fn signum(self) -> Self {
+        map(self, f32::signum)
+    }
+
     /// `mask ? a : b` per lane.
     #[inline(always)]
     pub fn select(mask: Ms<N>, a: Self, b: Self) -> Self {

@@ -7,7 +7,7 @@
 //! swapping the two and by signs), where short Taylor polynomials are accurate to 3·10⁻⁷ and
 //! vectorise, unlike calls to `sinf`/`cosf`.
 
-use super::simd::{F32s, Vec3s};
+use super::simd::{F32s, Ms, Vec3s};
 use crate::math::PI;
 
 /// sin x for |x| ≤ π/4: x − x³/3! + x⁵/5! − x⁷/7! (truncation error ≤ (π/4)⁹/9! < 3·10⁻⁷).
@@ -102,6 +102,38 @@ fn sign_of<const N: usize>(v: F32s<N>) -> F32s<N> {
         *o = f32::from_bits(1.0f32.to_bits() | (x.to_bits() & 0x8000_0000));
     }
     F32s(out)
+}
+
+/// `(r cos φ, r sin φ, z)` with φ = 2π·`u2`, libm's cosine and sine taken in the lanes of
+/// `active` (the scalar warps' bits; the other lanes' x and y are unspecified).
+#[inline(always)]
+fn around_z<const N: usize>(r: F32s<N>, z: F32s<N>, u2: F32s<N>, active: Ms<N>) -> Vec3s<N> {
+    let phi = 2.0 * PI * u2;
+    let (mut cos_phi, mut sin_phi) = (F32s::ZERO, F32s::ZERO);
+    for i in active.lanes() {
+        (cos_phi.0[i], sin_phi.0[i]) = (phi.0[i].cos(), phi.0[i].sin());
+    }
+    Vec3s { x: r * cos_phi, y: r * sin_phi, z }
+}
+
+/// Uniform directions on the upper hemisphere, z = `u1`, φ = 2π`u2`, in the lanes of `active`.
+#[inline(always)]
+pub fn square_to_uniform_hemisphere<const N: usize>(u1: F32s<N>, u2: F32s<N>, active: Ms<N>) -> Vec3s<N> {
+    let z = u1;
+    let r = (1.0 - z * z).max(F32s::ZERO).sqrt();
+    around_z(r, z, u2, active)
+}
+
+/// Power-cosine lobes around +z, cos θ = `u1`^(1/(n + 1)), in the lanes of `active`.
+#[inline(always)]
+pub fn square_to_power_cosine<const N: usize>(u1: F32s<N>, u2: F32s<N>, exponent: F32s<N>, active: Ms<N>) -> Vec3s<N> {
+    let power = 1.0 / (exponent + 1.0);
+    let mut z = F32s::ZERO;
+    for i in active.lanes() {
+        z.0[i] = u1.0[i].powf(power.0[i]);
+    }
+    let r = (1.0 - z * z).max(F32s::ZERO).sqrt();
+    around_z(r, z, u2, active)
 }
 
 /// The two tangents `(s, t)` completing the unit normal `n` to a right-handed orthonormal
