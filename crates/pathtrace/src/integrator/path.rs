@@ -24,8 +24,8 @@ use super::regenerate::LaneJob;
 use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
 use super::Strategy;
 use crate::material::{
-    lambertian, DielectricLanes, DiffuseLanes, GlossyLanes, Material, PlasticLanes, RoughConductorLanes,
-    RoughDielectricLanes, RoughPlasticLanes, SmoothConductorLanes, ThinDielectricLanes,
+    lambertian, DeltaModel, DielectricLanes, DiffuseLanes, GlossyLanes, Material, PlasticLanes, RoughConductorLanes,
+    RoughDielectricLanes, RoughPlasticLanes, SmoothConductorLanes, SmoothModel, ThinDielectricLanes,
 };
 use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2};
 use crate::scene::{Interaction, Primitive, Scene};

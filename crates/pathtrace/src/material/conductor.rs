@@ -6,9 +6,9 @@
 //! reflector without the Fresnel factor.
 
 use super::fresnel::fresnel_conductor_rgb_lanes;
-use super::lanes::{LaneDeltaScattering, LaneSamples};
-use super::{reflect_local_lanes, BsdfSample, Mirror};
-use crate::math::{Rgb, Vec3};
+use super::lanes::{DeltaModel, LaneDeltaScattering, LaneSamples};
+use super::{reflect_local_lanes, Mirror};
+use crate::math::Rgb;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// A smooth conductor.
@@ -22,13 +22,18 @@ pub struct Conductor {
     pub reflectance: Rgb,
 }
 
-impl Conductor {
-    /// The mirror direction, weighted by the Fresnel reflectance: the one-lane instance of
-    /// [`SmoothConductorLanes::sample`].
-    pub fn sample(&self, wo: Vec3) -> Option<BsdfSample> {
-        let mut lanes = SmoothConductorLanes::<1>::none();
-        lanes.set_conductor(0, self);
-        lanes.sample(&Vec3s::splat(wo), F32s::ZERO, Ms::ALL).lane(0)
+impl DeltaModel for Conductor {
+    type Lanes<const N: usize> = SmoothConductorLanes<N>;
+
+    /// This conductor in every lane (its scalar sample, the mirror direction weighted by the
+    /// Fresnel reflectance, is the one-lane instance of [`SmoothConductorLanes::sample`]).
+    #[inline(always)]
+    fn lanes<const N: usize>(&self) -> SmoothConductorLanes<N> {
+        let mut lanes = SmoothConductorLanes::none();
+        for i in 0..N {
+            lanes.set_conductor(i, self);
+        }
+        lanes
     }
 }
 
@@ -101,7 +106,9 @@ impl<const N: usize> LaneDeltaScattering<N> for SmoothConductorLanes<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::lane_checks::{assert_delta_lanes_match, Numbers};
     use crate::material::metal;
+    use crate::math::Vec3;
 
     /// Each lane of a group mixing conductors and mirrors, seen from the front and from
     /// behind, gives the bits of its own one-lane sample.
@@ -126,33 +133,21 @@ mod tests {
                 lanes.set_conductor(i, &conductor(i));
             }
         }
-        let mut x = 0x9e37_79b9u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x >> 8) as f32 / (1u32 << 24) as f32
-        };
+        let one_lane =
+            |i: usize, wo, u| if i.is_multiple_of(3) { mirror(i).sample(wo, u) } else { conductor(i).sample(wo, u) };
         let mut seen = [0usize; 3];
-        for _ in 0..200 {
-            let wo: [Vec3; N] =
-                std::array::from_fn(|_| Vec3::new(next() - 0.5, next() - 0.5, 2.0 * next() - 0.6).normalize());
-            let s = lanes.sample(&Vec3s::from_fn(|i| wo[i]), F32s::ZERO, Ms::ALL);
-            for (i, &wo_i) in wo.iter().enumerate() {
-                let one = if i % 3 == 0 { mirror(i).sample(wo_i) } else { conductor(i).sample(wo_i) };
-                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}, wo {wo_i:?}");
-                let Some(one) = one else {
-                    seen[2] += 1;
-                    continue;
-                };
-                seen[usize::from(i % 3 != 0)] += 1;
-                assert!(s.specular.lane(i) && one.delta);
-                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
-                let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
-                assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
-                assert_eq!([s.pdf.0[i], s.eta.0[i]].map(f32::to_bits), [one.pdf, one.eta].map(f32::to_bits));
-            }
-        }
+        let mut numbers = Numbers::new(0x9e37_79b9);
+        assert_delta_lanes_match(
+            &lanes,
+            one_lane,
+            &mut numbers,
+            200,
+            |n| n.direction(-0.6, 2.0),
+            |i, _, one| {
+                assert!(one.is_none_or(|s| s.delta));
+                seen[if one.is_none() { 2 } else { usize::from(i % 3 != 0) }] += 1;
+            },
+        );
         assert!(seen.iter().all(|&n| n > 100), "{seen:?}");
     }
 
@@ -162,10 +157,10 @@ mod tests {
         let (eta, k) = (Rgb::from_array(eta), Rgb::from_array(k));
         let gold = Conductor { eta, k, reflectance: Rgb::WHITE };
         let wo = Vec3::new(0.6, 0.0, 0.8);
-        let s = gold.sample(wo).unwrap();
+        let s = gold.sample(wo, 0.5).unwrap();
         assert_eq!(s.wi, Vec3::new(-0.6, 0.0, 0.8));
         let expected = crate::material::fresnel::fresnel_conductor_rgb(0.8, eta, k);
         assert_eq!(s.weight, expected);
-        assert!(gold.sample(Vec3::new(0.6, 0.0, -0.8)).is_none());
+        assert!(gold.sample(Vec3::new(0.6, 0.0, -0.8), 0.5).is_none());
     }
 }

@@ -4,9 +4,9 @@
 //! compresses into the denser medium; Veach's thesis §5.2), so a closed glass object is
 //! energy-neutral.
 
-use super::lanes::{LaneDeltaScattering, LaneSamples};
-use super::{reflect_local_lanes, BsdfSample};
-use crate::math::{Rgb, Vec3};
+use super::lanes::{DeltaModel, LaneDeltaScattering, LaneSamples};
+use super::reflect_local_lanes;
+use crate::math::Rgb;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Smooth dielectric interface with interior index of refraction `ior` (exterior 1).
@@ -45,16 +45,13 @@ pub(crate) fn fresnel_dielectric_lanes<const N: usize>(
     (F32s::select(total, F32s::ONE, f), F32s::select(total, F32s::ZERO, cos_t), eta)
 }
 
-impl Dielectric {
-    /// A reflection with probability F, else the refraction: the one-lane instance of
-    /// [`DielectricLanes::sample`].
-    pub fn sample(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
-        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s::splat(u_lobe), Ms::ALL).lane(0)
-    }
+impl DeltaModel for Dielectric {
+    type Lanes<const N: usize> = DielectricLanes<N>;
 
-    /// This material in every lane.
+    /// This material in every lane (its scalar sample, a reflection with probability F, else
+    /// the refraction, is the one-lane instance of [`DielectricLanes::sample`]).
     #[inline(always)]
-    pub(crate) fn lanes<const N: usize>(&self) -> DielectricLanes<N> {
+    fn lanes<const N: usize>(&self) -> DielectricLanes<N> {
         DielectricLanes { ior: F32s::splat(self.ior), tint: self.tint.to_array().map(F32s::splat) }
     }
 }
@@ -108,6 +105,8 @@ impl<const N: usize> LaneDeltaScattering<N> for DielectricLanes<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::lane_checks::{assert_delta_lanes_match, Numbers};
+    use crate::math::Vec3;
 
     #[test]
     fn normal_incidence_reflectance_matches_the_closed_form() {
@@ -138,34 +137,26 @@ mod tests {
         for i in 0..N {
             lanes.set(i, &glass(i));
         }
-        let mut x = 0x2545_f491u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x >> 8) as f32 / (1u32 << 24) as f32
-        };
         let (mut reflected, mut refracted, mut total) = (0, 0, 0);
-        for _ in 0..300 {
-            let wo: [Vec3; N] =
-                std::array::from_fn(|_| Vec3::new(next() - 0.5, next() - 0.5, 2.0 * next() - 1.0).normalize());
-            let u = F32s::from_fn(|_| next());
-            let s = lanes.sample(&Vec3s::from_fn(|i| wo[i]), u, Ms::ALL);
-            for (i, &wo_i) in wo.iter().enumerate() {
-                let one = glass(i).sample(wo_i, u.0[i]).unwrap();
-                assert!(s.valid.lane(i) && s.specular.lane(i));
-                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
-                let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
-                assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
-                assert_eq!([s.pdf.0[i], s.eta.0[i]].map(f32::to_bits), [one.pdf, one.eta].map(f32::to_bits));
-                if one.wi.z * wo_i.z > 0.0 {
+        let mut numbers = Numbers::new(0x2545_f491);
+        let one_lane = |i: usize, wo, u| glass(i).sample(wo, u);
+        assert_delta_lanes_match(
+            &lanes,
+            one_lane,
+            &mut numbers,
+            300,
+            |n| n.direction(-1.0, 2.0),
+            |_, wo, one| {
+                let one = one.expect("a dielectric always scatters");
+                assert!(one.delta);
+                if one.wi.z * wo.z > 0.0 {
                     reflected += 1;
                     total += usize::from(one.pdf == 1.0);
                 } else {
                     refracted += 1;
                 }
-            }
-        }
+            },
+        );
         assert!(reflected > 100 && refracted > 1000 && total > 50, "{reflected} {refracted} {total}");
     }
 

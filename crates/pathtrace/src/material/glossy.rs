@@ -6,9 +6,9 @@
 //! lobe directions below the surface are rejected (that probability is lost, and eval is 0
 //! there, so the estimator stays unbiased).
 
-use super::lanes::{rgb_lane, LaneSamples, LaneScattering};
-use super::{reflect_local_lanes, BsdfSample};
-use crate::math::{Rgb, Vec2, Vec3, INV_2PI};
+use super::lanes::{LaneSamples, LaneScattering, SmoothModel};
+use super::reflect_local_lanes;
+use crate::math::{Rgb, INV_2PI};
 use crate::wide::simd::{F32s, Ms, Vec3s};
 use crate::wide::warp;
 
@@ -19,31 +19,14 @@ pub struct Glossy {
     pub exponent: f32,
 }
 
-impl Glossy {
+impl SmoothModel for Glossy {
+    type Lanes<'a, const N: usize> = GlossyLanes<N>;
+
     /// This model in every lane of a group (the scalar methods are the one-lane instances of
     /// [`GlossyLanes`]'s).
     #[inline(always)]
-    pub(crate) fn lanes<const N: usize>(&self) -> GlossyLanes<N> {
+    fn lanes<const N: usize>(&self) -> Self::Lanes<'_, N> {
         GlossyLanes { albedo: self.albedo.to_array().map(F32s::splat), exponent: F32s::splat(self.exponent) }
-    }
-
-    pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
-        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s::ZERO, F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
-    }
-
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        self.eval_pdf(wo, wi).0
-    }
-
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.eval_pdf(wo, wi).1
-    }
-
-    /// `eval` and `pdf` together, sharing cosⁿ α.
-    #[inline]
-    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
-        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
-        (rgb_lane(&f, 0), pdf.0[0])
     }
 }
 
@@ -124,6 +107,7 @@ impl<const N: usize> LaneScattering<N> for GlossyLanes<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::lane_checks::{assert_smooth_lanes_match, Numbers};
 
     /// Each lane of a group of mixed models gives the bits of its own one-lane evaluation and
     /// sample, seen from the front and from behind.
@@ -138,38 +122,19 @@ mod tests {
         for i in 0..N {
             lanes.set(i, &model(i));
         }
-        let mut x = 0x2545_f491u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x >> 8) as f32 / (1u32 << 24) as f32
-        };
         let (mut sampled, mut evaluated) = (0, 0);
-        for _ in 0..300 {
-            let mut direction = || Vec3::new(next() - 0.5, next() - 0.5, 0.7 * next() - 0.1).normalize();
-            let wo: [Vec3; N] = std::array::from_fn(|_| direction());
-            let wi: [Vec3; N] = std::array::from_fn(|_| direction());
-            let (wo_l, wi_l) = (Vec3s::from_fn(|i| wo[i]), Vec3s::from_fn(|i| wi[i]));
-            let u = [0; 2].map(|_| F32s::<N>::from_fn(|_| next()));
-            let (f, pdf) = lanes.eval_pdf(&wo_l, &wi_l);
-            let s = lanes.sample(&wo_l, F32s::ZERO, u[0], u[1], Ms::ALL);
-            for i in 0..N {
-                let m = model(i);
-                let (f1, pdf1) = (m.eval(wo[i], wi[i]), m.pdf(wo[i], wi[i]));
-                assert_eq!(rgb_lane(&f, i).to_array().map(f32::to_bits), f1.to_array().map(f32::to_bits));
-                assert_eq!(pdf.0[i].to_bits(), pdf1.to_bits());
-                evaluated += usize::from(pdf1 > 0.0);
-                let one = m.sample(wo[i], Vec2::new(u[0].0[i], u[1].0[i]));
-                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}");
-                let Some(one) = one else { continue };
-                sampled += 1;
-                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
-                let w = rgb_lane(&s.weight, i).to_array().map(f32::to_bits);
-                assert_eq!(w, one.weight.to_array().map(f32::to_bits));
-                assert_eq!(s.pdf.0[i].to_bits(), one.pdf.to_bits());
-            }
-        }
+        let mut numbers = Numbers::new(0x2545_f491);
+        assert_smooth_lanes_match(
+            &lanes,
+            model,
+            &mut numbers,
+            300,
+            |n| n.direction(-0.1, 0.7),
+            |_, pdf, one| {
+                evaluated += usize::from(pdf > 0.0);
+                sampled += usize::from(one.is_some());
+            },
+        );
         assert!(sampled > 1000 && evaluated > 1000, "{sampled} {evaluated}");
     }
 }

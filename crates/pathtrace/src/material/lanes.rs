@@ -4,7 +4,7 @@
 //! methods are the one-lane instance of its lane form, so a formula exists once.
 
 use super::BsdfSample;
-use crate::math::Rgb;
+use crate::math::{Rgb, Vec2, Vec3};
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Sampled directions per lane: the valid lanes' direction `wi` (local frame), weight
@@ -62,4 +62,54 @@ pub(crate) trait LaneDeltaScattering<const N: usize> {
     const TWO_SIDED: bool;
     /// A direction per lane of `active`, from the lobe number `u_lobe`.
     fn sample(&self, wo: &Vec3s<N>, u_lobe: F32s<N>, active: Ms<N>) -> LaneSamples<N>;
+}
+
+/// A model with a smooth lobe, as [`super::Material`] dispatches to it: its lane form in every
+/// lane of a group, and its scalar methods, which are that form's one-lane instance (so a
+/// model writes its formulas once, in [`LaneScattering`]).
+pub(crate) trait SmoothModel {
+    type Lanes<'a, const N: usize>: LaneScattering<N>
+    where
+        Self: 'a;
+
+    /// This model in every lane of a group.
+    fn lanes<const N: usize>(&self) -> Self::Lanes<'_, N>;
+
+    /// Samples `wi` given `wo`, a number for lobe selection and a 2D point.
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
+    }
+
+    /// f·cos θi and the density of `wi` together, sharing what the two have in common.
+    #[inline]
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
+        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
+        (rgb_lane(&f, 0), pdf.0[0])
+    }
+
+    #[inline]
+    fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        self.eval_pdf(wo, wi).0
+    }
+
+    #[inline]
+    fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.eval_pdf(wo, wi).1
+    }
+}
+
+/// A model of Dirac lobes only, as [`super::Material`] dispatches to it: its lane form, and
+/// its scalar sample as that form's one-lane instance.
+pub(crate) trait DeltaModel {
+    type Lanes<const N: usize>: LaneDeltaScattering<N>;
+
+    /// This model in every lane of a group.
+    fn lanes<const N: usize>(&self) -> Self::Lanes<N>;
+
+    /// Samples `wi` given `wo` and a number for lobe selection.
+    #[inline]
+    fn sample(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
+        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), Ms::ALL).lane(0)
+    }
 }

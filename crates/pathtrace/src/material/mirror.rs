@@ -3,10 +3,8 @@
 //! without the Fresnel factor.
 
 use super::conductor::SmoothConductorLanes;
-use super::lanes::LaneDeltaScattering;
-use super::BsdfSample;
-use crate::math::{Rgb, Vec3};
-use crate::wide::simd::{F32s, Ms, Vec3s};
+use super::lanes::DeltaModel;
+use crate::math::Rgb;
 
 /// A perfect mirror.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -14,11 +12,17 @@ pub struct Mirror {
     pub reflectance: Rgb,
 }
 
-impl Mirror {
-    /// The mirror direction, weighted by the reflectance: the one-lane instance of the lane form.
-    pub fn sample(&self, wo: Vec3) -> Option<BsdfSample> {
-        let mut lanes = SmoothConductorLanes::<1>::none();
-        lanes.set_mirror(0, self);
-        lanes.sample(&Vec3s::splat(wo), F32s::ZERO, Ms::ALL).lane(0)
+impl DeltaModel for Mirror {
+    type Lanes<const N: usize> = SmoothConductorLanes<N>;
+
+    /// This mirror in every lane (its scalar sample, the mirror direction weighted by the
+    /// reflectance, is the one-lane instance of [`SmoothConductorLanes::sample`]).
+    #[inline(always)]
+    fn lanes<const N: usize>(&self) -> SmoothConductorLanes<N> {
+        let mut lanes = SmoothConductorLanes::none();
+        for i in 0..N {
+            lanes.set_mirror(i, self);
+        }
+        lanes
     }
 }

@@ -16,6 +16,8 @@ mod fresnel;
 mod glossy;
 mod ior;
 pub(crate) mod lambertian;
+#[cfg(test)]
+mod lane_checks;
 mod lanes;
 mod metals;
 pub mod microfacet;
@@ -40,7 +42,7 @@ pub use glossy::Glossy;
 pub(crate) use glossy::GlossyLanes;
 pub use ior::{ior_names, named_ior};
 pub use lambertian::Lambertian;
-pub(crate) use lanes::{LaneDeltaScattering, LaneSamples, LaneScattering};
+pub(crate) use lanes::{DeltaModel, LaneDeltaScattering, LaneSamples, LaneScattering, SmoothModel};
 pub use metals::{metal, metal_names};
 pub use microfacet::{Microfacet, MicrofacetKind};
 pub use mirror::Mirror;
@@ -114,13 +116,13 @@ impl Material {
             Material::Black => None,
             // Straight on (wi = −wo, which crosses the surface) with weight 1.
             Material::Null => Some(BsdfSample { wi: -wo, weight: Rgb::splat(1.0), pdf: 1.0, delta: true, eta: 1.0 }),
-            Material::Diffuse(m) => m.sample(wo, u),
+            Material::Diffuse(m) => m.sample(wo, u_lobe, u),
             Material::Lambertian(m) => m.sample(wo, u),
-            Material::Mirror(m) => m.sample(wo),
-            Material::Glossy(m) => m.sample(wo, u),
+            Material::Mirror(m) => m.sample(wo, u_lobe),
+            Material::Glossy(m) => m.sample(wo, u_lobe, u),
             Material::Dielectric(m) => m.sample(wo, u_lobe),
-            Material::Conductor(m) => m.sample(wo),
-            Material::RoughConductor(m) => m.sample(wo, u),
+            Material::Conductor(m) => m.sample(wo, u_lobe),
+            Material::RoughConductor(m) => m.sample(wo, u_lobe, u),
             Material::RoughDielectric(m) => m.sample(wo, u_lobe, u),
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
             Material::RoughPlastic(m) => m.sample(wo, u_lobe, u),
@@ -181,12 +183,12 @@ impl Material {
             Material::Plastic(m) => m.eval_pdf(wo, wi),
             Material::RoughPlastic(m) => m.eval_pdf(wo, wi),
             Material::RoughDielectric(m) => m.eval_pdf(wo, wi),
+            Material::Diffuse(m) => m.eval_pdf(wo, wi),
+            Material::Glossy(m) => m.eval_pdf(wo, wi),
             Material::Black
             | Material::Null
-            | Material::Diffuse(_)
             | Material::Lambertian(_)
             | Material::Mirror(_)
-            | Material::Glossy(_)
             | Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::ThinDielectric(_)

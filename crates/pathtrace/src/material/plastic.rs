@@ -16,10 +16,10 @@
 //! part in light sampling; a coating sample is flagged `delta`.
 
 use super::dielectric::{fresnel_dielectric, fresnel_dielectric_lanes};
-use super::lanes::{rgb_lane, LaneSamples, LaneScattering};
-use super::{reflect_local_lanes, BsdfSample};
+use super::lanes::{LaneSamples, LaneScattering, SmoothModel};
+use super::reflect_local_lanes;
 use crate::math::special::gauss_legendre;
-use crate::math::{Rgb, Vec2, Vec3, INV_PI};
+use crate::math::{Rgb, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf_lanes;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 use crate::wide::warp as warp_lanes;
@@ -82,36 +82,21 @@ impl Plastic {
         let base = base_albedo(albedo, self.internal, self.nonlinear) * (INV_PI / (self.ior * self.ior));
         Self { albedo, base, ..*self }
     }
+}
+
+impl SmoothModel for Plastic {
+    type Lanes<'a, const N: usize> = PlasticLanes<N>;
 
     /// This plastic in every lane of a group (the scalar methods are the one-lane instances of
     /// [`PlasticLanes`]'s).
     #[inline(always)]
-    pub(crate) fn lanes<const N: usize>(&self) -> PlasticLanes<N> {
+    fn lanes<const N: usize>(&self) -> Self::Lanes<'_, N> {
         PlasticLanes {
             specular: self.specular.to_array().map(F32s::splat),
             base: self.base.to_array().map(F32s::splat),
             ior: F32s::splat(self.ior),
             specular_weight: F32s::splat(self.specular_weight),
         }
-    }
-
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
-    }
-
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        self.eval_pdf(wo, wi).0
-    }
-
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.eval_pdf(wo, wi).1
-    }
-
-    /// `eval` and `pdf` together, sharing F(cos θo).
-    #[inline]
-    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
-        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
-        (rgb_lane(&f, 0), pdf.0[0])
     }
 }
 
@@ -213,6 +198,7 @@ pub(super) fn coating_pick_probability_lanes<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::lane_checks::{assert_smooth_lanes_match, Numbers};
 
     /// Each lane of a group of mixed plastics gives the bits of its own one-lane evaluation and
     /// sample (both lobes, seen from the front and from behind): the lanes stay apart.
@@ -227,47 +213,20 @@ mod tests {
         for i in 0..N {
             lanes.set(i, &plastic(i));
         }
-        let mut x = 0x2545_f491u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x >> 8) as f32 / (1u32 << 24) as f32
-        };
         let (mut coat, mut base, mut none) = (0, 0, 0);
-        for _ in 0..300 {
-            let mut direction = || Vec3::new(next() - 0.5, next() - 0.5, 0.7 * next() - 0.05).normalize();
-            let wo: [Vec3; N] = std::array::from_fn(|_| direction());
-            let wi: [Vec3; N] = std::array::from_fn(|_| direction());
-            let (wo_l, wi_l) = (Vec3s::from_fn(|i| wo[i]), Vec3s::from_fn(|i| wi[i]));
-            let u = [0; 3].map(|_| F32s::<N>::from_fn(|_| next()));
-            let (f, pdf) = lanes.eval_pdf(&wo_l, &wi_l);
-            let s = lanes.sample(&wo_l, u[0], u[1], u[2], Ms::ALL);
-            for i in 0..N {
-                let m = plastic(i);
-                let (f1, pdf1) = m.eval_pdf(wo[i], wi[i]);
-                assert_eq!(rgb_lane(&f, i).to_array().map(f32::to_bits), f1.to_array().map(f32::to_bits));
-                assert_eq!(pdf.0[i].to_bits(), pdf1.to_bits());
-                let one = m.sample(wo[i], u[0].0[i], Vec2::new(u[1].0[i], u[2].0[i]));
-                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}");
-                let Some(one) = one else {
-                    none += 1;
-                    continue;
-                };
-                assert_eq!(s.specular.lane(i), one.delta);
-                if one.delta {
-                    coat += 1;
-                } else {
-                    base += 1;
-                }
-                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
-                assert_eq!(
-                    rgb_lane(&s.weight, i).to_array().map(f32::to_bits),
-                    one.weight.to_array().map(f32::to_bits)
-                );
-                assert_eq!(s.pdf.0[i].to_bits(), one.pdf.to_bits());
-            }
-        }
+        let mut numbers = Numbers::new(0x2545_f491);
+        assert_smooth_lanes_match(
+            &lanes,
+            plastic,
+            &mut numbers,
+            300,
+            |n| n.direction(-0.05, 0.7),
+            |_, _, one| match one {
+                Some(one) if one.delta => coat += 1,
+                Some(_) => base += 1,
+                None => none += 1,
+            },
+        );
         assert!(coat > 100 && base > 1000 && none > 50, "{coat} {base} {none}");
     }
 

@@ -7,10 +7,9 @@
 //! microfacets: e.g. for GGX α = 1 at normal incidence its albedo is ≈ 0.77 (tests/microfacet_bsdfs.rs).
 
 use super::fresnel::fresnel_conductor_rgb_lanes;
-use super::lanes::{rgb_lane, LaneSamples, LaneScattering};
+use super::lanes::{LaneSamples, LaneScattering, SmoothModel};
 use super::microfacet::{reflect_about_lanes, visible_density_lanes, Microfacet, MicrofacetLanes};
-use super::BsdfSample;
-use crate::math::{Rgb, Vec2, Vec3};
+use crate::math::Rgb;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// A rough conductor.
@@ -25,11 +24,13 @@ pub struct RoughConductor {
     pub reflectance: Rgb,
 }
 
-impl RoughConductor {
+impl SmoothModel for RoughConductor {
+    type Lanes<'a, const N: usize> = RoughConductorLanes<N>;
+
     /// This material in every lane of a group (the scalar methods are the one-lane instances of
     /// [`RoughConductorLanes`]'s).
     #[inline(always)]
-    pub(crate) fn lanes<const N: usize>(&self) -> RoughConductorLanes<N> {
+    fn lanes<const N: usize>(&self) -> Self::Lanes<'_, N> {
         let splat = |c: Rgb| c.to_array().map(F32s::splat);
         RoughConductorLanes {
             distribution: self.distribution.lanes(),
@@ -37,26 +38,6 @@ impl RoughConductor {
             k: splat(self.k),
             reflectance: splat(self.reflectance),
         }
-    }
-
-    pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
-        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s::ZERO, F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
-    }
-
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        self.eval_pdf(wo, wi).0
-    }
-
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.eval_pdf(wo, wi).1
-    }
-
-    /// `eval` and `pdf` together: the half vector, D(m) and G1(wo, m) (Beckmann's is an erf and
-    /// an exp) are computed once when MIS needs both.
-    #[inline]
-    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
-        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
-        (rgb_lane(&f, 0), pdf.0[0])
     }
 }
 
@@ -137,7 +118,9 @@ impl<const N: usize> LaneScattering<N> for RoughConductorLanes<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::lane_checks::{assert_smooth_lanes_match, Numbers};
     use crate::material::{Microfacet, MicrofacetKind};
+    use crate::math::Vec3;
     use crate::wide::simd::LANES_512 as N;
 
     /// A different conductor in every lane (both distributions, several roughnesses).
@@ -163,35 +146,13 @@ mod tests {
         for i in 0..N {
             lanes.set(i, &conductor(i));
         }
-        let mut x = 0x2545_f491u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x >> 8) as f32 / (1u32 << 24) as f32
-        };
-        for _ in 0..200 {
-            let wo: [Vec3; N] = std::array::from_fn(|_| direction(next(), next()));
-            let wi: [Vec3; N] = std::array::from_fn(|_| direction(next(), next()));
-            let u1 = F32s::from_fn(|_| next());
-            let u2 = F32s::from_fn(|_| next());
-            let (wo_l, wi_l) = (Vec3s::from_fn(|i| wo[i]), Vec3s::from_fn(|i| wi[i]));
-            let (f, pdf) = lanes.eval_pdf(&wo_l, &wi_l);
-            let s = lanes.sample(&wo_l, F32s::ZERO, u1, u2, Ms::ALL);
-            for i in 0..N {
-                let m = conductor(i);
-                let (f1, pdf1) = m.eval_pdf(wo[i], wi[i]);
-                assert_eq!([f[0].0[i], f[1].0[i], f[2].0[i]].map(f32::to_bits), f1.to_array().map(f32::to_bits));
-                assert_eq!(pdf.0[i].to_bits(), pdf1.to_bits());
-                let one = m.sample(wo[i], Vec2::new(u1.0[i], u2.0[i]));
-                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}");
-                if let Some(one) = one {
-                    assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
-                    let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
-                    assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
-                    assert_eq!(s.pdf.0[i].to_bits(), one.pdf.to_bits());
-                }
-            }
-        }
+        let (mut sampled, mut evaluated) = (0, 0);
+        let mut numbers = Numbers::new(0x2545_f491);
+        let direction = |n: &mut Numbers| direction(n.next(), n.next());
+        assert_smooth_lanes_match(&lanes, conductor, &mut numbers, 200, direction, |_, pdf, one| {
+            evaluated += usize::from(pdf > 0.0);
+            sampled += usize::from(one.is_some());
+        });
+        assert!(sampled > 1000 && evaluated > 1000, "{sampled} {evaluated}");
     }
 }

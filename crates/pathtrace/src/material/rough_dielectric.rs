@@ -12,10 +12,9 @@
 //! As `dielectric`, it sees both sides: z > 0 is outside (index 1), z < 0 inside (index `ior`).
 
 use super::dielectric::fresnel_dielectric_lanes;
-use super::lanes::{rgb_lane, LaneSamples, LaneScattering};
+use super::lanes::{LaneSamples, LaneScattering, SmoothModel};
 use super::microfacet::{reflect_about_lanes, refract_about_lanes, Microfacet, MicrofacetLanes};
-use super::BsdfSample;
-use crate::math::{Rgb, Vec2, Vec3};
+use crate::math::Rgb;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// A rough dielectric interface with interior index `ior` (exterior 1).
@@ -27,35 +26,18 @@ pub struct RoughDielectric {
     pub tint: Rgb,
 }
 
-impl RoughDielectric {
+impl SmoothModel for RoughDielectric {
+    type Lanes<'a, const N: usize> = RoughDielectricLanes<N>;
+
     /// This interface in every lane of a group (the scalar methods are the one-lane instances
     /// of [`RoughDielectricLanes`]'s).
     #[inline(always)]
-    pub(crate) fn lanes<const N: usize>(&self) -> RoughDielectricLanes<N> {
+    fn lanes<const N: usize>(&self) -> Self::Lanes<'_, N> {
         RoughDielectricLanes {
             distribution: self.distribution.lanes(),
             ior: F32s::splat(self.ior),
             tint: self.tint.to_array().map(F32s::splat),
         }
-    }
-
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
-    }
-
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        self.eval_pdf(wo, wi).0
-    }
-
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.eval_pdf(wo, wi).1
-    }
-
-    /// `eval` and `pdf` together, sharing the half vector, Fresnel, D and G1(wo).
-    #[inline]
-    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
-        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
-        (rgb_lane(&f, 0), pdf.0[0])
     }
 }
 
@@ -195,6 +177,7 @@ impl<const N: usize> LaneScattering<N> for RoughDielectricLanes<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::lane_checks::{assert_smooth_lanes_match, Numbers};
     use crate::material::MicrofacetKind;
 
     /// Each lane of a group of mixed rough dielectrics (both distributions, several roughnesses
@@ -216,42 +199,23 @@ mod tests {
         for i in 0..N {
             lanes.set(i, &glass(i));
         }
-        let mut x = 0x2545_f491u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x >> 8) as f32 / (1u32 << 24) as f32
-        };
         let (mut reflected, mut refracted, mut evaluated) = (0, 0, 0);
-        for _ in 0..300 {
-            let mut direction = || Vec3::new(next() - 0.5, next() - 0.5, 2.0 * next() - 1.0).normalize();
-            let wo: [Vec3; N] = std::array::from_fn(|_| direction());
-            let wi: [Vec3; N] = std::array::from_fn(|_| direction());
-            let (wo_l, wi_l) = (Vec3s::from_fn(|i| wo[i]), Vec3s::from_fn(|i| wi[i]));
-            let u = [0; 3].map(|_| F32s::<N>::from_fn(|_| next()));
-            let (f, pdf) = lanes.eval_pdf(&wo_l, &wi_l);
-            let s = lanes.sample(&wo_l, u[0], u[1], u[2], Ms::ALL);
-            for i in 0..N {
-                let m = glass(i);
-                let (f1, pdf1) = (m.eval(wo[i], wi[i]), m.pdf(wo[i], wi[i]));
-                assert_eq!(rgb_lane(&f, i).to_array().map(f32::to_bits), f1.to_array().map(f32::to_bits));
-                assert_eq!(pdf.0[i].to_bits(), pdf1.to_bits());
-                evaluated += usize::from(pdf1 > 0.0);
-                let one = m.sample(wo[i], u[0].0[i], Vec2::new(u[1].0[i], u[2].0[i]));
-                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}");
-                let Some(one) = one else { continue };
-                if one.wi.z * wo[i].z > 0.0 {
-                    reflected += 1;
-                } else {
-                    refracted += 1;
+        let mut numbers = Numbers::new(0x2545_f491);
+        assert_smooth_lanes_match(
+            &lanes,
+            glass,
+            &mut numbers,
+            300,
+            |n| n.direction(-1.0, 2.0),
+            |wo, pdf, one| {
+                evaluated += usize::from(pdf > 0.0);
+                match one {
+                    Some(one) if one.wi.z * wo.z > 0.0 => reflected += 1,
+                    Some(_) => refracted += 1,
+                    None => {}
                 }
-                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
-                let w = rgb_lane(&s.weight, i).to_array().map(f32::to_bits);
-                assert_eq!(w, one.weight.to_array().map(f32::to_bits));
-                assert_eq!([s.pdf.0[i], s.eta.0[i]].map(f32::to_bits), [one.pdf, one.eta].map(f32::to_bits));
-            }
-        }
+            },
+        );
         assert!(reflected > 100 && refracted > 1000 && evaluated > 1000, "{reflected} {refracted} {evaluated}");
     }
 }

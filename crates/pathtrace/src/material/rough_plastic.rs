@@ -19,13 +19,12 @@
 //!   (`rough_plastic_alpha.rs`).
 
 use super::dielectric::fresnel_dielectric_lanes;
-use super::lanes::{rgb_lane, LaneSamples, LaneScattering};
+use super::lanes::{LaneSamples, LaneScattering, SmoothModel};
 use super::microfacet::{reflect_about_lanes, refract_about_lanes, visible_density_lanes, Microfacet, MicrofacetLanes};
 use super::plastic::{base_albedo, coating_pick_probability_lanes, specular_sampling_weight};
 use super::rough_plastic_alpha::RoughPlasticAlphaTable;
-use super::BsdfSample;
 use crate::math::special::gauss_legendre;
-use crate::math::{Rgb, Vec2, Vec3, INV_PI};
+use crate::math::{Rgb, Vec3, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf_lanes;
 use crate::wide::simd::{F32s, Ms, Vec3s, LANES_256};
 use crate::wide::warp as warp_lanes;
@@ -172,11 +171,15 @@ impl RoughPlastic {
     pub(crate) fn internal_reflectance(&self) -> f32 {
         self.internal
     }
+}
+
+impl SmoothModel for RoughPlastic {
+    type Lanes<'a, const N: usize> = RoughPlasticLanes<'a, N>;
 
     /// This plastic in every lane of a group (the scalar methods are the one-lane instances of
     /// [`RoughPlasticLanes`]'s).
     #[inline(always)]
-    pub(crate) fn lanes<const N: usize>(&self) -> RoughPlasticLanes<'_, N> {
+    fn lanes<const N: usize>(&self) -> Self::Lanes<'_, N> {
         RoughPlasticLanes {
             distribution: self.distribution.lanes(),
             specular: self.specular.to_array().map(F32s::splat),
@@ -185,26 +188,6 @@ impl RoughPlastic {
             specular_weight: F32s::splat(self.specular_weight),
             transmittance: [&self.transmittance; N],
         }
-    }
-
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), F32s([u.x]), F32s([u.y]), Ms::ALL).lane(0)
-    }
-
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        self.eval_pdf(wo, wi).0
-    }
-
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        self.eval_pdf(wo, wi).1
-    }
-
-    /// `eval` and `pdf` together: the half vector, D(m) and G1(wo, m) (Beckmann's is an erf and
-    /// an exp) serve both the coating's value and its visible-normal density.
-    #[inline]
-    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Rgb, f32) {
-        let (f, pdf) = self.lanes::<1>().eval_pdf(&Vec3s::splat(wo), &Vec3s::splat(wi));
-        (rgb_lane(&f, 0), pdf.0[0])
     }
 }
 
@@ -310,7 +293,9 @@ impl<const N: usize> LaneScattering<N> for RoughPlasticLanes<'_, N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::lane_checks::{assert_smooth_lanes_match, Numbers};
     use crate::material::MicrofacetKind;
+    use crate::math::Vec2;
     use crate::wide::simd::LANES_512 as N;
 
     /// Each lane of a group of mixed plastics (both distributions, several roughnesses, indices
@@ -329,36 +314,21 @@ mod tests {
         for i in 0..N {
             lanes.set(i, &plastics[i % 4]);
         }
-        let mut x = 0x2545_f491u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x >> 8) as f32 / (1u32 << 24) as f32
-        };
-        for _ in 0..200 {
-            let mut direction = || Vec3::new(next() - 0.5, next() - 0.5, 0.7 * next() - 0.05).normalize();
-            let wo: [Vec3; N] = std::array::from_fn(|_| direction());
-            let wi: [Vec3; N] = std::array::from_fn(|_| direction());
-            let (wo_l, wi_l) = (Vec3s::from_fn(|i| wo[i]), Vec3s::from_fn(|i| wi[i]));
-            let u = [0; 3].map(|_| F32s::<N>::from_fn(|_| next()));
-            let (f, pdf) = lanes.eval_pdf(&wo_l, &wi_l);
-            let s = lanes.sample(&wo_l, u[0], u[1], u[2], Ms::ALL);
-            for i in 0..N {
-                let m = &plastics[i % 4];
-                let (f1, pdf1) = m.eval_pdf(wo[i], wi[i]);
-                assert_eq!([f[0].0[i], f[1].0[i], f[2].0[i]].map(f32::to_bits), f1.to_array().map(f32::to_bits));
-                assert_eq!(pdf.0[i].to_bits(), pdf1.to_bits());
-                let one = m.sample(wo[i], u[0].0[i], Vec2::new(u[1].0[i], u[2].0[i]));
-                assert_eq!(s.valid.lane(i), one.is_some(), "lane {i}");
-                if let Some(one) = one {
-                    assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
-                    let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
-                    assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
-                    assert_eq!(s.pdf.0[i].to_bits(), one.pdf.to_bits());
-                }
-            }
-        }
+        let (mut sampled, mut evaluated) = (0, 0);
+        let mut numbers = Numbers::new(0x2545_f491);
+        let model = |i: usize| plastics[i % 4];
+        assert_smooth_lanes_match(
+            &lanes,
+            model,
+            &mut numbers,
+            200,
+            |n| n.direction(-0.05, 0.7),
+            |_, pdf, one| {
+                evaluated += usize::from(pdf > 0.0);
+                sampled += usize::from(one.is_some());
+            },
+        );
+        assert!(sampled > 1000 && evaluated > 1000, "{sampled} {evaluated}");
     }
 
     fn dir(theta: f32, phi: f32) -> Vec3 {

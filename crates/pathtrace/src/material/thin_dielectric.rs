@@ -6,9 +6,9 @@
 //! −wo with no offset and no change of η (Mitsuba 3, src/bsdfs/thindielectric.cpp).
 
 use super::dielectric::fresnel_dielectric_lanes;
-use super::lanes::{LaneDeltaScattering, LaneSamples};
-use super::{reflect_local_lanes, BsdfSample};
-use crate::math::{Rgb, Vec3};
+use super::lanes::{DeltaModel, LaneDeltaScattering, LaneSamples};
+use super::reflect_local_lanes;
+use crate::math::Rgb;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Thin dielectric slab of index `ior` (relative to the outside).
@@ -24,16 +24,15 @@ impl ThinDielectric {
     pub fn reflectance(&self, cos_theta: f32) -> f32 {
         self.lanes::<1>().reflectance(F32s([cos_theta])).0[0]
     }
+}
 
-    /// Reflects with probability R', else passes straight through: the one-lane instance of
-    /// [`ThinDielectricLanes::sample`].
-    pub fn sample(&self, wo: Vec3, u_lobe: f32) -> Option<BsdfSample> {
-        self.lanes::<1>().sample(&Vec3s::splat(wo), F32s([u_lobe]), Ms::ALL).lane(0)
-    }
+impl DeltaModel for ThinDielectric {
+    type Lanes<const N: usize> = ThinDielectricLanes<N>;
 
-    /// This slab in every lane.
+    /// This slab in every lane (its scalar sample, a reflection with probability R', else
+    /// straight through, is the one-lane instance of [`ThinDielectricLanes::sample`]).
     #[inline(always)]
-    pub(crate) fn lanes<const N: usize>(&self) -> ThinDielectricLanes<N> {
+    fn lanes<const N: usize>(&self) -> ThinDielectricLanes<N> {
         ThinDielectricLanes { ior: F32s::splat(self.ior), tint: self.tint.to_array().map(F32s::splat) }
     }
 }
@@ -88,6 +87,7 @@ impl<const N: usize> LaneDeltaScattering<N> for ThinDielectricLanes<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::lane_checks::{assert_delta_lanes_match, Numbers};
 
     #[test]
     fn normal_incidence_matches_the_slab_series() {
@@ -108,33 +108,25 @@ mod tests {
         for i in 0..N {
             lanes.set(i, &slab(i));
         }
-        let mut x = 0x1234_5679u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            (x >> 8) as f32 / (1u32 << 24) as f32
-        };
         let (mut reflected, mut through) = (0, 0);
-        for _ in 0..200 {
-            let wo: [Vec3; N] =
-                std::array::from_fn(|_| Vec3::new(next() - 0.5, next() - 0.5, 2.0 * next() - 1.0).normalize());
-            let u = F32s::from_fn(|_| next());
-            let s = lanes.sample(&Vec3s::from_fn(|i| wo[i]), u, Ms::ALL);
-            for (i, &wo_i) in wo.iter().enumerate() {
-                let one = slab(i).sample(wo_i, u.0[i]).unwrap();
-                assert!(s.valid.lane(i) && s.specular.lane(i) && one.delta);
-                assert_eq!(s.wi.lane(i).to_array().map(f32::to_bits), one.wi.to_array().map(f32::to_bits));
-                let w = [s.weight[0].0[i], s.weight[1].0[i], s.weight[2].0[i]];
-                assert_eq!(w.map(f32::to_bits), one.weight.to_array().map(f32::to_bits));
-                assert_eq!([s.pdf.0[i], s.eta.0[i]].map(f32::to_bits), [one.pdf, one.eta].map(f32::to_bits));
-                if one.wi == -wo_i {
+        let mut numbers = Numbers::new(0x1234_5679);
+        let one_lane = |i: usize, wo, u| slab(i).sample(wo, u);
+        assert_delta_lanes_match(
+            &lanes,
+            one_lane,
+            &mut numbers,
+            200,
+            |n| n.direction(-1.0, 2.0),
+            |_, wo, one| {
+                let one = one.expect("a slab always scatters");
+                assert!(one.delta);
+                if one.wi == -wo {
                     through += 1;
                 } else {
                     reflected += 1;
                 }
-            }
-        }
+            },
+        );
         assert!(reflected > 100 && through > 1000, "{reflected} {through}");
     }
 }
