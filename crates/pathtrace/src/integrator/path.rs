@@ -331,10 +331,7 @@ pub(crate) fn vertex<const N: usize>(
     // vertices sample theirs in `medium_vertex`.)
     let surface_nee = nee & !scatter;
     let light_samples = if surface_nee.any() {
-        match &lanes.lights {
-            Some(wide) => wide.sample(scene_lights, &s.p, surface_nee, &u_select, ul1, ul2),
-            None => LightSamples::from_set(scene_lights, &s.p, surface_nee, &u_select, &ul1, &ul2),
-        }
+        lanes.lights.sample(scene_lights, &s.p, surface_nee, &u_select, ul1, ul2)
     } else {
         LightSamples::none()
     };

@@ -56,20 +56,6 @@ pub(super) struct ShapeSample {
     pub pdf: f32,
 }
 
-impl ShapeSample {
-    /// Completes a sample from the chosen point and its solid-angle pdf function.
-    fn new(ref_p: Vec3, point: Vec3, normal: Vec3, pdf_of: impl FnOnce(f32, Vec3) -> f32) -> Option<Self> {
-        let d = point - ref_p;
-        let dist = d.length();
-        if dist.is_nan() || dist <= 0.0 {
-            return None;
-        }
-        let wi = d / dist;
-        let pdf = pdf_of(dist, wi);
-        (pdf > 0.0 && pdf.is_finite()).then_some(Self { point, normal, wi, dist, pdf })
-    }
-}
-
 /// Flat area lights (quads and triangles), one per lane: `origin + a·e1 + b·e2`, with unit
 /// `normal` along e1 × e2.
 pub(crate) struct FlatLights<const N: usize> {
@@ -114,6 +100,52 @@ pub(crate) fn sample_flat_lanes<const N: usize>(
     let wi = d.scale(1.0 / dist);
     let cos_l = l.normal.dot(&wi);
     FlatSamples { point, wi, dist, cos_l, pdf_area_one: dist2 / cos_l.abs() }
+}
+
+/// Disk lights, one per lane: `center + a·u + b·v` for (a, b) on the unit disk, with unit
+/// `normal` and `area`.
+pub(crate) struct DiskLights<const N: usize> {
+    pub center: Vec3s<N>,
+    pub u: Vec3s<N>,
+    pub v: Vec3s<N>,
+    pub normal: Vec3s<N>,
+    pub area: F32s<N>,
+}
+
+/// Points sampled uniformly on disk lights, seen from reference points.
+pub(crate) struct DiskSamples<const N: usize> {
+    pub point: Vec3s<N>,
+    /// Unit direction from the reference point to `point`, and the distance.
+    pub wi: Vec3s<N>,
+    pub dist: F32s<N>,
+    /// cos θ_l = normal · wi (negative where the front face looks at the reference point).
+    pub cos_l: F32s<N>,
+    /// Solid-angle density r² / (|cos θ_l| · A) (light selection not included).
+    pub pdf: F32s<N>,
+    /// Lanes with a sample: the point lies away from the reference point and the density is
+    /// positive and finite.
+    pub valid: Ms<N>,
+}
+
+/// Uniform points on disk lights by area: Shirley and Chiu's concentric map of `(u1, u2)`
+/// (`wide::warp::square_to_uniform_disk`) onto the disk's axes, with the area-to-solid-angle
+/// factor r² / (|cos θ_l| · A). The scalar light set runs it in one lane.
+#[inline(always)]
+pub(crate) fn sample_disk_lanes<const N: usize>(
+    l: &DiskLights<N>,
+    ref_p: &Vec3s<N>,
+    u1: F32s<N>,
+    u2: F32s<N>,
+) -> DiskSamples<N> {
+    let (a, b) = crate::wide::warp::square_to_uniform_disk(u1, u2);
+    let point = l.center.add(&l.u.scale(a)).add(&l.v.scale(b));
+    let d = point.sub(ref_p);
+    let dist = d.length();
+    let wi = Vec3s { x: d.x / dist, y: d.y / dist, z: d.z / dist };
+    let cos_l = l.normal.dot(&wi);
+    let pdf = dist * dist / (cos_l.abs() * l.area);
+    let valid = dist.gt(F32s::ZERO) & pdf.gt(F32s::ZERO) & pdf.is_finite();
+    DiskSamples { point, wi, dist, cos_l, pdf, valid }
 }
 
 /// Sphere lights, one per lane.
@@ -176,12 +208,6 @@ pub(crate) fn sample_sphere_lanes<const N: usize>(
     let area_pdf = dist * dist / (normal.dot(&wi).abs() * (4.0 * PI * r2));
     let normal = Vec3s::select(l.inward, &normal.neg(), &normal);
     SphereSamples { point, normal, wi, dist, pdf: F32s::select(outside, cone_pdf, area_pdf) }
-}
-
-/// r² / (|cos θ_l| · A) from the distance and unit direction to the light point.
-#[inline]
-fn solid_angle_pdf(dist: f32, wi: Vec3, normal: Vec3, area: f32) -> f32 {
-    dist * dist / (normal.dot(wi).abs() * area)
 }
 
 fn area_to_solid_angle(ref_p: Vec3, point: Vec3, normal: Vec3, area: f32) -> f32 {
@@ -266,13 +292,33 @@ impl AreaLight {
 
     #[inline(always)]
     pub(super) fn sample(&self, ref_p: Vec3, u: Vec2) -> Option<ShapeSample> {
-        let point = match &self.shape {
-            LightShape::Quad(q) => return self.sample_flat(ref_p, q.q, q.u, q.v, false, u),
-            LightShape::Triangle(t) => return self.sample_flat(ref_p, t.p0, t.e1, t.e2, true, u),
-            LightShape::Sphere(s) => return sample_sphere(s, ref_p, u),
-            LightShape::Disk(d) => d.sample_uniform(u),
+        match &self.shape {
+            LightShape::Quad(q) => self.sample_flat(ref_p, q.q, q.u, q.v, false, u),
+            LightShape::Triangle(t) => self.sample_flat(ref_p, t.p0, t.e1, t.e2, true, u),
+            LightShape::Sphere(s) => sample_sphere(s, ref_p, u),
+            LightShape::Disk(d) => self.sample_disk(ref_p, d, u),
+        }
+    }
+
+    /// A disk: the one-lane instance of [`sample_disk_lanes`].
+    #[inline(always)]
+    fn sample_disk(&self, ref_p: Vec3, d: &Disk, u: Vec2) -> Option<ShapeSample> {
+        let one = Vec3s::<1>::splat;
+        let l = DiskLights {
+            center: one(d.center),
+            u: one(d.u),
+            v: one(d.v),
+            normal: one(self.normal),
+            area: F32s([self.area]),
         };
-        ShapeSample::new(ref_p, point, self.normal, |dist, wi| solid_angle_pdf(dist, wi, self.normal, self.area))
+        let s = sample_disk_lanes(&l, &one(ref_p), F32s([u.x]), F32s([u.y]));
+        s.valid.lane(0).then(|| ShapeSample {
+            point: s.point.lane(0),
+            normal: self.normal,
+            wi: s.wi.lane(0),
+            dist: s.dist.0[0],
+            pdf: s.pdf.0[0],
+        })
     }
 
     /// A quad or triangle: the one-lane instance of [`sample_flat_lanes`].

@@ -19,4 +19,5 @@ pub use kind::Light;
 pub use point::PointLight;
 pub use radiance_texture::RadianceTexture;
 pub use set::{LightSample, LightSelection, LightSet};
+pub(crate) use spot::SpotLanes;
 pub use spot::SpotLight;

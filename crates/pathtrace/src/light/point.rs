@@ -47,16 +47,13 @@ impl PointLight {
 }
 
 /// The unit direction, distance and squared distance from `ref_p` to a light at `position`
-/// (point and spot lights); `None` when the two coincide or are not finitely apart.
-#[inline]
-pub(super) fn towards(position: Vec3, ref_p: Vec3) -> Option<(Vec3, f32, f32)> {
-    let (wi, dist, dist2, valid) = towards_lanes(&Vec3s::<1>::splat(position), &Vec3s::splat(ref_p));
-    valid.lane(0).then(|| (wi.lane(0), dist.0[0], dist2.0[0]))
-}
-
-/// [`towards`] per lane, with the lanes that have a direction.
+/// per lane (point and spot lights), with the lanes that have them: the two points differ and
+/// are finitely apart.
 #[inline(always)]
-fn towards_lanes<const N: usize>(position: &Vec3s<N>, ref_p: &Vec3s<N>) -> (Vec3s<N>, F32s<N>, F32s<N>, Ms<N>) {
+pub(super) fn towards_lanes<const N: usize>(
+    position: &Vec3s<N>,
+    ref_p: &Vec3s<N>,
+) -> (Vec3s<N>, F32s<N>, F32s<N>, Ms<N>) {
     let d = position.sub(ref_p);
     let dist2 = d.dot(&d);
     let valid = dist2.gt(F32s::ZERO) & dist2.is_finite();

@@ -15,6 +15,7 @@
 //! Like a point light it is a Dirac delta in position: only next-event estimation sees it.
 
 use crate::math::{Mat3, Rgb, Transform, Vec3};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// A spot light placed by a transform: it sits at the local origin and points along local +z.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,16 +71,23 @@ impl SpotLight {
 
     /// The falloff factor in [0, 1] for the world direction `w` leaving the light: 1 inside the
     /// beam, (θc − θ)/(θc − θb) in the transition, 0 at and beyond the cutoff (Mitsuba 3's
-    /// `falloff_curve`).
+    /// `falloff_curve`). The one-lane instance of [`SpotLanes::falloff`].
     pub fn falloff(&self, w: Vec3) -> f32 {
-        let local = (self.to_local * w).normalize_or_zero();
-        let cos_theta = local.z;
-        if cos_theta <= self.cos_cutoff {
-            0.0
-        } else if cos_theta >= self.cos_beam {
-            1.0
-        } else {
-            ((self.cutoff - cos_theta.clamp(-1.0, 1.0).acos()) * self.inv_transition).clamp(0.0, 1.0)
+        self.lanes::<1>().falloff(&Vec3s::splat(w)).0[0]
+    }
+
+    /// This light in every lane of a group.
+    #[inline(always)]
+    pub(crate) fn lanes<const N: usize>(&self) -> SpotLanes<N> {
+        let column = |c: Vec3| Vec3s::splat(c);
+        SpotLanes {
+            position: Vec3s::splat(self.position),
+            to_local: [column(self.to_local.x_axis), column(self.to_local.y_axis), column(self.to_local.z_axis)],
+            intensity: self.intensity.to_array().map(F32s::splat),
+            cutoff: F32s::splat(self.cutoff),
+            cos_cutoff: F32s::splat(self.cos_cutoff),
+            cos_beam: F32s::splat(self.cos_beam),
+            inv_transition: F32s::splat(self.inv_transition),
         }
     }
 
@@ -96,11 +104,67 @@ impl SpotLight {
     }
 
     /// The unit direction and distance from `ref_p` to the light, and I·falloff/r², the
-    /// radiance-like term of a Dirac delta in direction.
+    /// radiance-like term of a Dirac delta in direction: the one-lane instance of
+    /// [`SpotLanes::sample`].
     pub(super) fn sample(&self, ref_p: Vec3) -> Option<(Vec3, f32, Rgb)> {
-        let (wi, dist, dist2) = super::point::towards(self.position, ref_p)?;
-        let falloff = self.falloff(-wi);
-        Some((wi, dist, self.intensity * (falloff / dist2)))
+        let (wi, dist, radiance, valid) = self.lanes::<1>().sample(&Vec3s::splat(ref_p));
+        valid.lane(0).then(|| (wi.lane(0), dist.0[0], Rgb::new(radiance[0].0[0], radiance[1].0[0], radiance[2].0[0])))
+    }
+}
+
+/// Spot lights per lane (lanes can hold different ones).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SpotLanes<const N: usize> {
+    pub position: Vec3s<N>,
+    /// The columns of the world → local matrix for directions.
+    pub to_local: [Vec3s<N>; 3],
+    pub intensity: [F32s<N>; 3],
+    pub cutoff: F32s<N>,
+    pub cos_cutoff: F32s<N>,
+    pub cos_beam: F32s<N>,
+    pub inv_transition: F32s<N>,
+}
+
+impl<const N: usize> SpotLanes<N> {
+    /// Lane `i` holds `l`.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, l: &SpotLight) {
+        self.position.set(i, l.position);
+        for (column, c) in self.to_local.iter_mut().zip([l.to_local.x_axis, l.to_local.y_axis, l.to_local.z_axis]) {
+            column.set(i, c);
+        }
+        [self.intensity[0].0[i], self.intensity[1].0[i], self.intensity[2].0[i]] = l.intensity.to_array();
+        self.cutoff.0[i] = l.cutoff;
+        self.cos_cutoff.0[i] = l.cos_cutoff;
+        self.cos_beam.0[i] = l.cos_beam;
+        self.inv_transition.0[i] = l.inv_transition;
+    }
+
+    /// [`SpotLight::falloff`] per lane, for world directions `w` leaving the lanes' lights.
+    #[inline(always)]
+    pub fn falloff(&self, w: &Vec3s<N>) -> F32s<N> {
+        // M·w as glam's `Mat3::mul_vec3` (x_axis·wx + y_axis·wy + z_axis·wz), then
+        // `normalize_or_zero`'s z: times the reciprocal length where that is finite and positive.
+        let [cx, cy, cz] = &self.to_local;
+        let local = cx.scale(w.x).add(&cy.scale(w.y)).add(&cz.scale(w.z));
+        let rcp = 1.0 / local.length();
+        let cos_theta = F32s::select(rcp.is_finite() & rcp.gt(F32s::ZERO), local.z * rcp, F32s::ZERO);
+        // The ramp (θc − θ)/(θc − θb), θ = acos(cos θ): libm's acos per lane, as the scalar form.
+        let ramp = F32s::from_fn(|i| {
+            let theta = cos_theta.0[i].clamp(-1.0, 1.0).acos();
+            ((self.cutoff.0[i] - theta) * self.inv_transition.0[i]).clamp(0.0, 1.0)
+        });
+        let inside = cos_theta.ge(self.cos_beam);
+        F32s::select(cos_theta.le(self.cos_cutoff), F32s::ZERO, F32s::select(inside, F32s::ONE, ramp))
+    }
+
+    /// Per lane, the unit direction and distance from `ref_p` to the lane's light, I·falloff/r²,
+    /// and whether the lane has a sample (the two points differ and are finitely apart).
+    #[inline(always)]
+    pub fn sample(&self, ref_p: &Vec3s<N>) -> (Vec3s<N>, F32s<N>, [F32s<N>; 3], Ms<N>) {
+        let (wi, dist, dist2, valid) = super::point::towards_lanes(&self.position, ref_p);
+        let scale = self.falloff(&wi.neg()) / dist2;
+        (wi, dist, self.intensity.map(|i| i * scale), valid)
     }
 }
 

@@ -10,7 +10,6 @@
 use super::triangle::EDGE_SLACK;
 use super::{PrimHit, SurfacePoint};
 use crate::math::{Aabb, Frame, Ray, Transform, Vec2, Vec3, Vec4, INV_2PI, PI};
-use crate::sampling::warp;
 
 /// An elliptical disk with its intersection data precomputed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -95,12 +94,6 @@ impl Disk {
     /// The point at disk coordinates `(a, b)`.
     pub fn point_at(&self, a: f32, b: f32) -> Vec3 {
         self.center + a * self.u + b * self.v
-    }
-
-    /// A point distributed uniformly by area.
-    pub fn sample_uniform(&self, u: Vec2) -> Vec3 {
-        let d = warp::square_to_uniform_disk(u);
-        self.point_at(d.x, d.y)
     }
 
     pub fn transformed(&self, t: &Transform) -> Option<Self> {

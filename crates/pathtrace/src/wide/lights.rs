@@ -1,16 +1,19 @@
-//! Light samples for a group of lanes: computed together when every light is an area light of
-//! constant radiance on a quad, triangle or sphere, or the environment, else gathered lane by
-//! lane from the scene's light set.
+//! Light samples for a group of lanes, computed together for every kind of light: quad,
+//! triangle, disk and sphere area lights (a radiance texture is looked up per lane at the
+//! sampled point), point, spot and directional lights, and the environment.
 //!
 //! Each lane picks its light with the scene's own selection distribution ([`LightSet::pick`]),
 //! then the point on it, the direction and the density are computed for all lanes together by
-//! `light::area::sample_flat_lanes`, `sample_sphere_lanes` and
-//! `EnvironmentLight::sample_lanes`, the formulas the scalar light set runs in one lane.
+//! `light::area::sample_flat_lanes`, `sample_disk_lanes`, `sample_sphere_lanes`,
+//! `PointLight::sample_lanes`, `SpotLanes::sample` and `EnvironmentLight::sample_lanes`: the
+//! formulas the scalar light set runs in one lane.
 
 use super::simd::{F32s, Ms, Vec3s};
-use crate::light::area::{sample_flat_lanes, sample_sphere_lanes, FlatLights, FlatSamples, SphereLights};
-use crate::light::{EnvironmentLight, Light, LightSet, LightShape, PointLight};
-use crate::math::{Rgb, Vec2, Vec3};
+use crate::light::area::{
+    sample_disk_lanes, sample_flat_lanes, sample_sphere_lanes, DiskLights, FlatLights, FlatSamples, SphereLights,
+};
+use crate::light::{EnvironmentLight, Light, LightSet, LightShape, PointLight, SpotLanes, SpotLight};
+use crate::math::{Rgb, Vec3};
 
 /// One flat light: `origin + s·e1 + t·e2`.
 #[derive(Clone, Copy, Debug)]
@@ -19,6 +22,20 @@ struct FlatLight {
     e1: Vec3,
     e2: Vec3,
     triangle: bool,
+    normal: Vec3,
+    area: f32,
+    radiance: Rgb,
+    two_sided: bool,
+    /// Its index in the light set when a texture scales its radiance.
+    textured: Option<usize>,
+}
+
+/// One disk light: `center + a·u + b·v` over the unit disk.
+#[derive(Clone, Copy, Debug)]
+struct DiskLight {
+    center: Vec3,
+    u: Vec3,
+    v: Vec3,
     normal: Vec3,
     area: f32,
     radiance: Rgb,
@@ -35,24 +52,34 @@ struct SphereLight {
     two_sided: bool,
 }
 
-/// A light with a lane-parallel form.
+/// A light as the lanes sample it.
 #[derive(Clone, Copy, Debug)]
 enum WideLight {
     Flat(FlatLight),
+    Disk(DiskLight),
     Sphere(SphereLight),
     /// The scene's environment ([`WideLights::environment`]).
     Environment,
     Point(PointLight),
+    Spot(SpotLight),
+    /// Towards the light (−its direction of travel), and its irradiance.
+    Directional {
+        wi: Vec3,
+        irradiance: Rgb,
+    },
 }
 
-/// The scene's lights, when all are flat or sphere area lights, point lights or the environment.
+/// The scene's lights, in their lane-parallel forms.
 #[derive(Clone, Debug)]
 pub struct WideLights {
     lights: Vec<WideLight>,
-    /// Some light is flat; some is a sphere (each form is computed only if present).
+    /// Which forms the scene has (each is computed only if present).
     any_flat: bool,
+    any_disk: bool,
     any_sphere: bool,
     any_point: bool,
+    any_spot: bool,
+    any_textured: bool,
     /// The environment, if the scene has one (a scene has at most one).
     environment: Option<EnvironmentLight>,
 }
@@ -116,56 +143,28 @@ impl<const N: usize> LightSamples<N> {
             delta: self.delta.lane(i),
         })
     }
-
-    /// One sample per lane of `active` from the scene's light set (`LightSet::sample`), for
-    /// lights without a lane-parallel form (points, spots, spheres, disks, environments).
-    #[inline(never)]
-    pub fn from_set(
-        set: &LightSet,
-        p: &Vec3s<N>,
-        active: Ms<N>,
-        u_select: &F32s<N>,
-        u1: &F32s<N>,
-        u2: &F32s<N>,
-    ) -> Self {
-        let mut out = Self::none();
-        for i in active.lanes() {
-            let u = Vec2::new(u1.0[i], u2.0[i]);
-            let Some(ls) = set.sample(p.lane(i), u_select.0[i], u) else { continue };
-            // NaN-safe: a sample without a positive density cannot be weighted.
-            if ls.pdf.is_nan() || ls.pdf <= 0.0 {
-                continue;
-            }
-            out.point.set(i, ls.point);
-            out.wi.set(i, ls.wi);
-            out.pdf.0[i] = ls.pdf;
-            [out.radiance[0].0[i], out.radiance[1].0[i], out.radiance[2].0[i]] = ls.radiance.to_array();
-            out.valid.0[i] = u32::MAX;
-            out.dist_finite.0[i] = if ls.dist.is_finite() { u32::MAX } else { 0 };
-            out.delta.0[i] = if ls.delta { u32::MAX } else { 0 };
-        }
-        out
-    }
 }
 
 impl WideLights {
-    /// `None` unless every light is a quad, triangle or sphere area light of constant radiance,
-    /// a point light or the environment (no spot, disk or directional light, no radiance
-    /// texture).
-    pub fn new(set: &LightSet) -> Option<Self> {
+    /// The lane-parallel form of every light of `set`.
+    pub fn new(set: &LightSet) -> Self {
         let mut environment = None;
         let lights = set
             .lights()
             .iter()
-            .map(|light| {
+            .enumerate()
+            .map(|(id, light)| {
                 let l = match light {
-                    Light::Area(l) if l.texture().is_none() => l,
+                    Light::Area(l) => l,
                     Light::Environment(e) => {
                         environment = Some(e.clone());
-                        return Some(WideLight::Environment);
+                        return WideLight::Environment;
                     }
-                    Light::Point(l) => return Some(WideLight::Point(*l)),
-                    Light::Area(_) | Light::Spot(_) | Light::Directional(_) => return None,
+                    Light::Point(l) => return WideLight::Point(*l),
+                    Light::Spot(l) => return WideLight::Spot(*l),
+                    Light::Directional(l) => {
+                        return WideLight::Directional { wi: -l.direction(), irradiance: l.irradiance() }
+                    }
                 };
                 let (radiance, two_sided) = (l.emission.radiance, l.emission.two_sided);
                 let (origin, e1, e2, triangle) = match l.shape {
@@ -174,19 +173,30 @@ impl WideLights {
                     LightShape::Sphere(s) => {
                         let sphere =
                             SphereLight { center: s.center, radius: s.radius, inward: s.inward, radiance, two_sided };
-                        return Some(WideLight::Sphere(sphere));
+                        return WideLight::Sphere(sphere);
                     }
-                    LightShape::Disk(_) => return None,
+                    LightShape::Disk(d) => {
+                        let (center, u, v, normal, area) = (d.center, d.u, d.v, d.normal(), l.area());
+                        return WideLight::Disk(DiskLight { center, u, v, normal, area, radiance, two_sided });
+                    }
                 };
                 let normal = e1.cross(e2).normalize();
                 let area = l.area();
-                Some(WideLight::Flat(FlatLight { origin, e1, e2, triangle, normal, area, radiance, two_sided }))
+                let textured = l.texture().is_some().then_some(id);
+                WideLight::Flat(FlatLight { origin, e1, e2, triangle, normal, area, radiance, two_sided, textured })
             })
-            .collect::<Option<Vec<_>>>()?;
-        let any_flat = lights.iter().any(|l| matches!(l, WideLight::Flat(_)));
-        let any_sphere = lights.iter().any(|l| matches!(l, WideLight::Sphere(_)));
-        let any_point = lights.iter().any(|l| matches!(l, WideLight::Point(_)));
-        Some(Self { lights, any_flat, any_sphere, any_point, environment })
+            .collect::<Vec<_>>();
+        let any = |f: fn(&WideLight) -> bool| lights.iter().any(f);
+        Self {
+            any_flat: any(|l| matches!(l, WideLight::Flat(_))),
+            any_disk: any(|l| matches!(l, WideLight::Disk(_))),
+            any_sphere: any(|l| matches!(l, WideLight::Sphere(_))),
+            any_point: any(|l| matches!(l, WideLight::Point(_))),
+            any_spot: any(|l| matches!(l, WideLight::Spot(_))),
+            any_textured: any(|l| matches!(l, WideLight::Flat(FlatLight { textured: Some(_), .. }))),
+            lights,
+            environment,
+        }
     }
 
     /// Samples a light point for each lane of `active` from `p`, with the selection numbers
@@ -209,11 +219,24 @@ impl WideLights {
             normal: Vec3s::default(),
             triangle: Ms::NONE,
         };
+        let mut textured = [usize::MAX; N];
+        let mut on_textured = Ms::<N>::NONE;
+        let mut disks = DiskLights {
+            center: Vec3s::default(),
+            u: Vec3s::default(),
+            v: Vec3s::default(),
+            normal: Vec3s::default(),
+            area: F32s::ONE,
+        };
+        let mut on_disk = Ms::<N>::NONE;
         let mut spheres = SphereLights { center: Vec3s::default(), radius: F32s::ZERO, inward: Ms::NONE };
         let mut on_sphere = Ms::<N>::NONE;
         let mut on_environment = Ms::<N>::NONE;
         let (mut on_point, mut point_position, mut intensity) =
             (Ms::<N>::NONE, Vec3s::<N>::default(), [F32s::<N>::ZERO; 3]);
+        let mut spots: Option<SpotLanes<N>> = None;
+        let mut on_spot = Ms::<N>::NONE;
+        let (mut on_directional, mut directional_wi) = (Ms::<N>::NONE, Vec3s::<N>::default());
         // The selection pmf, divided by the area for flat lights (whose density is per area).
         let mut pmf_factor = F32s::<N>::ZERO;
         let mut radiance = [F32s::<N>::ZERO; 3];
@@ -229,7 +252,21 @@ impl WideLights {
                     f.e2.set(i, l.e2);
                     f.normal.set(i, l.normal);
                     f.triangle.0[i] = if l.triangle { u32::MAX } else { 0 };
+                    if let Some(id) = l.textured {
+                        textured[i] = id;
+                        on_textured.0[i] = u32::MAX;
+                    }
                     pmf_factor.0[i] = pmf / l.area;
+                    (l.radiance, l.two_sided)
+                }
+                WideLight::Disk(l) => {
+                    disks.center.set(i, l.center);
+                    disks.u.set(i, l.u);
+                    disks.v.set(i, l.v);
+                    disks.normal.set(i, l.normal);
+                    disks.area.0[i] = l.area;
+                    on_disk.0[i] = u32::MAX;
+                    pmf_factor.0[i] = pmf;
                     (l.radiance, l.two_sided)
                 }
                 WideLight::Sphere(l) => {
@@ -254,6 +291,20 @@ impl WideLights {
                     pmf_factor.0[i] = pmf;
                     (Rgb::BLACK, true)
                 }
+                // I·falloff/r², below.
+                WideLight::Spot(l) => {
+                    on_spot.0[i] = u32::MAX;
+                    spots.get_or_insert_with(|| l.lanes()).set(i, l);
+                    pmf_factor.0[i] = pmf;
+                    (Rgb::BLACK, true)
+                }
+                // The same direction and irradiance from every point.
+                WideLight::Directional { wi, irradiance } => {
+                    on_directional.0[i] = u32::MAX;
+                    directional_wi.set(i, *wi);
+                    pmf_factor.0[i] = pmf;
+                    (*irradiance, true)
+                }
             };
             [radiance[0].0[i], radiance[1].0[i], radiance[2].0[i]] = emitted.to_array();
             two_sided.0[i] = if both_faces { u32::MAX } else { 0 };
@@ -261,10 +312,21 @@ impl WideLights {
         }
         let (mut point, mut wi, mut dist, mut cos_l, mut pdf) =
             (Vec3s::default(), Vec3s::default(), F32s::ZERO, F32s::ZERO, F32s::ZERO);
+        // Lanes whose light's own rule found no point (disks, points, spots).
+        let mut no_sample = Ms::<N>::NONE;
         if self.any_flat {
             let FlatSamples { point: p_f, wi: wi_f, dist: dist_f, cos_l: cos_f, pdf_area_one } =
                 sample_flat_lanes(&f, p, u1, u2);
             (point, wi, dist, cos_l, pdf) = (p_f, wi_f, dist_f, cos_f, pdf_area_one * pmf_factor);
+        }
+        if self.any_disk && on_disk.any() {
+            let d = sample_disk_lanes(&disks, p, u1, u2);
+            point = Vec3s::select(on_disk, &d.point, &point);
+            wi = Vec3s::select(on_disk, &d.wi, &wi);
+            dist = F32s::select(on_disk, d.dist, dist);
+            cos_l = F32s::select(on_disk, d.cos_l, cos_l);
+            pdf = F32s::select(on_disk, d.pdf * pmf_factor, pdf);
+            no_sample = no_sample | on_disk & !d.valid;
         }
         if self.any_sphere && on_sphere.any() {
             let s = sample_sphere_lanes(&spheres, p, u1, u2);
@@ -286,9 +348,8 @@ impl WideLights {
                 radiance[c] = F32s::select(on_environment, e.radiance[c], radiance[c]);
             }
         }
-        let mut no_point = Ms::<N>::NONE;
+        // Dirac lights: their "density" is the selection pmf alone.
         if self.any_point && on_point.any() {
-            // A Dirac delta in direction: its "density" is the selection pmf alone.
             let (wi_p, dist_p, radiance_p, found) = PointLight::sample_lanes(&point_position, intensity, p);
             point = Vec3s::select(on_point, &point_position, &point);
             wi = Vec3s::select(on_point, &wi_p, &wi);
@@ -297,11 +358,141 @@ impl WideLights {
             for c in 0..3 {
                 radiance[c] = F32s::select(on_point, radiance_p[c], radiance[c]);
             }
-            no_point = on_point & !found;
+            no_sample = no_sample | on_point & !found;
+        }
+        if let Some(spots) = spots.filter(|_| self.any_spot) {
+            let (wi_s, dist_s, radiance_s, found) = spots.sample(p);
+            point = Vec3s::select(on_spot, &spots.position, &point);
+            wi = Vec3s::select(on_spot, &wi_s, &wi);
+            dist = F32s::select(on_spot, dist_s, dist);
+            pdf = F32s::select(on_spot, pmf_factor, pdf);
+            for c in 0..3 {
+                radiance[c] = F32s::select(on_spot, radiance_s[c], radiance[c]);
+            }
+            no_sample = no_sample | on_spot & !found;
+        }
+        if on_directional.any() {
+            // At infinity, like the environment: the point is the scalar light set's p + wi.
+            point = Vec3s::select(on_directional, &p.add(&directional_wi), &point);
+            wi = Vec3s::select(on_directional, &directional_wi, &wi);
+            dist = F32s::select(on_directional, F32s::splat(f32::INFINITY), dist);
+            pdf = F32s::select(on_directional, pmf_factor, pdf);
+        }
+        // A radiance texture scales a flat light's radiance at the sampled point.
+        if self.any_textured && on_textured.any() {
+            for i in on_textured.lanes() {
+                let Some(Light::Area(l)) = set.lights().get(textured[i]) else { continue };
+                let Some(t) = l.texture() else { continue };
+                let (origin, e1, e2) = (f.origin.lane(i), f.e1.lane(i), f.e2.lane(i));
+                let r = l.emission.radiance * t.at_point(point.lane(i), origin, e1, e2);
+                [radiance[0].0[i], radiance[1].0[i], radiance[2].0[i]] = r.to_array();
+            }
         }
         // One-sided lights emit along their normal: towards p when cos θ_l = n·wi < 0.
         let faces_p = two_sided | cos_l.lt(F32s::<N>::ZERO);
-        let valid = picked & !no_point & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
-        LightSamples { point, wi, pdf, radiance, valid, dist_finite: !on_environment, delta: on_point }
+        let valid =
+            picked & !no_sample & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
+        let at_infinity = on_environment | on_directional;
+        LightSamples {
+            point,
+            wi,
+            pdf,
+            radiance,
+            valid,
+            dist_finite: !at_infinity,
+            delta: on_point | on_spot | on_directional,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::light::{AreaLight, DirectionalLight, Emission, RadianceTexture};
+    use crate::math::{Transform, Vec2};
+    use crate::shape::{Disk, Quad, Sphere, Triangle};
+    use crate::texture::{Checkerboard, Texture, UvTransform};
+    use std::sync::Arc;
+
+    /// One light of every kind, and one-sided ones seen from both sides.
+    fn every_kind() -> LightSet {
+        let lamp = |r: f32, two_sided: bool| Emission { radiance: Rgb::new(r, 0.5 * r, 0.2 * r), two_sided };
+        let quad = Quad::new(Vec3::new(-0.5, 1.0, -0.8), Vec3::new(1.5, 0.2, 0.0), Vec3::new(0.0, 0.3, 1.2)).unwrap();
+        let board = Checkerboard {
+            color0: Rgb::new(1.0, 0.2, 0.1),
+            color1: Rgb::new(0.1, 0.4, 1.0),
+            to_uv: UvTransform::IDENTITY,
+        };
+        let texture = RadianceTexture::on_quad(Arc::new(Texture::Checkerboard(board)));
+        let textured =
+            Quad::new(Vec3::new(1.0, -1.0, 0.5), Vec3::new(0.0, 0.8, 0.1), Vec3::new(0.3, 0.0, 0.9)).unwrap();
+        let triangle = Triangle::new(
+            Vec3::new(0.0, -1.0, -1.0),
+            Vec3::new(1.0, -1.2, -0.5),
+            Vec3::new(0.2, -0.6, 0.8),
+            Triangle::FLAT,
+        )
+        .unwrap();
+        let disk = Disk::new(Vec3::new(-1.0, 0.3, 0.2), Vec3::new(0.0, 0.4, 0.1), Vec3::new(0.0, -0.1, 0.4)).unwrap();
+        let sphere = Sphere::new(Vec3::new(0.6, 0.4, -1.1), 0.3).unwrap();
+        let area = [
+            AreaLight::new(LightShape::Quad(quad), lamp(2.0, false)),
+            AreaLight::new(LightShape::Quad(textured), lamp(1.5, true)).with_texture(texture).unwrap(),
+            AreaLight::new(LightShape::Triangle(triangle), lamp(3.0, false)),
+            AreaLight::new(LightShape::Disk(disk), lamp(4.0, false)),
+            AreaLight::new(LightShape::Disk(disk), lamp(1.0, true)),
+            AreaLight::new(LightShape::Sphere(sphere), lamp(5.0, false)),
+        ];
+        let point = PointLight { position: Vec3::new(0.3, 2.0, 0.1), intensity: Rgb::new(3.0, 2.0, 1.0) };
+        let spot = SpotLight::new(&Transform::rotate_x(60.0), Rgb::splat(9.0), 50.0, 20.0).unwrap();
+        let sun = DirectionalLight::new(Vec3::new(0.2, -1.0, 0.3), Rgb::new(1.0, 0.9, 0.7)).unwrap();
+        let env = EnvironmentLight::constant(Rgb::new(0.1, 0.2, 0.3));
+        let others = [Light::Point(point), Light::Spot(spot), Light::Directional(sun), Light::Environment(env)];
+        LightSet::new(area.into_iter().map(Light::Area).chain(others).collect(), 3.0)
+    }
+
+    /// Every lane of a group gets the scalar light set's sample from its own numbers: the same
+    /// light, point, direction, radiance and flags, bit for bit, and the same density up to
+    /// the order of one product (a flat light's density is r²/|cos θ_l| · (pmf / A) here and
+    /// (r²/|cos θ_l| / A) · pmf in the set).
+    #[test]
+    fn lanes_of_every_light_kind_match_the_scalar_light_set() {
+        const N: usize = 16;
+        let set = every_kind();
+        let wide = WideLights::new(&set);
+        let mut x = 0x2545_f491u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / (1u32 << 24) as f32
+        };
+        let mut kinds = [0usize; 2];
+        for _ in 0..2000 {
+            let p: [Vec3; N] =
+                std::array::from_fn(|_| Vec3::new(4.0 * next() - 2.0, 4.0 * next() - 2.0, 4.0 * next() - 2.0));
+            let p = Vec3s::from_fn(|i| p[i]);
+            let [u_select, u1, u2] = [0; 3].map(|_| {
+                let u: [f32; N] = std::array::from_fn(|_| next());
+                F32s(u)
+            });
+            let s = wide.sample(&set, &p, Ms::ALL, &u_select, u1, u2);
+            for i in 0..N {
+                let one = set.sample(p.lane(i), u_select.0[i], Vec2::new(u1.0[i], u2.0[i]));
+                // The set's sample of a light facing away has radiance 0; the lanes drop it.
+                let one = one.filter(|l| l.pdf > 0.0 && !l.radiance.is_black());
+                let lane = s.lane(i).filter(|l| !l.radiance.is_black());
+                assert_eq!(lane.is_some(), one.is_some(), "lane {i}: {lane:?} vs {one:?}");
+                let (Some(lane), Some(one)) = (lane, one) else { continue };
+                kinds[usize::from(one.delta)] += 1;
+                let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+                assert_eq!(bits(lane.point), bits(one.point), "lane {i}");
+                assert_eq!(bits(lane.wi), bits(one.wi), "lane {i}");
+                assert_eq!(lane.radiance.to_array().map(f32::to_bits), one.radiance.to_array().map(f32::to_bits));
+                assert_eq!((lane.delta, lane.at_infinity), (one.delta, one.dist.is_infinite()), "lane {i}");
+                assert!((lane.pdf - one.pdf).abs() <= 1e-6 * one.pdf, "lane {i}: {} vs {}", lane.pdf, one.pdf);
+            }
+        }
+        assert!(kinds.iter().all(|&n| n > 3000), "{kinds:?}");
     }
 }

@@ -124,8 +124,8 @@ pub(crate) enum LaneForm {
 pub struct WideScene {
     /// Brute-force polygons for small scenes; `None`: intersect through the scene's BVH.
     pub(crate) geometry: Option<FlatGeometry>,
-    /// The lights, when every one is a flat area light; `None`: sampled lane by lane.
-    pub(crate) lights: Option<WideLights>,
+    /// The lights, in their lane-parallel forms.
+    pub(crate) lights: WideLights,
     /// Per material: how the estimator treats it.
     pub(crate) classes: Vec<MaterialClass>,
     pub(crate) settings: PathSettings,
@@ -213,10 +213,5 @@ impl WideScene {
     /// True when rays are tested against every polygon (small scenes) rather than the BVH.
     pub fn brute_force(&self) -> bool {
         self.geometry.is_some()
-    }
-
-    /// True when every light is sampled in SIMD lanes (flat area lights only).
-    pub fn flat_lights(&self) -> bool {
-        self.lights.is_some()
     }
 }
