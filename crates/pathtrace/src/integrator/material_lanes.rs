@@ -1,5 +1,7 @@
-//! The lane-parallel form of a vertex on a material with a lane form (untextured, isotropic,
-//! without a normal map; `wide::LaneForm` lists them): the same steps as
+//! The lane-parallel form of a vertex on a material with a lane form (a textured one with its
+//! textures' values at the lane's hit, an anisotropic one in the frame of its tangent, a normal-
+//! or bump-mapped one in its perturbed frame and under its rules; `wide::LaneForm` lists them):
+//! the same steps as
 //! `integrator::shade` (shading frame, the light sample's shadow ray with its MIS weight, a
 //! direction sampled by the material), computed for all those lanes together through the
 //! material's lane form ([`LaneScattering`], whose one-lane instance is the scalar material).
@@ -10,8 +12,9 @@
 
 use super::path::Scattered;
 use super::shade::{same_side_lanes, SHADOW_EPSILON};
+use super::shading_frame::ShadingFrame;
 use super::Strategy;
-use crate::material::{LaneDeltaScattering, LaneSamples, LaneScattering};
+use crate::material::{rgb_lane, LaneDeltaScattering, LaneSamples, LaneScattering};
 use crate::math::offset_ray_origin_lanes;
 use crate::wide::simd::{rgb_black, F32s, Ms, Vec3s};
 use crate::wide::{warp, LightSamples};
@@ -24,6 +27,14 @@ pub(super) struct LaneVertex<'a, const N: usize> {
     pub p: &'a Vec3s<N>,
     pub n_geometric: &'a Vec3s<N>,
     pub n_shading: &'a Vec3s<N>,
+    /// Lanes on anisotropic materials, whose frame follows the surface's tangent `tangent`
+    /// (∂p/∂u, as in shade.rs); the others take the normal's basis.
+    pub tangent_framed: Ms<N>,
+    pub tangent: &'a Vec3s<N>,
+    /// Lanes on normal- or bump-mapped materials, and their frames at the hit (shade.rs's
+    /// `ShadingFrame`: the perturbed frame, and the base frame's rules for directions).
+    pub perturbed: Ms<N>,
+    pub frames: &'a [Option<ShadingFrame>; N],
     /// Towards the viewer (world space).
     pub wo: &'a Vec3s<N>,
     pub beta: &'a [F32s<N>; 3],
@@ -56,7 +67,17 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
     let ls = v.light;
     let lit = lanes & v.nee & ls.valid;
     if lit.any() {
-        let (f, pdf_material) = material.eval_pdf(&wo, &to_local(&ls.wi));
+        let wi = to_local(&ls.wi);
+        let (mut f, mut pdf_material) = material.eval_pdf(&wo, &wi);
+        // A normal or bump map's rules: a direction counts on the same side of both normals,
+        // and the value may be attenuated.
+        for i in (lit & v.perturbed).lanes() {
+            if let Some(frame) = &v.frames[i] {
+                let (fi, pdf) = frame.apply_to_value(rgb_lane(&f, i), pdf_material.0[i], ls.wi.lane(i), wi.lane(i));
+                [f[0].0[i], f[1].0[i], f[2].0[i]] = fi.to_array();
+                pdf_material.0[i] = pdf;
+            }
+        }
         // A point light cannot be found by material sampling: its sample counts in full.
         let pdf_material = F32s::select(ls.delta, zero, pdf_material);
         let lit = lit & !rgb_black(&ls.radiance) & !rgb_black(&f) & same_side_lanes(n_g, v.wo, &ls.wi);
@@ -119,8 +140,23 @@ impl<const N: usize> LaneFrame<N> {
         let flipped = flippable & v.n_geometric.dot(v.wo).lt(F32s::ZERO);
         let n_g = Vec3s::select(flipped, &v.n_geometric.neg(), v.n_geometric);
         let n_s = Vec3s::select(flipped, &v.n_shading.neg(), v.n_shading);
-        let (s, t) = warp::basis(&n_s);
-        LaneFrame { n_g, n_s, s, t }
+        let (s, t) = if v.tangent_framed.any() {
+            let (s, t) = warp::basis(&n_s);
+            let (s_t, t_t) = warp::tangent_basis(&n_s, v.tangent);
+            (Vec3s::select(v.tangent_framed, &s_t, &s), Vec3s::select(v.tangent_framed, &t_t, &t))
+        } else {
+            warp::basis(&n_s)
+        };
+        let mut frame = LaneFrame { n_g, n_s, s, t };
+        // A normal or bump map's frame, built per lane at the hit (it reads the map).
+        for i in v.perturbed.lanes() {
+            if let Some(f) = &v.frames[i] {
+                frame.s.set(i, f.frame.s);
+                frame.t.set(i, f.frame.t);
+                frame.n_s.set(i, f.frame.n);
+            }
+        }
+        frame
     }
 }
 
@@ -138,18 +174,27 @@ fn continue_lanes<const N: usize>(
     let LaneFrame { n_g, n_s, s, t } = frame;
     let wi = &sample.wi;
     let wi_world = s.scale(wi.x).add(&t.scale(wi.y)).add(&n_s.scale(wi.z));
+    // A normal or bump map's rules for the sampled direction (shade.rs: `ShadingFrame::sample`).
+    let (mut valid, mut weight) = (sample.valid, sample.weight);
+    for i in (lanes & v.perturbed & sample.valid).lanes() {
+        let (Some(frame), Some(one)) = (&v.frames[i], sample.lane(i)) else { continue };
+        match frame.apply_to_sample(one, wi_world.lane(i)) {
+            Some(one) => [weight[0].0[i], weight[1].0[i], weight[2].0[i]] = one.weight.to_array(),
+            None => valid.0[i] = 0,
+        }
+    }
     // Reflection must stay on the viewer's side of the true surface (shading normals can
     // disagree with it), transmission must cross it, as in shade.rs.
     let reflects = (wi_world.dot(n_s) * wo.z).gt(F32s::ZERO);
     let stays = same_side_lanes(n_g, v.wo, &wi_world);
     let agree = (reflects & stays) | (!reflects & !stays);
-    let goes_on = sample.valid & agree & !rgb_black(&sample.weight);
+    let goes_on = valid & agree & !rgb_black(&weight);
     let origin = offset_ray_origin_lanes(v.p, n_g, &wi_world);
     sc.goes_on = (sc.goes_on & !lanes) | goes_on;
     sc.origin = Vec3s::select(lanes, &origin, &sc.origin);
     sc.dir = Vec3s::select(lanes, &wi_world, &sc.dir);
     for c in 0..3 {
-        sc.weight[c] = F32s::select(lanes, sample.weight[c], sc.weight[c]);
+        sc.weight[c] = F32s::select(lanes, weight[c], sc.weight[c]);
     }
     sc.pdf = F32s::select(lanes, sample.pdf, sc.pdf);
     sc.specular = (sc.specular & !lanes) | (lanes & sample.specular);

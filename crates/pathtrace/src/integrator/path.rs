@@ -22,13 +22,15 @@ use super::material_lanes::{delta_lanes, material_lanes, LaneVertex};
 use super::media::{leaving_medium, medium_vertex, shadow_transmittance, travel};
 use super::regenerate::LaneJob;
 use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON};
+use super::shading_frame::ShadingFrame;
 use super::Strategy;
 use crate::material::{
     lambertian, DeltaModel, DielectricLanes, DiffuseLanes, GlossyLanes, Material, PlasticLanes, RoughConductorLanes,
     RoughDielectricLanes, RoughPlasticLanes, SmoothConductorLanes, SmoothModel, ThinDielectricLanes,
 };
-use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2};
+use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2, Vec3};
 use crate::scene::{Interaction, Primitive, Scene};
+use crate::texture::NormalPerturbation;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 use crate::wide::warp;
 use crate::wide::{LaneForm, LaneSamplers, LightSamples};
@@ -236,6 +238,23 @@ pub(crate) fn vertex<const N: usize>(
     let mut rough_glasses: Option<RoughDielectricLanes<N>> = None;
     let mut slab = Ms::<N>::NONE;
     let mut slabs: Option<ThinDielectricLanes<N>> = None;
+    // Lanes on anisotropic materials with a lane form: their frames follow the tangent.
+    let mut tangent_framed = Ms::<N>::NONE;
+    let mut tangent = Vec3s::<N>::default();
+    // Lanes on normal- or bump-mapped materials with a lane form: their frames at the hit.
+    let mut perturbed = Ms::<N>::NONE;
+    let mut frames: [Option<ShadingFrame>; N] = std::array::from_fn(|_| None);
+    // Lanes on textured materials with a lane form: their models with the textures' values at
+    // the hit, kept here for the whole vertex (a rough plastic's lanes borrow its tables).
+    let mut textured: [Option<Material>; N] = [None; N];
+    if lanes.textured_forms {
+        for i in (alive & !scatter).lanes() {
+            let class = &lanes.classes[s.material[i] as usize];
+            if class.textured && class.lane_form.is_some() {
+                textured[i] = Some(textured_material(scene, &s, i));
+            }
+        }
+    }
     for i in (alive & !scatter).lanes() {
         let class = &lanes.classes[s.material[i] as usize];
         // A one-sided material seen from behind (the shading normal facing away, Mitsuba's
@@ -257,7 +276,18 @@ pub(crate) fn vertex<const N: usize>(
             let a = if class.textured { textured_albedo(scene, &s, i) } else { class.albedo };
             [albedo[0].0[i], albedo[1].0[i], albedo[2].0[i]] = a.to_array();
         } else if let Some(form) = class.lane_form {
-            match (form, &materials[s.material[i] as usize]) {
+            let material = textured[i].as_ref().unwrap_or(&materials[s.material[i] as usize]);
+            // As shade.rs: the frame follows the tangent where the model at the hit (a
+            // roughness texture can make it isotropic) is anisotropic.
+            if class.anisotropic && material.is_anisotropic() {
+                tangent_framed.0[i] = u32::MAX;
+                tangent.set(i, s.surface(i).tangent());
+            }
+            if let Some(p) = scene.normal_perturbation(s.material[i]).filter(|_| class.perturbed) {
+                perturbed.0[i] = u32::MAX;
+                frames[i] = Some(perturbed_frame(scene, &s, i, material, p, wo.lane(i)));
+            }
+            match (form, material) {
                 (LaneForm::RoughConductor, Material::RoughConductor(m)) => {
                     conductor.0[i] = u32::MAX;
                     conductors.get_or_insert_with(|| m.lanes()).set(i, m);
@@ -351,6 +381,10 @@ pub(crate) fn vertex<const N: usize>(
             p: &s.p,
             n_geometric: &s.n_geometric,
             n_shading: &s.n_shading,
+            tangent_framed,
+            tangent: &tangent,
+            perturbed,
+            frames: &frames,
             wo: &wo,
             beta: &paths.beta,
             nee: surface_nee,
@@ -580,6 +614,31 @@ fn enter_media<const N: usize>(scene: &Scene, paths: &mut Paths<N>, s: &Surfaces
 /// The albedo of lane `i`'s textured Lambertian surface at its hit.
 #[inline(never)]
 fn textured_albedo<const N: usize>(scene: &Scene, s: &Surfaces<N>, i: usize) -> Rgb {
+    match textured_material(scene, s, i) {
+        Material::Lambertian(l) => l.albedo,
+        _ => Rgb::BLACK,
+    }
+}
+
+/// The frame of lane `i`'s normal- or bump-mapped `material` at its hit, seen along `wo`
+/// (`shade.rs`'s, turned over on the back of a two-sided material).
+#[inline(never)]
+fn perturbed_frame<const N: usize>(
+    scene: &Scene,
+    s: &Surfaces<N>,
+    i: usize,
+    material: &Material,
+    p: &NormalPerturbation,
+    wo: Vec3,
+) -> ShadingFrame {
+    let id = s.material[i];
+    let it = Interaction { surface: s.surface(i), material, material_id: id, light: s.light[i] };
+    let flipped = material.is_two_sided() && !scene.is_one_sided(id) && it.surface.n_geometric.dot(wo) < 0.0;
+    ShadingFrame::perturbed(scene, &it, p, flipped, wo)
+}
+
+/// Lane `i`'s material with its textures evaluated at the lane's hit.
+fn textured_material<const N: usize>(scene: &Scene, s: &Surfaces<N>, i: usize) -> Material {
     let id = s.material[i];
     let it = Interaction {
         surface: s.surface(i),
@@ -587,10 +646,7 @@ fn textured_albedo<const N: usize>(scene: &Scene, s: &Surfaces<N>, i: usize) -> 
         material_id: id,
         light: s.light[i],
     };
-    match scene.textured_material(&it) {
-        Material::Lambertian(l) => l.albedo,
-        _ => Rgb::BLACK,
-    }
+    scene.textured_material(&it)
 }
 
 /// The light samples of the Lambertian lanes whose shadow rays were queued: what an unoccluded

@@ -70,13 +70,7 @@ impl ShadingFrame {
         let wi = self.frame.to_local(wi_world);
         match &self.perturbed {
             None => material.eval(wo, wi),
-            Some(p) => {
-                let wi_base = p.base.to_local(wi_world);
-                if wi_base.z * wi.z <= 0.0 {
-                    return Rgb::BLACK;
-                }
-                material.eval(wo, wi) * p.attenuation(wi_base)
-            }
+            Some(p) => p.value(material.eval(wo, wi), wi_world, wi),
         }
     }
 
@@ -86,12 +80,7 @@ impl ShadingFrame {
         let wi = self.frame.to_local(wi_world);
         match &self.perturbed {
             None => material.pdf(wo, wi),
-            Some(p) => {
-                if p.base.n.dot(wi_world) * wi.z <= 0.0 {
-                    return 0.0;
-                }
-                material.pdf(wo, wi)
-            }
+            Some(p) => p.density(material.pdf(wo, wi), wi_world, wi),
         }
     }
 
@@ -113,18 +102,65 @@ impl ShadingFrame {
         let wi_world = self.frame.to_world(s.wi);
         match &self.perturbed {
             None => Some((s, wi_world)),
-            Some(p) => {
-                let wi_base = p.base.to_local(wi_world);
-                if wi_base.z * s.wi.z <= 0.0 {
-                    return None;
-                }
-                Some((BsdfSample { weight: s.weight * p.attenuation(wi_base), ..s }, wi_world))
-            }
+            Some(p) => p.sampled(s, wi_world).map(|s| (s, wi_world)),
+        }
+    }
+
+    /// The material's value `f` and density `pdf` of `wi_world` (local `wi`), as the material
+    /// evaluated them in this frame, after the perturbed frame's rules ([`ShadingFrame::eval`],
+    /// [`ShadingFrame::pdf`]): what a lane of the lane-parallel shading applies to its lane.
+    #[inline(always)]
+    pub fn apply_to_value(&self, f: Rgb, pdf: f32, wi_world: Vec3, wi: Vec3) -> (Rgb, f32) {
+        match &self.perturbed {
+            None => (f, pdf),
+            Some(p) => (p.value(f, wi_world, wi), p.density(pdf, wi_world, wi)),
+        }
+    }
+
+    /// A material's sample `s` (towards `wi_world`) after the perturbed frame's rules
+    /// ([`ShadingFrame::sample`]).
+    #[inline(always)]
+    pub fn apply_to_sample(&self, s: BsdfSample, wi_world: Vec3) -> Option<BsdfSample> {
+        match &self.perturbed {
+            None => Some(s),
+            Some(p) => p.sampled(s, wi_world),
         }
     }
 }
 
 impl Perturbed {
+    /// The material's value `f` for light from `wi_world` (local `wi` in the perturbed frame):
+    /// none unless the direction lies on the same side of both normals, else attenuated.
+    #[inline(always)]
+    fn value(&self, f: Rgb, wi_world: Vec3, wi: Vec3) -> Rgb {
+        let wi_base = self.base.to_local(wi_world);
+        if wi_base.z * wi.z <= 0.0 {
+            return Rgb::BLACK;
+        }
+        f * self.attenuation(wi_base)
+    }
+
+    /// The material's density `pdf` of `wi_world`: none unless it lies on the same side of both
+    /// normals.
+    #[inline(always)]
+    fn density(&self, pdf: f32, wi_world: Vec3, wi: Vec3) -> f32 {
+        if self.base.n.dot(wi_world) * wi.z <= 0.0 {
+            return 0.0;
+        }
+        pdf
+    }
+
+    /// A sample towards `wi_world`: dropped if it crosses the base surface the wrong way, its
+    /// weight attenuated.
+    #[inline(always)]
+    fn sampled(&self, s: BsdfSample, wi_world: Vec3) -> Option<BsdfSample> {
+        let wi_base = self.base.to_local(wi_world);
+        if wi_base.z * s.wi.z <= 0.0 {
+            return None;
+        }
+        Some(BsdfSample { weight: s.weight * self.attenuation(wi_base), ..s })
+    }
+
     /// The terminator's shadowing for light along `w_base` (base frame), or 1.
     #[inline(always)]
     fn attenuation(&self, w_base: Vec3) -> f32 {

@@ -42,7 +42,7 @@ pub use glossy::Glossy;
 pub(crate) use glossy::GlossyLanes;
 pub use ior::{ior_names, named_ior};
 pub use lambertian::Lambertian;
-pub(crate) use lanes::{DeltaModel, LaneDeltaScattering, LaneSamples, LaneScattering, SmoothModel};
+pub(crate) use lanes::{rgb_lane, DeltaModel, LaneDeltaScattering, LaneSamples, LaneScattering, SmoothModel};
 pub use metals::{metal, metal_names};
 pub use microfacet::{Microfacet, MicrofacetKind};
 pub use mirror::Mirror;

@@ -21,17 +21,11 @@ impl Frame {
 
     /// A frame around the unit normal `n` whose first tangent follows `tangent` (made
     /// perpendicular to `n` by Gram–Schmidt, as Mitsuba 3 builds its shading frame from ∂p/∂u);
-    /// when `tangent` is (nearly) parallel to `n` or zero, [`Frame::from_normal`].
+    /// when `tangent` is (nearly) parallel to `n` or zero, [`Frame::from_normal`]. The one-lane
+    /// instance of [`crate::wide::warp::tangent_basis`].
     pub fn from_normal_tangent(n: Vec3, tangent: Vec3) -> Self {
-        let s = tangent - n * n.dot(tangent);
-        let len2 = s.length_squared();
-        // Also catches NaN: the comparison is false, so the fallback is taken.
-        let usable = len2 > 1e-12 * tangent.length_squared().max(f32::MIN_POSITIVE) && len2.is_finite();
-        if !usable {
-            return Self::from_normal(n);
-        }
-        let s = s / len2.sqrt();
-        Self { s, t: n.cross(s), n }
+        let (s, t) = crate::wide::warp::tangent_basis(&Vec3s::<1>::splat(n), &Vec3s::splat(tangent));
+        Self { s: s.lane(0), t: t.lane(0), n }
     }
 
     /// World → local.

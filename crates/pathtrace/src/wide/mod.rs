@@ -93,6 +93,10 @@ pub(crate) struct MaterialClass {
     pub albedo: Rgb,
     /// Some colour is textured: evaluated per hit.
     pub textured: bool,
+    /// Anisotropic: shaded in the frame of the surface's tangent.
+    pub anisotropic: bool,
+    /// A normal or bump map tilts its frame, per hit.
+    pub perturbed: bool,
     /// Only Dirac lobes (mirror, smooth glass): no light sampling.
     pub delta: bool,
     /// Reflects nothing (pure emitters): the path ends there.
@@ -128,6 +132,8 @@ pub struct WideScene {
     pub(crate) lights: WideLights,
     /// Per material: how the estimator treats it.
     pub(crate) classes: Vec<MaterialClass>,
+    /// Some material with a lane form has textured colours.
+    pub(crate) textured_forms: bool,
     pub(crate) settings: PathSettings,
     /// Some light can be hit by a ray (an area light, or an environment). Without one, a
     /// path's last segment could only find emitters that are not there: it is not traced.
@@ -148,18 +154,11 @@ impl WideScene {
                     Material::Lambertian(l) if scene.normal_perturbation(id as u32).is_none() => Some(l.albedo),
                     _ => None,
                 };
-                // Materials with a lane form, shaded in lanes where their frame is the shading
-                // normal's (no tangent, no normal map) and their colours are constants, under a
-                // strategy that continues paths by the material.
-                let continues_by_material =
-                    matches!(settings.strategy, Strategy::Bsdf | Strategy::Mis | Strategy::MisBalance);
-                let plain = continues_by_material
-                    && !m.is_anisotropic()
-                    && !scene.is_material_textured(id as u32)
-                    && scene.normal_perturbation(id as u32).is_none();
-                // Models of Dirac lobes only: every strategy continues them by the material.
-                let untextured_plain =
-                    !scene.is_material_textured(id as u32) && scene.normal_perturbation(id as u32).is_none();
+                // Materials with a lane form, shaded in lanes under a strategy that continues
+                // paths by the material. Textured colours and a normal or bump map's frame are
+                // evaluated per lane and set into the form; an anisotropic model's frame follows
+                // the tangent.
+                let plain = matches!(settings.strategy, Strategy::Bsdf | Strategy::Mis | Strategy::MisBalance);
                 // Every model is named, so a new one must say here whether it has a lane form.
                 let lane_form = match m {
                     Material::RoughConductor(_) if plain => Some(LaneForm::RoughConductor),
@@ -168,20 +167,18 @@ impl WideScene {
                     Material::Plastic(_) if plain => Some(LaneForm::Plastic),
                     Material::Diffuse(_) if plain => Some(LaneForm::Diffuse),
                     Material::Glossy(_) if plain => Some(LaneForm::Glossy),
-                    Material::Dielectric(_) if untextured_plain => Some(LaneForm::Dielectric),
-                    Material::Conductor(_) | Material::Mirror(_) if untextured_plain => Some(LaneForm::SmoothConductor),
-                    Material::ThinDielectric(_) if untextured_plain => Some(LaneForm::ThinDielectric),
-                    // Textured, anisotropic or bump-mapped instances of the models above.
+                    // Models of Dirac lobes only: every strategy continues them by the material.
+                    Material::Dielectric(_) => Some(LaneForm::Dielectric),
+                    Material::Conductor(_) | Material::Mirror(_) => Some(LaneForm::SmoothConductor),
+                    Material::ThinDielectric(_) => Some(LaneForm::ThinDielectric),
+                    // The models above under the `light` and `mixture` strategies, which sample
+                    // the lights' directions lane by lane.
                     Material::RoughConductor(_)
                     | Material::RoughPlastic(_)
                     | Material::RoughDielectric(_)
                     | Material::Plastic(_)
                     | Material::Diffuse(_)
-                    | Material::Glossy(_)
-                    | Material::Dielectric(_)
-                    | Material::Conductor(_)
-                    | Material::Mirror(_)
-                    | Material::ThinDielectric(_) => None,
+                    | Material::Glossy(_) => None,
                     // Lambertian surfaces take the SIMD Lambertian form (`simd`) instead; black and
                     // null surfaces are never shaded; a blend is resolved per hit into its two models.
                     Material::Lambertian(_) | Material::Black | Material::Null | Material::Blend(_) => None,
@@ -191,12 +188,15 @@ impl WideScene {
                     albedo: simd.unwrap_or(Rgb::BLACK),
                     simd: simd.is_some(),
                     textured: scene.is_material_textured(id as u32),
+                    anisotropic: m.is_anisotropic(),
+                    perturbed: scene.normal_perturbation(id as u32).is_some(),
                     delta: m.is_delta(),
                     black: m.is_black(),
                     one_sided: scene.is_one_sided(id as u32),
                 }
             })
-            .collect();
+            .collect::<Vec<MaterialClass>>();
+        let textured_forms = classes.iter().any(|c| c.textured && c.lane_form.is_some());
         // The brute-force intersector reports normals, material and light, not uv or ∂p/∂u:
         // it serves scenes whose shading needs neither (no textures, no anisotropic frames).
         // Opacity masks are textures: scenes with cut-outs take the BVH, which passes them.
@@ -207,7 +207,14 @@ impl WideScene {
             scene.small_scene_shapes().filter(|p| p.len() <= MAX_FLAT_POLYGONS).and_then(|p| FlatGeometry::new(&p))
         };
         let emitters_hittable = scene.lights.area_lights().next().is_some() || scene.lights.environment().is_some();
-        Self { geometry, lights: WideLights::new(&scene.lights), classes, settings: *settings, emitters_hittable }
+        Self {
+            geometry,
+            lights: WideLights::new(&scene.lights),
+            classes,
+            textured_forms,
+            settings: *settings,
+            emitters_hittable,
+        }
     }
 
     /// True when rays are tested against every polygon (small scenes) rather than the BVH.

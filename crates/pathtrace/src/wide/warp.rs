@@ -148,6 +148,26 @@ pub fn basis<const N: usize>(n: &Vec3s<N>) -> (Vec3s<N>, Vec3s<N>) {
     (s, t)
 }
 
+/// The tangents `(s, t)` of a frame around the unit normal `n` whose first tangent follows
+/// `tangent`, made perpendicular to `n` by Gram–Schmidt (as Mitsuba 3 builds its shading frame
+/// from ∂p/∂u), t = n × s; where `tangent` is (nearly) parallel to `n`, zero or not finite,
+/// [`basis`]'s. In glam's order of operations, so `Frame::from_normal_tangent` is its one-lane
+/// instance.
+#[inline(always)]
+pub fn tangent_basis<const N: usize>(n: &Vec3s<N>, tangent: &Vec3s<N>) -> (Vec3s<N>, Vec3s<N>) {
+    let along = tangent.sub(&n.scale(n.dot(tangent)));
+    let len2 = along.dot(&along);
+    // NaN fails both tests, so the fallback is taken.
+    let floor = tangent.dot(tangent).map_lanes(|l| l.max(f32::MIN_POSITIVE));
+    let usable = len2.gt(1e-12 * floor) & len2.is_finite();
+    let len = len2.sqrt();
+    let s = Vec3s { x: along.x / len, y: along.y / len, z: along.z / len };
+    // n × s, as glam's `Vec3::cross`.
+    let t = Vec3s { x: n.y * s.z - s.y * n.z, y: n.z * s.x - s.z * n.x, z: n.x * s.y - s.x * n.y };
+    let (s0, t0) = basis(n);
+    (Vec3s::select(usable, &s, &s0), Vec3s::select(usable, &t, &t0))
+}
+
 /// Local direction `v` (normal along +z) to world space around the unit normal `n`, in the
 /// basis of [`basis`].
 #[inline(always)]
@@ -181,6 +201,34 @@ mod tests {
         for i in 0..N {
             assert!((s.0[i] - xs.0[i].sin()).abs() < 5e-7, "sin {}", xs.0[i]);
             assert!((c.0[i] - xs.0[i].cos()).abs() < 5e-7, "cos {}", xs.0[i]);
+        }
+    }
+
+    /// Tangent frames of mixed lanes (usable, parallel, zero and NaN tangents) are orthonormal
+    /// and right-handed, keep the tangent's direction where it is usable, and fall back to the
+    /// normal's basis, lane by lane, where it is not.
+    #[test]
+    fn tangent_frames_follow_usable_tangents_and_fall_back_lane_by_lane() {
+        let n = Vec3s::<N>::from_fn(|i| glam::Vec3::new(0.3 * i as f32 - 1.0, 0.5, 0.8).normalize());
+        let tangent = Vec3s::<N>::from_fn(|i| match i % 4 {
+            0 => glam::Vec3::new(1.0, 0.2 * i as f32, -0.3),
+            1 => n.lane(i) * 2.0,
+            2 => glam::Vec3::ZERO,
+            _ => glam::Vec3::new(f32::NAN, 0.0, 1.0),
+        });
+        let (s, t) = tangent_basis(&n, &tangent);
+        let (s0, t0) = basis(&n);
+        for i in 0..N {
+            let (ni, si, ti) = (n.lane(i), s.lane(i), t.lane(i));
+            assert!((si.length() - 1.0).abs() < 1e-5 && (ti.length() - 1.0).abs() < 1e-5, "lane {i}");
+            assert!(si.dot(ni).abs() < 1e-5 && ti.dot(ni).abs() < 1e-5 && si.dot(ti).abs() < 1e-5, "lane {i}");
+            assert!((si.cross(ti) - ni).length() < 1e-5, "lane {i}: right-handed");
+            if i % 4 == 0 {
+                let along = tangent.lane(i) - ni * ni.dot(tangent.lane(i));
+                assert!(si.dot(along.normalize()) > 1.0 - 1e-5, "lane {i}");
+            } else {
+                assert_eq!((si, ti), (s0.lane(i), t0.lane(i)), "lane {i}");
+            }
         }
     }
 }
