@@ -32,9 +32,10 @@ pub(super) struct LaneVertex<'a, const N: usize> {
     pub tangent_framed: Ms<N>,
     pub tangent: &'a Vec3s<N>,
     /// Lanes on normal- or bump-mapped materials, and their frames at the hit (shade.rs's
-    /// `ShadingFrame`: the perturbed frame, and the base frame's rules for directions).
+    /// `ShadingFrame`: the perturbed frame, and the base frame's rules for directions; `None`
+    /// at vertices without such lanes).
     pub perturbed: Ms<N>,
-    pub frames: &'a [Option<ShadingFrame>; N],
+    pub frames: Option<&'a [Option<ShadingFrame>; N]>,
     /// Towards the viewer (world space).
     pub wo: &'a Vec3s<N>,
     pub beta: &'a [F32s<N>; 3],
@@ -44,6 +45,13 @@ pub(super) struct LaneVertex<'a, const N: usize> {
     pub u_lobe: F32s<N>,
     pub u1: F32s<N>,
     pub u2: F32s<N>,
+}
+
+impl<const N: usize> LaneVertex<'_, N> {
+    /// Lane `i`'s normal- or bump-mapped frame, if it has one.
+    fn frame(&self, i: usize) -> Option<&ShadingFrame> {
+        self.frames.and_then(|f| f[i].as_ref())
+    }
 }
 
 /// Shades the vertex's `lanes`, each with its material in `material`, queueing their shadow
@@ -72,7 +80,7 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
         // A normal or bump map's rules: a direction counts on the same side of both normals,
         // and the value may be attenuated.
         for i in (lit & v.perturbed).lanes() {
-            if let Some(frame) = &v.frames[i] {
+            if let Some(frame) = v.frame(i) {
                 let (fi, pdf) = frame.apply_to_value(rgb_lane(&f, i), pdf_material.0[i], ls.wi.lane(i), wi.lane(i));
                 [f[0].0[i], f[1].0[i], f[2].0[i]] = fi.to_array();
                 pdf_material.0[i] = pdf;
@@ -150,7 +158,7 @@ impl<const N: usize> LaneFrame<N> {
         let mut frame = LaneFrame { n_g, n_s, s, t };
         // A normal or bump map's frame, built per lane at the hit (it reads the map).
         for i in v.perturbed.lanes() {
-            if let Some(f) = &v.frames[i] {
+            if let Some(f) = v.frame(i) {
                 frame.s.set(i, f.frame.s);
                 frame.t.set(i, f.frame.t);
                 frame.n_s.set(i, f.frame.n);
@@ -177,7 +185,7 @@ fn continue_lanes<const N: usize>(
     // A normal or bump map's rules for the sampled direction (shade.rs: `ShadingFrame::sample`).
     let (mut valid, mut weight) = (sample.valid, sample.weight);
     for i in (lanes & v.perturbed & sample.valid).lanes() {
-        let (Some(frame), Some(one)) = (&v.frames[i], sample.lane(i)) else { continue };
+        let (Some(frame), Some(one)) = (v.frame(i), sample.lane(i)) else { continue };
         match frame.apply_to_sample(one, wi_world.lane(i)) {
             Some(one) => [weight[0].0[i], weight[1].0[i], weight[2].0[i]] = one.weight.to_array(),
             None => valid.0[i] = 0,

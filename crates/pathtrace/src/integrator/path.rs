@@ -25,8 +25,9 @@ use super::shade::{shade, Continuation, ShadowRay, VertexNumbers, SHADOW_EPSILON
 use super::shading_frame::ShadingFrame;
 use super::Strategy;
 use crate::material::{
-    lambertian, DeltaModel, DielectricLanes, DiffuseLanes, GlossyLanes, Material, PlasticLanes, RoughConductorLanes,
-    RoughDielectricLanes, RoughPlasticLanes, SmoothConductorLanes, SmoothModel, ThinDielectricLanes,
+    lambertian, DeltaModel, DielectricLanes, DiffuseLanes, GlossyLanes, LambertianLanes, Material, PlasticLanes,
+    RoughConductorLanes, RoughDielectricLanes, RoughPlasticLanes, SmoothConductorLanes, SmoothModel,
+    ThinDielectricLanes,
 };
 use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2, Vec3};
 use crate::scene::{Interaction, Primitive, Scene};
@@ -234,6 +235,8 @@ pub(crate) fn vertex<const N: usize>(
     let mut uniforms: Option<DiffuseLanes<N>> = None;
     let mut phong = Ms::<N>::NONE;
     let mut phongs: Option<GlossyLanes<N>> = None;
+    let mut lambert = Ms::<N>::NONE;
+    let mut lamberts: Option<LambertianLanes<N>> = None;
     let mut rough_glass = Ms::<N>::NONE;
     let mut rough_glasses: Option<RoughDielectricLanes<N>> = None;
     let mut slab = Ms::<N>::NONE;
@@ -242,16 +245,18 @@ pub(crate) fn vertex<const N: usize>(
     let mut tangent_framed = Ms::<N>::NONE;
     let mut tangent = Vec3s::<N>::default();
     // Lanes on normal- or bump-mapped materials with a lane form: their frames at the hit.
+    // Both per-lane arrays are set up only at vertices that have such a lane: scenes without
+    // normal maps or textured lane forms do not pay for filling them.
     let mut perturbed = Ms::<N>::NONE;
-    let mut frames: [Option<ShadingFrame>; N] = std::array::from_fn(|_| None);
+    let mut frames: Option<[Option<ShadingFrame>; N]> = None;
     // Lanes on textured materials with a lane form: their models with the textures' values at
     // the hit, kept here for the whole vertex (a rough plastic's lanes borrow its tables).
-    let mut textured: [Option<Material>; N] = [None; N];
+    let mut textured: Option<[Option<Material>; N]> = None;
     if lanes.textured_forms {
         for i in (alive & !scatter).lanes() {
             let class = &lanes.classes[s.material[i] as usize];
             if class.textured && class.lane_form.is_some() {
-                textured[i] = Some(textured_material(scene, &s, i));
+                textured.get_or_insert([None; N])[i] = Some(textured_material(scene, &s, i));
             }
         }
     }
@@ -276,16 +281,17 @@ pub(crate) fn vertex<const N: usize>(
             let a = if class.textured { textured_albedo(scene, &s, i) } else { class.albedo };
             [albedo[0].0[i], albedo[1].0[i], albedo[2].0[i]] = a.to_array();
         } else if let Some(form) = class.lane_form {
-            let material = textured[i].as_ref().unwrap_or(&materials[s.material[i] as usize]);
+            let material = textured.as_ref().and_then(|t| t[i].as_ref()).unwrap_or(&materials[s.material[i] as usize]);
             // As shade.rs: the frame follows the tangent where the model at the hit (a
             // roughness texture can make it isotropic) is anisotropic.
             if class.anisotropic && material.is_anisotropic() {
                 tangent_framed.0[i] = u32::MAX;
                 tangent.set(i, s.surface(i).tangent());
             }
-            if let Some(p) = scene.normal_perturbation(s.material[i]).filter(|_| class.perturbed) {
+            if let Some(p) = class.perturbed.then(|| scene.normal_perturbation(s.material[i])).flatten() {
                 perturbed.0[i] = u32::MAX;
-                frames[i] = Some(perturbed_frame(scene, &s, i, material, p, wo.lane(i)));
+                let frame = perturbed_frame(scene, &s, i, material, p, wo.lane(i));
+                frames.get_or_insert_with(|| std::array::from_fn(|_| None))[i] = Some(frame);
             }
             match (form, material) {
                 (LaneForm::RoughConductor, Material::RoughConductor(m)) => {
@@ -319,6 +325,10 @@ pub(crate) fn vertex<const N: usize>(
                 (LaneForm::Glossy, Material::Glossy(m)) => {
                     phong.0[i] = u32::MAX;
                     phongs.get_or_insert_with(|| m.lanes()).set(i, m);
+                }
+                (LaneForm::Lambertian, Material::Lambertian(m)) => {
+                    lambert.0[i] = u32::MAX;
+                    lamberts.get_or_insert_with(|| m.lanes()).set(i, m);
                 }
                 (LaneForm::RoughDielectric, Material::RoughDielectric(m)) => {
                     rough_glass.0[i] = u32::MAX;
@@ -373,7 +383,7 @@ pub(crate) fn vertex<const N: usize>(
         LambertLight::none()
     };
     let lane_forms =
-        conductor | plastic | smooth_plastic | uniform | phong | rough_glass | dielectric | reflector | slab;
+        conductor | plastic | smooth_plastic | uniform | phong | lambert | rough_glass | dielectric | reflector | slab;
     if lane_forms.any() {
         let v = LaneVertex {
             strategy,
@@ -384,7 +394,7 @@ pub(crate) fn vertex<const N: usize>(
             tangent_framed,
             tangent: &tangent,
             perturbed,
-            frames: &frames,
+            frames: frames.as_ref(),
             wo: &wo,
             beta: &paths.beta,
             nee: surface_nee,
@@ -407,6 +417,9 @@ pub(crate) fn vertex<const N: usize>(
         }
         if let Some(m) = phongs {
             material_lanes(&v, phong, &m, &mut sc);
+        }
+        if let Some(m) = lamberts {
+            material_lanes(&v, lambert, &m, &mut sc);
         }
         if let Some(mut m) = rough_glasses {
             m.distribution = m.distribution.only(rough_glass);

@@ -75,6 +75,30 @@ pub(crate) fn assert_smooth_lanes_match<const N: usize, M: SmoothModel>(
     }
 }
 
+/// `assert_smooth_lanes_match` over 300 groups of directions on both sides of the surface, for
+/// a model whose every lane evaluates and samples some directions (Lambert-like lobes): at
+/// least 1000 one-lane evaluations and samples must be non-zero, so the bits compared are not
+/// all a zero's.
+pub(crate) fn assert_mixed_lanes_match<const N: usize, M: SmoothModel>(
+    lanes: &impl LaneScattering<N>,
+    model: impl Fn(usize) -> M,
+) {
+    let (mut sampled, mut evaluated) = (0, 0);
+    let mut numbers = Numbers::new(0x2545_f491);
+    assert_smooth_lanes_match(
+        lanes,
+        model,
+        &mut numbers,
+        300,
+        |n| n.direction(-0.1, 0.7),
+        |_, pdf, one| {
+            evaluated += usize::from(pdf > 0.0);
+            sampled += usize::from(one.is_some());
+        },
+    );
+    assert!(sampled > 1000 && evaluated > 1000, "{sampled} {evaluated}");
+}
+
 /// For `rounds` groups of N directions `wo` from `direction`: lane `i` of `lanes` samples
 /// exactly as `one_lane(i, wo, u_lobe)` (lane `i`'s model alone). `seen` gets each lane's
 /// index, `wo` and one-lane sample.

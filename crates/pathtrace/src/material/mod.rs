@@ -42,6 +42,7 @@ pub use glossy::Glossy;
 pub(crate) use glossy::GlossyLanes;
 pub use ior::{ior_names, named_ior};
 pub use lambertian::Lambertian;
+pub(crate) use lambertian::LambertianLanes;
 pub(crate) use lanes::{rgb_lane, DeltaModel, LaneDeltaScattering, LaneSamples, LaneScattering, SmoothModel};
 pub use metals::{metal, metal_names};
 pub use microfacet::{Microfacet, MicrofacetKind};
@@ -117,7 +118,7 @@ impl Material {
             // Straight on (wi = −wo, which crosses the surface) with weight 1.
             Material::Null => Some(BsdfSample { wi: -wo, weight: Rgb::splat(1.0), pdf: 1.0, delta: true, eta: 1.0 }),
             Material::Diffuse(m) => m.sample(wo, u_lobe, u),
-            Material::Lambertian(m) => m.sample(wo, u),
+            Material::Lambertian(m) => m.sample(wo, u_lobe, u),
             Material::Mirror(m) => m.sample(wo, u_lobe),
             Material::Glossy(m) => m.sample(wo, u_lobe, u),
             Material::Dielectric(m) => m.sample(wo, u_lobe),

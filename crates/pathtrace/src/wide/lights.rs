@@ -310,77 +310,58 @@ impl WideLights {
             two_sided.0[i] = if both_faces { u32::MAX } else { 0 };
             picked.0[i] = u32::MAX;
         }
-        let (mut point, mut wi, mut dist, mut cos_l, mut pdf) =
-            (Vec3s::default(), Vec3s::default(), F32s::ZERO, F32s::ZERO, F32s::ZERO);
-        // Lanes whose light's own rule found no point (disks, points, spots).
-        let mut no_sample = Ms::<N>::NONE;
+        let mut d = Drawn {
+            point: Vec3s::default(),
+            wi: Vec3s::default(),
+            dist: F32s::ZERO,
+            cos_l: F32s::ZERO,
+            pdf: F32s::ZERO,
+            radiance,
+            no_sample: Ms::NONE,
+        };
         if self.any_flat {
-            let FlatSamples { point: p_f, wi: wi_f, dist: dist_f, cos_l: cos_f, pdf_area_one } =
-                sample_flat_lanes(&f, p, u1, u2);
-            (point, wi, dist, cos_l, pdf) = (p_f, wi_f, dist_f, cos_f, pdf_area_one * pmf_factor);
+            let FlatSamples { point, wi, dist, cos_l, pdf_area_one } = sample_flat_lanes(&f, p, u1, u2);
+            (d.point, d.wi, d.dist, d.cos_l, d.pdf) = (point, wi, dist, cos_l, pdf_area_one * pmf_factor);
         }
         if self.any_disk && on_disk.any() {
-            let d = sample_disk_lanes(&disks, p, u1, u2);
-            point = Vec3s::select(on_disk, &d.point, &point);
-            wi = Vec3s::select(on_disk, &d.wi, &wi);
-            dist = F32s::select(on_disk, d.dist, dist);
-            cos_l = F32s::select(on_disk, d.cos_l, cos_l);
-            pdf = F32s::select(on_disk, d.pdf * pmf_factor, pdf);
-            no_sample = no_sample | on_disk & !d.valid;
+            let s = sample_disk_lanes(&disks, p, u1, u2);
+            d.take(on_disk, &s.point, &s.wi, s.dist, s.pdf * pmf_factor);
+            d.cos_l = F32s::select(on_disk, s.cos_l, d.cos_l);
+            d.no_sample = d.no_sample | on_disk & !s.valid;
         }
         if self.any_sphere && on_sphere.any() {
             let s = sample_sphere_lanes(&spheres, p, u1, u2);
-            point = Vec3s::select(on_sphere, &s.point, &point);
-            wi = Vec3s::select(on_sphere, &s.wi, &wi);
-            dist = F32s::select(on_sphere, s.dist, dist);
-            cos_l = F32s::select(on_sphere, s.normal.dot(&s.wi), cos_l);
-            pdf = F32s::select(on_sphere, s.pdf * pmf_factor, pdf);
+            d.take(on_sphere, &s.point, &s.wi, s.dist, s.pdf * pmf_factor);
+            d.cos_l = F32s::select(on_sphere, s.normal.dot(&s.wi), d.cos_l);
         }
         if let Some(env) = self.environment.as_ref().filter(|_| on_environment.any()) {
             // At infinity along wi (the shadow ray is unoccluded if it leaves the scene); the
             // point is the scalar light set's p + wi.
             let e = env.sample_lanes(&u1, &u2, on_environment);
-            point = Vec3s::select(on_environment, &p.add(&e.dir), &point);
-            wi = Vec3s::select(on_environment, &e.dir, &wi);
-            dist = F32s::select(on_environment, F32s::splat(f32::INFINITY), dist);
-            pdf = F32s::select(on_environment, e.pdf * pmf_factor, pdf);
-            for c in 0..3 {
-                radiance[c] = F32s::select(on_environment, e.radiance[c], radiance[c]);
-            }
+            d.take(on_environment, &p.add(&e.dir), &e.dir, F32s::splat(f32::INFINITY), e.pdf * pmf_factor);
+            d.take_radiance(on_environment, &e.radiance);
         }
-        // Dirac lights: their "density" is the selection pmf alone.
         if self.any_point && on_point.any() {
-            let (wi_p, dist_p, radiance_p, found) = PointLight::sample_lanes(&point_position, intensity, p);
-            point = Vec3s::select(on_point, &point_position, &point);
-            wi = Vec3s::select(on_point, &wi_p, &wi);
-            dist = F32s::select(on_point, dist_p, dist);
-            pdf = F32s::select(on_point, pmf_factor, pdf);
-            for c in 0..3 {
-                radiance[c] = F32s::select(on_point, radiance_p[c], radiance[c]);
-            }
-            no_sample = no_sample | on_point & !found;
+            let sample = PointLight::sample_lanes(&point_position, intensity, p);
+            d.take_dirac(on_point, &point_position, sample, pmf_factor);
         }
         if let Some(spots) = spots.filter(|_| self.any_spot) {
-            let (wi_s, dist_s, radiance_s, found) = spots.sample(p);
-            point = Vec3s::select(on_spot, &spots.position, &point);
-            wi = Vec3s::select(on_spot, &wi_s, &wi);
-            dist = F32s::select(on_spot, dist_s, dist);
-            pdf = F32s::select(on_spot, pmf_factor, pdf);
-            for c in 0..3 {
-                radiance[c] = F32s::select(on_spot, radiance_s[c], radiance[c]);
-            }
-            no_sample = no_sample | on_spot & !found;
+            d.take_dirac(on_spot, &spots.position, spots.sample(p), pmf_factor);
         }
         if on_directional.any() {
             // At infinity, like the environment: the point is the scalar light set's p + wi.
-            point = Vec3s::select(on_directional, &p.add(&directional_wi), &point);
-            wi = Vec3s::select(on_directional, &directional_wi, &wi);
-            dist = F32s::select(on_directional, F32s::splat(f32::INFINITY), dist);
-            pdf = F32s::select(on_directional, pmf_factor, pdf);
+            let at = p.add(&directional_wi);
+            d.take(on_directional, &at, &directional_wi, F32s::splat(f32::INFINITY), pmf_factor);
         }
-        // A radiance texture scales a flat light's radiance at the sampled point.
+        let Drawn { point, wi, dist, cos_l, pdf, mut radiance, no_sample } = d;
+        // One-sided lights emit along their normal: towards p when cos θ_l = n·wi < 0.
+        let faces_p = two_sided | cos_l.lt(F32s::<N>::ZERO);
+        let valid =
+            picked & !no_sample & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
+        // A radiance texture scales a flat light's radiance at the sampled point: looked up for the
+        // valid samples only (the others' radiance is never used).
         if self.any_textured && on_textured.any() {
-            for i in on_textured.lanes() {
+            for i in (on_textured & valid).lanes() {
                 let Some(Light::Area(l)) = set.lights().get(textured[i]) else { continue };
                 let Some(t) = l.texture() else { continue };
                 let (origin, e1, e2) = (f.origin.lane(i), f.e1.lane(i), f.e2.lane(i));
@@ -388,10 +369,6 @@ impl WideLights {
                 [radiance[0].0[i], radiance[1].0[i], radiance[2].0[i]] = r.to_array();
             }
         }
-        // One-sided lights emit along their normal: towards p when cos θ_l = n·wi < 0.
-        let faces_p = two_sided | cos_l.lt(F32s::<N>::ZERO);
-        let valid =
-            picked & !no_sample & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
         let at_infinity = on_environment | on_directional;
         LightSamples {
             point,
@@ -402,6 +379,54 @@ impl WideLights {
             dist_finite: !at_infinity,
             delta: on_point | on_spot | on_directional,
         }
+    }
+}
+
+/// A group's light sample as it is assembled from each kind of light's lane-parallel rule:
+/// each rule's result is taken into its lanes only.
+struct Drawn<const N: usize> {
+    point: Vec3s<N>,
+    wi: Vec3s<N>,
+    dist: F32s<N>,
+    cos_l: F32s<N>,
+    pdf: F32s<N>,
+    radiance: [F32s<N>; 3],
+    /// Lanes whose light's own rule found no point (disks, points, spots).
+    no_sample: Ms<N>,
+}
+
+impl<const N: usize> Drawn<N> {
+    /// Sets the `on` lanes' point, direction, distance and density.
+    #[inline(always)]
+    fn take(&mut self, on: Ms<N>, point: &Vec3s<N>, wi: &Vec3s<N>, dist: F32s<N>, pdf: F32s<N>) {
+        self.point = Vec3s::select(on, point, &self.point);
+        self.wi = Vec3s::select(on, wi, &self.wi);
+        self.dist = F32s::select(on, dist, self.dist);
+        self.pdf = F32s::select(on, pdf, self.pdf);
+    }
+
+    /// Sets the `on` lanes' radiance (lights whose radiance depends on the sample).
+    #[inline(always)]
+    fn take_radiance(&mut self, on: Ms<N>, radiance: &[F32s<N>; 3]) {
+        for c in 0..3 {
+            self.radiance[c] = F32s::select(on, radiance[c], self.radiance[c]);
+        }
+    }
+
+    /// Sets the `on` lanes to the sample of a Dirac light at `position` (point and spot
+    /// lights: the direction, distance, radiance and the lanes that have them): their
+    /// "density" is the selection pmf alone.
+    #[inline(always)]
+    fn take_dirac(
+        &mut self,
+        on: Ms<N>,
+        position: &Vec3s<N>,
+        (wi, dist, radiance, found): (Vec3s<N>, F32s<N>, [F32s<N>; 3], Ms<N>),
+        pmf: F32s<N>,
+    ) {
+        self.take(on, position, &wi, dist, pmf);
+        self.take_radiance(on, &radiance);
+        self.no_sample = self.no_sample | on & !found;
     }
 }
 

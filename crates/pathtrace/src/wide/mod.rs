@@ -121,6 +121,9 @@ pub(crate) enum LaneForm {
     RoughDielectric,
     Diffuse,
     Glossy,
+    /// Lambertian surfaces under a normal or bump map (the others take the estimator's own
+    /// Lambertian lanes).
+    Lambertian,
 }
 
 /// What a scene offers the lane-parallel forms, prepared once per render.
@@ -148,10 +151,11 @@ impl WideScene {
             .iter()
             .enumerate()
             .map(|(id, m)| {
-                // A normal or bump map moves the frame off the shading normal: such surfaces are
-                // shaded lane by lane (`integrator::shading_frame`).
+                // A normal or bump map moves the frame off the shading normal per hit: such
+                // Lambertian surfaces take the generic lane form below, in their perturbed frames.
+                let perturbed = scene.normal_perturbation(id as u32).is_some();
                 let simd = match m {
-                    Material::Lambertian(l) if scene.normal_perturbation(id as u32).is_none() => Some(l.albedo),
+                    Material::Lambertian(l) if !perturbed => Some(l.albedo),
                     _ => None,
                 };
                 // Materials with a lane form, shaded in lanes under a strategy that continues
@@ -167,6 +171,7 @@ impl WideScene {
                     Material::Plastic(_) if plain => Some(LaneForm::Plastic),
                     Material::Diffuse(_) if plain => Some(LaneForm::Diffuse),
                     Material::Glossy(_) if plain => Some(LaneForm::Glossy),
+                    Material::Lambertian(_) if plain && perturbed => Some(LaneForm::Lambertian),
                     // Models of Dirac lobes only: every strategy continues them by the material.
                     Material::Dielectric(_) => Some(LaneForm::Dielectric),
                     Material::Conductor(_) | Material::Mirror(_) => Some(LaneForm::SmoothConductor),
@@ -179,8 +184,9 @@ impl WideScene {
                     | Material::Plastic(_)
                     | Material::Diffuse(_)
                     | Material::Glossy(_) => None,
-                    // Lambertian surfaces take the SIMD Lambertian form (`simd`) instead; black and
-                    // null surfaces are never shaded; a blend is resolved per hit into its two models.
+                    // Other Lambertian surfaces take the estimator's Lambertian lanes (`simd`), or,
+                    // normal-mapped under `light` and `mixture`, go lane by lane; black and null
+                    // surfaces are never shaded; a blend is resolved per hit into its two models.
                     Material::Lambertian(_) | Material::Black | Material::Null | Material::Blend(_) => None,
                 };
                 MaterialClass {
@@ -189,7 +195,7 @@ impl WideScene {
                     simd: simd.is_some(),
                     textured: scene.is_material_textured(id as u32),
                     anisotropic: m.is_anisotropic(),
-                    perturbed: scene.normal_perturbation(id as u32).is_some(),
+                    perturbed,
                     delta: m.is_delta(),
                     black: m.is_black(),
                     one_sided: scene.is_one_sided(id as u32),
