@@ -73,13 +73,9 @@ enum WideLight {
 #[derive(Clone, Debug)]
 pub struct WideLights {
     lights: Vec<WideLight>,
-    /// Which forms the scene has (each is computed only if present).
+    /// The scene has flat lights (their lanes are computed only then; the other kinds' only
+    /// when a lane of the group drew one).
     any_flat: bool,
-    any_disk: bool,
-    any_sphere: bool,
-    any_point: bool,
-    any_spot: bool,
-    any_textured: bool,
     /// The environment, if the scene has one (a scene has at most one).
     environment: Option<EnvironmentLight>,
 }
@@ -187,16 +183,7 @@ impl WideLights {
             })
             .collect::<Vec<_>>();
         let any = |f: fn(&WideLight) -> bool| lights.iter().any(f);
-        Self {
-            any_flat: any(|l| matches!(l, WideLight::Flat(_))),
-            any_disk: any(|l| matches!(l, WideLight::Disk(_))),
-            any_sphere: any(|l| matches!(l, WideLight::Sphere(_))),
-            any_point: any(|l| matches!(l, WideLight::Point(_))),
-            any_spot: any(|l| matches!(l, WideLight::Spot(_))),
-            any_textured: any(|l| matches!(l, WideLight::Flat(FlatLight { textured: Some(_), .. }))),
-            lights,
-            environment,
-        }
+        Self { any_flat: any(|l| matches!(l, WideLight::Flat(_))), lights, environment }
     }
 
     /// Samples a light point for each lane of `active` from `p`, with the selection numbers
@@ -219,24 +206,22 @@ impl WideLights {
             normal: Vec3s::default(),
             triangle: Ms::NONE,
         };
-        let mut textured = [usize::MAX; N];
+        // The other kinds' lanes are set up when a lane first picks such a light: a group
+        // pays for the kinds it drew, not for every kind (zeroing them all for every group was
+        // 1.7% of the Cornell box's instructions).
+        let mut textured: Option<[usize; N]> = None;
         let mut on_textured = Ms::<N>::NONE;
-        let mut disks = DiskLights {
-            center: Vec3s::default(),
-            u: Vec3s::default(),
-            v: Vec3s::default(),
-            normal: Vec3s::default(),
-            area: F32s::ONE,
-        };
+        let mut disks: Option<DiskLights<N>> = None;
         let mut on_disk = Ms::<N>::NONE;
-        let mut spheres = SphereLights { center: Vec3s::default(), radius: F32s::ZERO, inward: Ms::NONE };
+        let mut spheres: Option<SphereLights<N>> = None;
         let mut on_sphere = Ms::<N>::NONE;
         let mut on_environment = Ms::<N>::NONE;
-        let (mut on_point, mut point_position, mut intensity) =
-            (Ms::<N>::NONE, Vec3s::<N>::default(), [F32s::<N>::ZERO; 3]);
+        let mut points: Option<(Vec3s<N>, [F32s<N>; 3])> = None;
+        let mut on_point = Ms::<N>::NONE;
         let mut spots: Option<SpotLanes<N>> = None;
         let mut on_spot = Ms::<N>::NONE;
-        let (mut on_directional, mut directional_wi) = (Ms::<N>::NONE, Vec3s::<N>::default());
+        let mut directional_wi: Option<Vec3s<N>> = None;
+        let mut on_directional = Ms::<N>::NONE;
         // The selection pmf, divided by the area for flat lights (whose density is per area).
         let mut pmf_factor = F32s::<N>::ZERO;
         let mut radiance = [F32s::<N>::ZERO; 3];
@@ -253,13 +238,20 @@ impl WideLights {
                     f.normal.set(i, l.normal);
                     f.triangle.0[i] = if l.triangle { u32::MAX } else { 0 };
                     if let Some(id) = l.textured {
-                        textured[i] = id;
+                        textured.get_or_insert([usize::MAX; N])[i] = id;
                         on_textured.0[i] = u32::MAX;
                     }
                     pmf_factor.0[i] = pmf / l.area;
                     (l.radiance, l.two_sided)
                 }
                 WideLight::Disk(l) => {
+                    let disks = disks.get_or_insert_with(|| DiskLights {
+                        center: Vec3s::default(),
+                        u: Vec3s::default(),
+                        v: Vec3s::default(),
+                        normal: Vec3s::default(),
+                        area: F32s::ONE,
+                    });
                     disks.center.set(i, l.center);
                     disks.u.set(i, l.u);
                     disks.v.set(i, l.v);
@@ -270,6 +262,11 @@ impl WideLights {
                     (l.radiance, l.two_sided)
                 }
                 WideLight::Sphere(l) => {
+                    let spheres = spheres.get_or_insert_with(|| SphereLights {
+                        center: Vec3s::default(),
+                        radius: F32s::ZERO,
+                        inward: Ms::NONE,
+                    });
                     spheres.center.set(i, l.center);
                     spheres.radius.0[i] = l.radius;
                     spheres.inward.0[i] = u32::from(l.inward).wrapping_neg();
@@ -286,6 +283,7 @@ impl WideLights {
                 // I/r², below; a point has no facing.
                 WideLight::Point(l) => {
                     on_point.0[i] = u32::MAX;
+                    let (point_position, intensity) = points.get_or_insert_with(|| (Vec3s::default(), [F32s::ZERO; 3]));
                     point_position.set(i, l.position);
                     [intensity[0].0[i], intensity[1].0[i], intensity[2].0[i]] = l.intensity.to_array();
                     pmf_factor.0[i] = pmf;
@@ -301,7 +299,7 @@ impl WideLights {
                 // The same direction and irradiance from every point.
                 WideLight::Directional { wi, irradiance } => {
                     on_directional.0[i] = u32::MAX;
-                    directional_wi.set(i, *wi);
+                    directional_wi.get_or_insert_with(Vec3s::default).set(i, *wi);
                     pmf_factor.0[i] = pmf;
                     (*irradiance, true)
                 }
@@ -323,14 +321,14 @@ impl WideLights {
             let FlatSamples { point, wi, dist, cos_l, pdf_area_one } = sample_flat_lanes(&f, p, u1, u2);
             (d.point, d.wi, d.dist, d.cos_l, d.pdf) = (point, wi, dist, cos_l, pdf_area_one * pmf_factor);
         }
-        if self.any_disk && on_disk.any() {
-            let s = sample_disk_lanes(&disks, p, u1, u2);
+        if let Some(disks) = &disks {
+            let s = sample_disk_lanes(disks, p, u1, u2);
             d.take(on_disk, &s.point, &s.wi, s.dist, s.pdf * pmf_factor);
             d.cos_l = F32s::select(on_disk, s.cos_l, d.cos_l);
             d.no_sample = d.no_sample | on_disk & !s.valid;
         }
-        if self.any_sphere && on_sphere.any() {
-            let s = sample_sphere_lanes(&spheres, p, u1, u2);
+        if let Some(spheres) = &spheres {
+            let s = sample_sphere_lanes(spheres, p, u1, u2);
             d.take(on_sphere, &s.point, &s.wi, s.dist, s.pdf * pmf_factor);
             d.cos_l = F32s::select(on_sphere, s.normal.dot(&s.wi), d.cos_l);
         }
@@ -341,17 +339,17 @@ impl WideLights {
             d.take(on_environment, &p.add(&e.dir), &e.dir, F32s::splat(f32::INFINITY), e.pdf * pmf_factor);
             d.take_radiance(on_environment, &e.radiance);
         }
-        if self.any_point && on_point.any() {
-            let sample = PointLight::sample_lanes(&point_position, intensity, p);
-            d.take_dirac(on_point, &point_position, sample, pmf_factor);
+        if let Some((position, intensity)) = &points {
+            let sample = PointLight::sample_lanes(position, *intensity, p);
+            d.take_dirac(on_point, position, sample, pmf_factor);
         }
-        if let Some(spots) = spots.filter(|_| self.any_spot) {
+        if let Some(spots) = spots {
             d.take_dirac(on_spot, &spots.position, spots.sample(p), pmf_factor);
         }
-        if on_directional.any() {
+        if let Some(directional_wi) = &directional_wi {
             // At infinity, like the environment: the point is the scalar light set's p + wi.
-            let at = p.add(&directional_wi);
-            d.take(on_directional, &at, &directional_wi, F32s::splat(f32::INFINITY), pmf_factor);
+            let at = p.add(directional_wi);
+            d.take(on_directional, &at, directional_wi, F32s::splat(f32::INFINITY), pmf_factor);
         }
         let Drawn { point, wi, dist, cos_l, pdf, mut radiance, no_sample } = d;
         // One-sided lights emit along their normal: towards p when cos θ_l = n·wi < 0.
@@ -360,7 +358,7 @@ impl WideLights {
             picked & !no_sample & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
         // A radiance texture scales a flat light's radiance at the sampled point: looked up for the
         // valid samples only (the others' radiance is never used).
-        if self.any_textured && on_textured.any() {
+        if let Some(textured) = &textured {
             for i in (on_textured & valid).lanes() {
                 let Some(Light::Area(l)) = set.lights().get(textured[i]) else { continue };
                 let Some(t) = l.texture() else { continue };
