@@ -494,13 +494,12 @@ pub(crate) fn vertex<const N: usize>(
             };
             add_transmitted_light(scene, paths, &s, scatter, queued, LambertLight { ..lambert_light }, albedo);
         } else {
-            // Shadow rays from first hits (neighbouring points) go through the BVH together:
+            // Shadow rays go through the BVH together: from first hits (neighbouring points),
             // rays to one light share most node visits, and rays to several share the upper
             // levels (one group for the teapot's two point lights cost 6% less time than a group
-            // per light); where they scatter (an environment's samples), the traversal goes on
-            // ray by ray.
-            let first_hits = sc.shadow & Ms::from_fn(|i| paths.segments[i] == 1);
-            let blocked = occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, first_hits, sc.shadow_t_max);
+            // per light); where they scatter (an environment's samples, points after a bounce),
+            // the walk goes on ray by ray below the nodes they no longer share (see `intersect`).
+            let blocked = occluded(job, &sc.shadow_origin, &sc.shadow_dir, sc.shadow, sc.shadow_t_max);
             let seen = sc.shadow & !blocked;
             // The Lambertian lanes' contributions are formed only now: their inputs were gathered
             // lane by lane, and reading them back as vectors right away stalls on store forwarding.
@@ -778,11 +777,15 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
         s.n_shading = s.n_geometric;
         return;
     }
-    // Larger scenes: the BVH. Camera rays (neighbouring samples of one or a few pixels) go
-    // through it together, sharing node visits; the other rays, which scatter after a bounce,
-    // go one by one (dragging them along a group would cost more than it shares). Scenes with
-    // cut-outs trace every ray alone, passing the cut-out surfaces.
-    let camera = if job.scene.has_cutouts() { Ms::NONE } else { active & Ms::from_fn(|i| paths.segments[i] == 1) };
+    // Larger scenes: the BVH, walked by the group's rays together (`Bvh::intersect_lanes`).
+    // Camera rays (neighbouring samples of one or a few pixels) share most node visits. Rays
+    // that scatter after a bounce share fewer, but the group walk costs them little: those that
+    // miss the scene's box (an environment's rays) stop at one slab test for the whole group,
+    // and a node reached by fewer than three rays is finished ray by ray, as alone. Measured
+    // against bounce rays walking alone from the start: copper 0.93×, plastic 0.93×, bunny
+    // 0.94–0.97×, mesh-1m 0.98× the time (docs/benchmarks.md, "Bounce rays in the group walk").
+    // Scenes with cut-outs trace every ray alone, passing the cut-out surfaces.
+    let group = if job.scene.has_cutouts() { Ms::NONE } else { active };
     // The hit callback is inlined by force: a closure does not inherit the kernel's target
     // features, and left to itself LLVM compiled it out of line for baseline x86-64 (the hit
     // record, `Scene::interaction`: 9% of the teapot's profile as its own symbol, 3% of the
@@ -790,7 +793,7 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
     job.scene.intersect_lanes(
         &paths.origin,
         &paths.dir,
-        camera,
+        group,
         f32::INFINITY,
         #[inline(always)]
         |i, hit| {
@@ -798,7 +801,7 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
             s.set_hit(i, &job.scene.interaction(&ray, &hit));
         },
     );
-    for i in (active & !camera).lanes() {
+    for i in (active & !group).lanes() {
         let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
         if let Some((ray, hit)) = job.scene.intersect_opaque(&ray) {
             s.set_hit(i, &job.scene.interaction(&ray, &hit));
@@ -806,22 +809,15 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
     }
 }
 
-/// Lanes of `active` whose shadow ray is blocked before `t_max`; the rays of `together` are
-/// traced through the BVH as a group, the others one by one.
+/// Lanes of `active` whose shadow ray is blocked before `t_max`, traced through the BVH as a
+/// group (ray by ray in scenes with cut-outs).
 #[inline(always)]
-fn occluded<const N: usize>(
-    job: &LaneJob,
-    origin: &Vec3s<N>,
-    dir: &Vec3s<N>,
-    active: Ms<N>,
-    together: Ms<N>,
-    t_max: F32s<N>,
-) -> Ms<N> {
+fn occluded<const N: usize>(job: &LaneJob, origin: &Vec3s<N>, dir: &Vec3s<N>, active: Ms<N>, t_max: F32s<N>) -> Ms<N> {
     if let Some(geometry) = &job.lanes.geometry {
         return geometry.occluded(origin, dir, active, t_max);
     }
     // Cut-outs are passed ray by ray.
-    let group = if job.scene.has_cutouts() { Ms::NONE } else { active & together };
+    let group = if job.scene.has_cutouts() { Ms::NONE } else { active };
     let mut blocked = job.scene.occluded_lanes(origin, dir, group, t_max);
     for i in (active & !group).lanes() {
         if job.scene.occluded_opaque(&Ray::new(origin.lane(i), dir.lane(i)), t_max.0[i]) {
