@@ -782,8 +782,9 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
     // that scatter after a bounce share fewer, but the group walk costs them little: those that
     // miss the scene's box (an environment's rays) stop at one slab test for the whole group,
     // and a node reached by fewer than three rays is finished ray by ray, as alone. Measured
-    // against bounce rays walking alone from the start: copper 0.93×, plastic 0.93×, bunny
-    // 0.94–0.97×, mesh-1m 0.98× the time (docs/benchmarks.md, "Bounce rays in the group walk").
+    // against bounce rays walking alone from the root (with the shadow rays after a bounce also
+    // grouped, in `occluded`): copper 0.91×, bunny 0.93×, mesh-1m 0.97× the time
+    // (docs/benchmarks.md, "Bounce rays in the group walk").
     // Scenes with cut-outs trace every ray alone, passing the cut-out surfaces.
     let group = if job.scene.has_cutouts() { Ms::NONE } else { active };
     // The hit callback is inlined by force: a closure does not inherit the kernel's target
