@@ -1,6 +1,6 @@
 #!/bin/bash
 # A/B of pathtrace builds by their own `render_seconds` (loading and the BVH build excluded),
-# one render thread, builds alternating within each round.
+# one render thread (or --threads N), builds alternating within each round.
 #
 #   benches/render_ab.sh SCENE SPP ROUNDS BINARY...
 #       each build's times, sorted
@@ -9,13 +9,22 @@
 #       rounds in which B was faster (a sign test: 29 of 41 is p ≈ 0.01 two-sided); the order of
 #       the two alternates between rounds, so a slow spell of the machine hits both
 #
+#   --threads N (before the other arguments) renders on N threads instead of one, for changes
+#   that only show when the threads share work (the suite renders on 2)
+#
 #   benches/render_ab.sh ../shared/scenes/cbox/cbox.xml 128 9 old/pathtrace target/release/pathtrace
 #   benches/render_ab.sh --paired ../shared/scenes/teapot-simple/simple.xml 64 41 old/pathtrace target/release/pathtrace
 set -euo pipefail
-paired=0
-if [ "${1:-}" = --paired ]; then paired=1; shift; fi
+paired=0 threads=1
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --paired) paired=1; shift ;;
+        --threads) threads=$2; shift 2 ;;
+        *) break ;;
+    esac
+done
 if [ $# -lt 4 ] || { [ $paired = 1 ] && [ $# -ne 5 ]; }; then
-    sed -n '4,13p' "$0" | sed 's/^# \{0,1\}//' >&2
+    sed -n '4,16p' "$0" | sed 's/^# \{0,1\}//' >&2
     exit 2
 fi
 scene=$1 spp=$2 rounds=$3
@@ -27,7 +36,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # One render's `render_seconds`.
 seconds() {
-    "$1" render "$scene" --spp "$spp" --threads 1 -o "$tmp/x.pfm" --quiet --stats-json "$tmp/s.json" >/dev/null 2>&1
+    "$1" render "$scene" --spp "$spp" --threads "$threads" -o "$tmp/x.pfm" --quiet --stats-json "$tmp/s.json" >/dev/null 2>&1
     python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["render_seconds"])' "$tmp/s.json"
 }
 if [ $paired = 0 ]; then

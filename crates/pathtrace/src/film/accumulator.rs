@@ -241,11 +241,17 @@ impl PixelStats {
     /// Unbiased sample variance per channel, (Σx² − n·mean²) / (n − 1) (zero with fewer than
     /// two samples, infinite when the sum of squares saturated).
     pub fn sample_variance(&self) -> [f64; 3] {
+        self.sample_variance_about(&self.mean())
+    }
+
+    /// [`PixelStats::sample_variance`] given the pixel's [`PixelStats::mean`], for callers that
+    /// need both (the mean is three wide-integer conversions and six divisions).
+    #[inline]
+    pub(super) fn sample_variance_about(&self, mean: &[f64; 3]) -> [f64; 3] {
         if self.count < 2 {
             return [0.0; 3];
         }
         let n = self.count as f64;
-        let mean = self.mean();
         std::array::from_fn(|k| {
             if self.sum_sq[k] == u128::MAX {
                 return f64::INFINITY;

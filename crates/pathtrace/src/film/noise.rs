@@ -13,6 +13,7 @@
 //! of the converged one, in the same units `pathtrace converge` measures against a reference.
 
 use super::{Film, PixelStats};
+use rayon::prelude::*;
 
 /// The `0.01` of relative MSE: keeps black pixels from dominating (Rousselle et al. 2011).
 pub const RELATIVE_EPSILON: f64 = 0.01;
@@ -20,20 +21,41 @@ pub const RELATIVE_EPSILON: f64 = 0.01;
 /// A pixel's relative variance per sample, Σ_c s²_c / (mean_c² + 0.01): its contribution to the
 /// relative MSE is this divided by its sample count (and by 3N).
 pub fn relative_variance(p: &PixelStats) -> f64 {
-    let (v, mean) = (p.sample_variance(), p.mean());
+    let mean = p.mean();
+    let v = p.sample_variance_about(&mean);
     (0..3).map(|c| v[c] / (mean[c] * mean[c] + RELATIVE_EPSILON)).sum()
 }
+
+/// Pixels per part of the estimate's parallel pass. Fixed, so the parts and the order they are
+/// added in, and with them the estimate's bits, do not depend on the number of threads.
+const ESTIMATE_CHUNK: usize = 4096;
 
 impl Film {
     /// The expected relative MSE of the current image against the converged one (see the module
     /// docs). `None` before every pixel has two samples (no variance estimate yet).
+    ///
+    /// The pass runs on the current rayon pool: a render computes it between waves, while its
+    /// worker threads would otherwise wait, and at about 70 ns a pixel it took 3–6% of a
+    /// two-thread render's time when it ran on one thread (docs/benchmarks.md, "The error
+    /// estimate on every thread").
     pub fn relative_mse_estimate(&self) -> Option<f64> {
+        let parts: Vec<Option<f64>> = self
+            .pixels()
+            .par_chunks(ESTIMATE_CHUNK)
+            .map(|chunk| {
+                let mut sum = 0.0;
+                for p in chunk {
+                    if p.count < 2 {
+                        return None;
+                    }
+                    sum += relative_variance(p) / p.count as f64;
+                }
+                Some(sum)
+            })
+            .collect();
         let mut sum = 0.0;
-        for p in self.pixels() {
-            if p.count < 2 {
-                return None;
-            }
-            sum += relative_variance(p) / p.count as f64;
+        for part in parts {
+            sum += part?;
         }
         Some(sum / (3 * self.pixels().len()).max(1) as f64)
     }
@@ -89,5 +111,50 @@ mod tests {
         let estimate = film.relative_mse_estimate().unwrap();
         // Both are means of 1200 roughly independent terms: agreement within 10% is ~2.5σ.
         assert!((estimate / actual - 1.0).abs() < 0.1, "estimate {estimate} vs actual {actual}");
+    }
+
+    /// The parallel pass adds the same parts in the same order on any number of threads, and a
+    /// pixel without two samples in any part (here the last) still means no estimate.
+    #[test]
+    fn the_estimate_does_not_depend_on_the_thread_count() {
+        let (w, h) = (300u32, 50u32);
+        assert!((w * h) as usize > 3 * ESTIMATE_CHUNK, "the film spans several parts");
+        let mut film = Film::new(w, h);
+        let mut state = 7u64;
+        let mut next = || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        for y in 0..h {
+            for x in 0..w {
+                let scale = 1.0 + (x * y % 17) as f32;
+                for _ in 0..3 {
+                    film.add_sample(x, y, Rgb::new(next() * scale, next(), next() * 0.1));
+                }
+            }
+        }
+        let on = |threads: usize, film: &Film| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| film.relative_mse_estimate())
+        };
+        let one = on(1, &film).unwrap();
+        for threads in [2, 3, 8] {
+            assert_eq!(on(threads, &film).unwrap().to_bits(), one.to_bits(), "{threads} threads");
+        }
+        // The same value as the formula summed pixel by pixel, to rounding.
+        let direct: f64 = film.pixels().iter().map(|p| relative_variance(p) / p.count as f64).sum::<f64>()
+            / (3 * film.pixels().len()) as f64;
+        assert!((one / direct - 1.0).abs() < 1e-12, "{one} vs {direct}");
+
+        let mut short = Film::new(w, h);
+        for y in 0..h {
+            for x in 0..w {
+                let samples = if (x, y) == (w - 1, h - 1) { 1 } else { 2 };
+                for _ in 0..samples {
+                    short.add_sample(x, y, Rgb::splat(next()));
+                }
+            }
+        }
+        assert_eq!(on(2, &short), None);
     }
 }

@@ -19,6 +19,7 @@
 //! engine test `tests/adaptive.rs` measures the remaining bias against a uniform render.
 
 use crate::film::{relative_variance, Film};
+use rayon::prelude::*;
 
 /// Settings of adaptive sampling.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,9 +44,12 @@ impl Default for AdaptiveSettings {
 /// too). The result sums to `budget` exactly and depends only on its inputs (deterministic).
 pub fn allocate(film: &Film, given: &[u32], budget: u64, floor: f64) -> Vec<u32> {
     let (w, h) = (film.width() as usize, film.height() as usize);
-    let rel: Vec<f64> = film.pixels().iter().map(relative_variance).collect();
+    // Per pixel on every thread of the pool (the render's workers wait for this between
+    // waves); collecting keeps the pixel order, so the values do not depend on the threads.
+    let rel: Vec<f64> = film.pixels().par_iter().map(relative_variance).collect();
     // √ of the 3×3 neighbourhood mean of the relative variance (clipped at the image border).
     let mut weight: Vec<f64> = (0..w * h)
+        .into_par_iter()
         .map(|i| {
             let (x, y) = (i % w, i / w);
             let (mut sum, mut n) = (0.0, 0.0);

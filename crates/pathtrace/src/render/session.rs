@@ -3,8 +3,9 @@
 //! finally [`RenderSession::wait`]s for the film. The engine never prints: the CLI's progress
 //! bar and a live window are both thin consumers of this.
 //!
-//! Work proceeds in waves of 1, 2, 4, … samples per pixel (capped), each wave a parallel loop
-//! over tiles, so a first image is ready quickly. Each pixel merges its waves in order, so the
+//! Work proceeds in waves of samples per pixel (1, then `max_wave_spp` at a time:
+//! `RenderSettings::waves`), each wave a parallel loop over tiles, so a first image is ready
+//! quickly. Each pixel merges its waves in order, so the
 //! result is bit-identical whatever the number of threads. With adaptive sampling, waves after
 //! the uniform start give each pixel its own number of samples (`adaptive.rs`), decided between
 //! waves from the merged film, so that stays bit-identical too.

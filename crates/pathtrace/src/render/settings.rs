@@ -27,7 +27,8 @@ pub struct RenderSettings {
     pub threads: usize,
     /// Tiles are `tile_size × tile_size` pixels.
     pub tile_size: u32,
-    /// Waves double from 1 spp up to this many samples per pixel each.
+    /// Samples per pixel of each wave after the first (which takes 1: see
+    /// [`RenderSettings::waves`]).
     pub max_wave_spp: u32,
     /// Adaptive sampling (`None`, the default: every pixel gets `spp` samples).
     pub adaptive: Option<AdaptiveSettings>,
@@ -80,24 +81,30 @@ impl RenderSettings {
         self.sample_range.unwrap_or(SampleRange::new(0, self.spp))
     }
 
-    /// The sample counts of successive waves: 1, 2, 4, … capped at `max_wave_spp`, summing to
-    /// the length of [`RenderSettings::samples`] (endless when `spp` is 0). Waves start at the
-    /// range's first sample; how a range is cut into waves does not change the film.
+    /// The sample counts of successive waves: 1 sample per pixel, then waves of
+    /// `max_wave_spp` (the last one what is left), summing to the length of
+    /// [`RenderSettings::samples`] (endless when `spp` is 0). Waves start at the range's first
+    /// sample; how a range is cut into waves does not change the film.
+    ///
+    /// The 1-spp wave gives a whole image soon (the live view's first frame; a render stopped
+    /// early still covers every pixel). After it, few and large waves: every wave costs a merge
+    /// of every pixel into the film, a wait for its last tile and an error-estimate pass, and in
+    /// waves of at least 16 samples per pixel a SIMD group starts 16 samples of one pixel, whose
+    /// camera rays walk the BVH together. Doubling waves (1, 2, 4, 8, 16, …) took 4–9% longer
+    /// on 16-spp renders (docs/benchmarks.md, "Waves: one sample per pixel, then whole waves").
     pub fn waves(&self) -> impl Iterator<Item = u32> + '_ {
         let cap = self.max_wave_spp.max(1);
         let total = self.samples().len();
         let mut done = 0u32;
-        let mut next = 1u32;
         std::iter::from_fn(move || {
             if self.spp > 0 && done >= total {
                 return None;
             }
-            let mut n = next.min(cap);
+            let mut n = if done == 0 { 1 } else { cap };
             if self.spp > 0 {
                 n = n.min(total - done);
             }
             done = done.saturating_add(n);
-            next = next.saturating_mul(2);
             Some(n)
         })
     }
@@ -108,15 +115,17 @@ mod tests {
     use super::*;
 
     #[test]
-    fn waves_double_then_cap_and_sum_to_the_target() {
+    fn waves_start_with_one_sample_then_cap_and_sum_to_the_target() {
         let s = RenderSettings { spp: 64, max_wave_spp: 16, ..Default::default() };
         let w: Vec<u32> = s.waves().collect();
-        assert_eq!(w, vec![1, 2, 4, 8, 16, 16, 16, 1]);
-        let s = RenderSettings { spp: 5, ..Default::default() };
-        assert_eq!(s.waves().collect::<Vec<_>>(), vec![1, 2, 2]);
+        assert_eq!(w, vec![1, 16, 16, 16, 15]);
+        let s = RenderSettings { spp: 16, ..Default::default() };
+        assert_eq!(s.waves().collect::<Vec<_>>(), vec![1, 15]);
+        let s = RenderSettings { spp: 1, ..Default::default() };
+        assert_eq!(s.waves().collect::<Vec<_>>(), vec![1]);
         let s = RenderSettings { spp: 0, max_wave_spp: 4, ..Default::default() };
-        assert_eq!(s.waves().take(5).collect::<Vec<_>>(), vec![1, 2, 4, 4, 4]);
-        let s = RenderSettings { spp: 64, sample_range: Some(SampleRange::new(10, 20)), ..Default::default() };
-        assert_eq!(s.waves().collect::<Vec<_>>(), vec![1, 2, 4, 3]);
+        assert_eq!(s.waves().take(4).collect::<Vec<_>>(), vec![1, 4, 4, 4]);
+        let s = RenderSettings { spp: 64, sample_range: Some(SampleRange::new(10, 30)), ..Default::default() };
+        assert_eq!(s.waves().collect::<Vec<_>>(), vec![1, 16, 3]);
     }
 }
