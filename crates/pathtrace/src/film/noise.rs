@@ -35,9 +35,9 @@ impl Film {
     /// docs). `None` before every pixel has two samples (no variance estimate yet).
     ///
     /// The pass runs on the current rayon pool: a render computes it between waves, while its
-    /// worker threads would otherwise wait, and at about 70 ns a pixel it took 3–6% of a
-    /// two-thread render's time when it ran on one thread (docs/benchmarks.md, "The error
-    /// estimate on every thread").
+    /// worker threads would otherwise wait; at about 70 ns a pixel, on one thread it held up a
+    /// two-thread veach-mis render by 9% (docs/benchmarks.md, "The error
+    /// estimate on every thread; waves …").
     pub fn relative_mse_estimate(&self) -> Option<f64> {
         let parts: Vec<Option<f64>> = self
             .pixels()

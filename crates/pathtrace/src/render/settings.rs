@@ -90,8 +90,9 @@ impl RenderSettings {
     /// early still covers every pixel). After it, few and large waves: every wave costs a merge
     /// of every pixel into the film, a wait for its last tile and an error-estimate pass, and in
     /// waves of at least 16 samples per pixel a SIMD group starts 16 samples of one pixel, whose
-    /// camera rays walk the BVH together. Doubling waves (1, 2, 4, 8, 16, …) took 4–9% longer
-    /// on 16-spp renders (docs/benchmarks.md, "Waves: one sample per pixel, then whole waves").
+    /// camera rays walk the BVH together. Doubling waves (1, 2, 4, 8, 16, …) were slower on
+    /// 16-spp renders (docs/benchmarks.md, "The error estimate on every thread; waves of one
+    /// sample per pixel, then whole waves").
     pub fn waves(&self) -> impl Iterator<Item = u32> + '_ {
         let cap = self.max_wave_spp.max(1);
         let total = self.samples().len();
