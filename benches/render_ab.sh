@@ -19,7 +19,9 @@ paired=0 threads=1
 while [ $# -gt 0 ]; do
     case "$1" in
         --paired) paired=1; shift ;;
-        --threads) threads=$2; shift 2 ;;
+        --threads)
+            [[ "${2:-}" =~ ^[1-9][0-9]*$ ]] || { echo "render_ab.sh: --threads needs a thread count (a positive integer)" >&2; exit 2; }
+            threads=$2; shift 2 ;;
         *) break ;;
     esac
 done
