@@ -46,12 +46,36 @@ struct Job {
     sample: u32,
 }
 
-/// Samples for a whole lane group at once: lane `i` takes sample `first.sample + i %
-/// per_pixel` of the pixel `i / per_pixel` to the right of `first`'s (`per_pixel` a power of
-/// two).
+/// Samples for a whole lane group at once: lane `i` takes the `i`-th sample from `first` in the
+/// queue's order. `first.sample` is sample `offset` of its pixel's `count` in this wave, so lane
+/// `i` is `(offset + i) / count` pixels to the right of `first`'s and takes that pixel's sample
+/// `(offset + i) % count` ([`Run::lanes`]).
 struct Run {
     first: Job,
-    per_pixel: u32,
+    offset: u32,
+    count: u32,
+}
+
+/// The largest samples per pixel of a wave whose runs may span pixels: [`Run::lanes`] divides
+/// by a multiply and shift that is exact for dividends below 2³² / `count`, and its dividends
+/// stay below `count` plus the lanes.
+const RUN_COUNT_LIMIT: u32 = 1 << 15;
+
+impl Run {
+    /// Each lane's pixel, as steps right of `first`'s, and its sample index.
+    #[inline(always)]
+    fn lanes<const N: usize>(&self) -> ([u32; N], [u32; N]) {
+        // (offset + i) / count as ((offset + i) · m) >> 32 with m = ⌊2³² / count⌋ + 1: with
+        // m · count = 2³² + e, 0 < e ≤ count, the product overshoots (offset + i) / count by
+        // (offset + i) · e / (count · 2³²) < 1 / count, too little to reach the next integer
+        // while (offset + i) < 2³² / count (Granlund & Montgomery, "Division by Invariant
+        // Integers using Multiplication", PLDI 1994). Whole-vector integer code, where a
+        // division would be one instruction per lane.
+        let m = (1u64 << 32) / u64::from(self.count) + 1;
+        let step: [u32; N] = std::array::from_fn(|i| ((u64::from(self.offset + i as u32) * m) >> 32) as u32);
+        let sample = std::array::from_fn(|i| self.first.sample + i as u32 - step[i] * self.count);
+        (step, sample)
+    }
 }
 
 impl<'a> Queue<'a> {
@@ -103,38 +127,36 @@ impl<'a> Queue<'a> {
         Some(Job { pixel: self.pixel, x: self.x, y: self.y, sample })
     }
 
-    /// The next `n` samples (`n` a power of two) as a [`Run`], when they are a whole number of
-    /// pixels' samples laid out evenly: `n` samples of one pixel, or the `c` samples of each of
-    /// `n / c` pixels of one tile row in a uniform wave of `c` samples per pixel. Then the queue
-    /// is where `n` calls of [`Queue::pop`] would leave it, and lane `i` of the run is what the
-    /// `i`-th of those calls would give. Otherwise `None`, and the next `pop` gives what it would
-    /// have.
+    /// The next `n` samples as a [`Run`], when they lie in one row of the tile: `n` samples of
+    /// one pixel, or, in a uniform wave, the rest of this pixel's samples, then the samples of
+    /// the pixels to its right in the queue's order. Then the queue is where `n` calls of
+    /// [`Queue::pop`] would leave it, and lane `i` of the run is what the `i`-th of those calls
+    /// would give. Otherwise `None`, and the next `pop` gives what it would have.
     #[inline(always)]
     fn pop_run(&mut self, n: u32) -> Option<Run> {
-        debug_assert!(n.is_power_of_two());
         // The same moves past finished pixels as `pop` makes first.
         if !self.skip_finished() {
             return None;
         }
         let first = Job { pixel: self.pixel, x: self.x, y: self.y, sample: self.next };
-        let left = self.end - self.next;
-        if left >= n {
+        if self.end - self.next >= n {
             self.next += n;
-            return Some(Run { first, per_pixel: n });
+            return Some(Run { first, offset: 0, count: n });
         }
-        // Several pixels: each with all of the wave's samples still to take (so `left` is
-        // the wave's count), the count dividing `n` (a power of two, so the lanes' pixel is a
-        // shift away), and every pixel in this row of the tile.
-        let WaveSamples::Uniform { count, .. } = self.samples else { return None };
-        let span = n / left;
-        if left != count || !n.is_multiple_of(left) || self.x + span > self.tile.x0 + self.tile.w {
+        // Several pixels, all with this wave's `count` samples from `wave_first`, all in this
+        // row of the tile.
+        let WaveSamples::Uniform { first: wave_first, count } = self.samples else { return None };
+        let offset = self.next - wave_first;
+        let last = offset + n - 1;
+        let span = last / count;
+        if count > RUN_COUNT_LIMIT || self.x + span >= self.tile.x0 + self.tile.w {
             return None;
         }
-        // Onto the run's last pixel, its samples taken (`pop` moves on from there).
-        self.pixel += span - 1;
-        self.x += span - 1;
-        self.next = self.end;
-        Some(Run { first, per_pixel: left })
+        // Onto the run's last pixel, past the sample its last lane takes.
+        self.pixel += span;
+        self.x += span;
+        self.next = wave_first + last % count + 1;
+        Some(Run { first, offset, count })
     }
 }
 
@@ -178,18 +200,19 @@ pub(crate) fn render_tile_lanes<const N: usize>(
         let mut fresh = Ms::<N>::NONE;
         let mut pixel = [0u32; N];
         let mut at = [F32s::<N>::ZERO; 2];
-        // When every lane is free and the next N samples are one pixel's (waves of N or more
-        // samples per pixel) or whole pixels' of one tile row (uniform waves of fewer), the
-        // lanes are filled as whole vectors; otherwise lane by lane. Both give lane i the same
-        // sample.
+        // When every lane is free and the next N samples lie in one tile row (one pixel's, or
+        // consecutive pixels' in a uniform wave), the lanes are filled as whole vectors;
+        // otherwise lane by lane. Both give lane i the same sample. Runs across pixels whatever
+        // the wave's count: the waves of 15 and 7 samples per pixel that 16- and 8-spp renders
+        // take after their first sample started their lanes one by one (docs/benchmarks.md).
         let run = if paths.active.any() { None } else { queue.pop_run(N as u32) };
-        if let Some(Run { first, per_pixel }) = run {
-            let shift = per_pixel.trailing_zeros();
-            let step: [u32; N] = std::array::from_fn(|i| i as u32 >> shift);
-            samplers.begin_run(first.x, first.y, first.sample, per_pixel);
+        if let Some(run) = run {
+            let (step, sample) = run.lanes::<N>();
+            let Job { pixel: p, x, y, .. } = run.first;
+            samplers.begin_run(x, y, &step, &sample);
             fresh = Ms::ALL;
-            pixel = step.map(|k| first.pixel + k);
-            at = [F32s(step.map(|k| (first.x + k) as f32)), F32s::splat(first.y as f32)];
+            pixel = step.map(|k| p + k);
+            at = [F32s(step.map(|k| (x + k) as f32)), F32s::splat(y as f32)];
         } else {
             for i in (!paths.active).lanes() {
                 let Some(next) = queue.pop() else { break };
@@ -249,6 +272,8 @@ mod tests {
                 WaveSamples::Uniform { first: 5, count: 2 },
                 WaveSamples::Uniform { first: 0, count: 1 },
                 WaveSamples::Uniform { first: 1, count: 3 },
+                WaveSamples::Uniform { first: 1, count: 15 },
+                WaveSamples::Uniform { first: 1, count: 7 },
                 WaveSamples::PerPixel { width: 12, first: &firsts, count: &counts },
             ];
             for samples in waves {
@@ -258,9 +283,11 @@ mod tests {
                     let mut q = Queue::new(tile, samples);
                     let mut got = Vec::new();
                     loop {
-                        if let Some(Run { first: j, per_pixel: c }) = q.pop_run(n) {
-                            across_pixels += usize::from(c < n);
-                            got.extend((0..n).map(|k| (j.pixel + k / c, j.x + k / c, j.y, j.sample + k % c)));
+                        if let Some(run) = q.pop_run(n) {
+                            let (step, sample) = run.lanes::<16>();
+                            across_pixels += usize::from(step[n as usize - 1] > 0);
+                            let j = run.first;
+                            got.extend((0..n as usize).map(|i| (j.pixel + step[i], j.x + step[i], j.y, sample[i])));
                         } else if let Some(j) = q.pop() {
                             got.push(key(j));
                         } else {

@@ -107,32 +107,30 @@ impl<const N: usize> LaneSamplers<N> {
         }
     }
 
-    /// Begins, in lane `i`, sample `first + i % per_pixel` of pixel `(x + i / per_pixel, y)`
-    /// (`per_pixel` a power of two): the same lane states as [`LaneSamplers::begin`] lane by
-    /// lane. The independent sampler's lanes are made as whole vectors (a run of one pixel's
-    /// samples, or of a row's pixels in small uniform waves); begun lane by lane, their scalar
-    /// stores held up the vector code that draws the lanes' first numbers.
+    /// Begins, in lane `i`, sample `sample[i]` of pixel `(x + step[i], y)`, for steps that do
+    /// not decrease: the same lane states as [`LaneSamplers::begin`] lane by lane. The
+    /// independent sampler's lanes are made as whole vectors (a run of one pixel's samples, or
+    /// of a row's pixels); begun lane by lane, their scalar stores held up the vector code that
+    /// draws the lanes' first numbers.
     #[inline(always)]
-    pub fn begin_run(&mut self, x: u32, y: u32, first: u32, per_pixel: u32) {
-        let shift = per_pixel.trailing_zeros();
+    pub fn begin_run(&mut self, x: u32, y: u32, step: &[u32; N], sample: &[u32; N]) {
         if self.mode != Mode::Independent {
             for i in 0..N {
-                self.begin(i, x + (i as u32 >> shift), y, first + (i as u32 & (per_pixel - 1)));
+                self.begin(i, x + step[i], y, sample[i]);
             }
             return;
         }
-        if per_pixel as usize >= N {
+        if step[N - 1] == 0 {
             if self.started_pixel != (x, y) {
-                self.starter.start_hashes(x, y, first);
+                self.starter.start_hashes(x, y, sample[0]);
                 self.started_pixel = (x, y);
             }
             self.stream_prefix = [self.starter.stream_prefix(); N];
         } else {
             let seed = self.starter.seed();
-            self.stream_prefix =
-                std::array::from_fn(|i| pixel_stream_prefix(pixel_hash(seed, x + (i as u32 >> shift), y)));
+            self.stream_prefix = std::array::from_fn(|i| pixel_stream_prefix(pixel_hash(seed, x + step[i], y)));
         }
-        self.index = std::array::from_fn(|i| first + (i as u32 & (per_pixel - 1)));
+        self.index = *sample;
     }
 
     /// The first 2D point (the pixel filter's) of every lane of `fresh`, begun with
@@ -304,22 +302,29 @@ mod tests {
         for kind in [SamplerKind::Independent, SamplerKind::Sobol, SamplerKind::Stratified] {
             let proto = Sampler::new(kind, 5, 64);
             let (mut run, mut each) = (LaneSamplers::<N>::new(&proto), LaneSamplers::<N>::new(&proto));
+            // (x, y, the first lane's place in its pixel's samples, samples per pixel from 0)
             let runs = [
-                (3, 4, 0, 16),
-                (3, 4, 16, 16),
-                (7, 2, 48, 32),
+                (3, 4, 0, 64),
+                (3, 4, 16, 64),
+                (7, 2, 48, 64),
                 (0, 5, 0, 1),
-                (2, 5, 8, 4),
-                (2, 5, 12, 8),
-                (3, 4, 32, 16),
+                (2, 5, 0, 4),
+                (2, 5, 0, 8),
+                (3, 4, 32, 64),
+                (1, 1, 3, 15),
+                (1, 1, 14, 15),
+                (6, 3, 2, 3),
+                (3, 4, 50, 64),
             ];
-            for (x, y, first, per_pixel) in runs {
-                run.begin_run(x, y, first, per_pixel);
-                for i in 0..N as u32 {
-                    each.begin(i as usize, x + i / per_pixel, y, first + i % per_pixel);
+            for (x, y, offset, count) in runs {
+                let step: [u32; N] = std::array::from_fn(|i| (offset + i as u32) / count);
+                let sample: [u32; N] = std::array::from_fn(|i| (offset + i as u32) % count);
+                run.begin_run(x, y, &step, &sample);
+                for i in 0..N {
+                    each.begin(i, x + step[i], y, sample[i]);
                 }
                 let (a, b) = (run.camera_points(Ms::ALL, true), each.camera_points(Ms::ALL, true));
-                assert_eq!(a, b, "{kind} pixel ({x}, {y}) from {first}, {per_pixel} per pixel");
+                assert_eq!(a, b, "{kind} pixel ({x}, {y}) from {offset} of {count} per pixel");
                 assert_eq!(run.next_1d(Ms::ALL), each.next_1d(Ms::ALL), "{kind}");
             }
         }
