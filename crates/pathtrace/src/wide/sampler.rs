@@ -85,21 +85,17 @@ impl<const N: usize> LaneSamplers<N> {
     /// their first numbers together ([`LaneSamplers::camera_points`]).
     #[inline(always)]
     pub fn begin(&mut self, i: usize, x: u32, y: u32, index: u32) {
-        let s = &mut self.starter;
         if self.mode == Mode::Independent {
             // A lane of the independent sampler needs only its pixel's stream prefix and its
             // sample index (`camera_points` makes the generator from them): the starter runs
             // once per pixel, not once per sample (its per-sample bookkeeping, unused here, was
             // 5% of an empty frame's profile).
-            if self.started_pixel != (x, y) {
-                s.start_hashes(x, y, index);
-                self.started_pixel = (x, y);
-            }
-            self.stream_prefix[i] = s.stream_prefix();
+            self.stream_prefix[i] = self.pixel_prefix(x, y, index);
             self.index[i] = index;
         } else {
             // The pixel's hashes lane by lane (the starter caches them across a pixel's
             // samples); the generators of all new lanes at once in `camera_points`.
+            let s = &mut self.starter;
             s.start_hashes(x, y, index);
             (self.round_hash[i], self.index[i], self.dimension[i], _, _) = s.lane_state();
             self.index_in_round[i] = s.index_in_round();
@@ -121,16 +117,29 @@ impl<const N: usize> LaneSamplers<N> {
             return;
         }
         if step[N - 1] == 0 {
-            if self.started_pixel != (x, y) {
-                self.starter.start_hashes(x, y, sample[0]);
-                self.started_pixel = (x, y);
-            }
-            self.stream_prefix = [self.starter.stream_prefix(); N];
+            self.stream_prefix = [self.pixel_prefix(x, y, sample[0]); N];
+        } else if step[N - 1] == 1 {
+            // Two pixels: the first is the last run's last (cached), so one new pixel hash
+            // instead of one per lane.
+            let first = self.pixel_prefix(x, y, sample[0]);
+            let next = self.pixel_prefix(x + 1, y, sample[N - 1]);
+            self.stream_prefix = step.map(|k| if k == 0 { first } else { next });
         } else {
             let seed = self.starter.seed();
             self.stream_prefix = std::array::from_fn(|i| pixel_stream_prefix(pixel_hash(seed, x + step[i], y)));
         }
         self.index = *sample;
+    }
+
+    /// The independent sampler's stream prefix of pixel `(x, y)`, its hashes made only when
+    /// the starter last began another pixel.
+    #[inline(always)]
+    fn pixel_prefix(&mut self, x: u32, y: u32, index: u32) -> u64 {
+        if self.started_pixel != (x, y) {
+            self.starter.start_hashes(x, y, index);
+            self.started_pixel = (x, y);
+        }
+        self.starter.stream_prefix()
     }
 
     /// The first 2D point (the pixel filter's) of every lane of `fresh`, begun with
