@@ -92,6 +92,10 @@ int main(int argc, char **argv) {
     }
     fclose(f);
     int runs = atoi(argv[2]);
+    if (runs < 1) {
+        fprintf(stderr, "%s: RUNS must be a positive integer, got '%s'\n", argv[0], argv[2]);
+        return 2;
+    }
     RTCDevice device = rtcNewDevice("threads=1");
     const int qualities[2] = {RTC_BUILD_QUALITY_MEDIUM, RTC_BUILD_QUALITY_HIGH};
     const char *names[2] = {"medium", "high"};
