@@ -89,10 +89,10 @@ pub(crate) struct TileResult {
 /// on the thread.
 ///
 /// The same code runs compiled for the widest SIMD the CPU has, chosen at run time so the
-/// binary stays portable: groups of 16 lanes with AVX-512, of 8 with AVX2 (and in the portable
-/// build). Rust never fuses multiply-adds on its own, so every build computes the same values
+/// binary stays portable: groups of 32 lanes (two vectors) with AVX-512, of 8 with AVX2 (and in
+/// the portable build). Rust never fuses multiply-adds on its own, so every build computes the same values
 /// per sample, and the film sums them exactly, so every build gives the same image (to check it,
-/// `Kernel::Wide8` forces groups of 8 where AVX-512 would give 16). Setting `PATHTRACE_NO_AVX512` or `PATHTRACE_NO_AVX2` forces the narrower
+/// `Kernel::Wide8` forces groups of 8 where AVX-512 would give 32). Setting `PATHTRACE_NO_AVX512` or `PATHTRACE_NO_AVX2` forces the narrower
 /// builds, to measure them (docs/benchmarks.md).
 ///
 /// Builds with debug assertions (the dev and test profiles) compile only the portable copy. Each
@@ -148,8 +148,17 @@ fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: W
 #[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
 #[target_feature(enable = "avx2,avx512f,avx512vl,avx512dq,avx512bw,popcnt,bmi1,bmi2,lzcnt")]
 fn render_tile_avx512(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
-    render_tile_body::<LANES_512>(job, sampler, tile, samples)
+    render_tile_body::<AVX512_GROUP>(job, sampler, tile, samples)
 }
+
+/// Lanes per group in the AVX-512 kernel: two 16-lane vectors. A group's control (the walk's
+/// per-node loop and stack, the lane loops of the hit records and samplers, the refill) is paid
+/// once for twice the paths, and the camera rays of a pixel's samples share more node visits.
+/// Measured against 16-lane groups on two threads (docs/benchmarks.md, "Groups of 32 lanes with
+/// AVX-512"): mesh-1m 0.967, bunny 0.935, copper 0.957, cornell-box-bitterli 0.963, teapot
+/// 0.978, veach-mis 0.976, cbox 1.009 the time; films byte-identical.
+#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
+const AVX512_GROUP: usize = 2 * LANES_512;
 
 /// `N`: lanes per group (the one-lane instance when the job asks for it).
 #[inline(always)]

@@ -41,9 +41,9 @@ pub enum Kernel {
     Auto,
     /// One path at a time: the one-lane instance of the same estimator, for debugging and tests.
     Scalar,
-    /// Groups of 8 (16) paths, as `auto`.
+    /// Groups of 8 (32 with AVX-512) paths, as `auto`.
     Wide,
-    /// Groups of 8 paths even where AVX-512 offers 16: to check that 8- and 16-lane machines
+    /// Groups of 8 paths even where AVX-512 offers 32: to check that 8- and 32-lane machines
     /// give the same film (docs/distributed.md), and to measure the narrower build.
     Wide8,
 }

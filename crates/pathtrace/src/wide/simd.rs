@@ -269,7 +269,7 @@ impl<const N: usize> Ms<N> {
     #[inline(always)]
     pub fn bitmask(self) -> u32 {
         #[cfg(target_arch = "x86_64")]
-        if N == LANES_512 || N == LANES_256 {
+        if N == 2 * LANES_512 || N == LANES_512 || N == LANES_256 {
             if std::arch::is_x86_feature_detected!("avx") {
                 // SAFETY: the CPU was just checked to have AVX.
                 #[allow(unsafe_code)]
@@ -300,7 +300,7 @@ fn bitmask_out_of_line<const N: usize>(lanes: &[u32; N]) -> u32 {
     bitmask_loop(lanes)
 }
 
-/// The sign bits of the lanes, 8 at a time (`vmovmskps`), for 8 or 16 lanes (chunks that cover
+/// The sign bits of the lanes, 8 at a time (`vmovmskps`), for 8, 16 or 32 lanes (chunks that cover
 /// the lanes, shifts within 32 bits).
 #[cfg(target_arch = "x86_64")]
 #[allow(unsafe_code)]
@@ -481,8 +481,8 @@ mod tests {
         assert_eq!(F32s::<N>::from_fn(|i| if i == 2 { f32::INFINITY } else { 1.0 }).is_finite().bitmask(), 0b1111_1011);
     }
 
-    /// Every lane count's bitmask (the instructions at 8 and 16 lanes, the loop otherwise) is the
-    /// loop's, for every pattern of 8 lanes and random ones of 16.
+    /// Every lane count's bitmask (the instructions at 8, 16 and 32 lanes, the loop otherwise) is the
+    /// loop's, for every pattern of 8 lanes and random ones of 16 and 32.
     #[test]
     fn bitmasks_of_every_width_agree_with_the_loop() {
         fn check<const W: usize>(bits: u32) {
@@ -505,5 +505,9 @@ mod tests {
         }
         check::<LANES_512>(0xffff);
         check::<LANES_512>(0);
+        // The AVX-512 kernel's groups of two vectors.
+        check::<{ 2 * LANES_512 }>(x);
+        check::<{ 2 * LANES_512 }>(u32::MAX);
+        check::<{ 2 * LANES_512 }>(0);
     }
 }
