@@ -125,6 +125,8 @@ pub struct Scene {
     camera_medium: u32,
     /// The scene has media or `null` surfaces: the estimator's media route is needed.
     volumetric: bool,
+    /// Some material is `null` (an index-matched boundary that rays cross).
+    null_surfaces: bool,
 }
 
 impl Scene {
@@ -253,6 +255,13 @@ impl Scene {
     #[inline(always)]
     pub fn is_volumetric(&self) -> bool {
         self.volumetric
+    }
+
+    /// True if some material is `null`: rays cross such surfaces, so a shadow ray's first hit
+    /// does not settle whether light gets through.
+    #[inline(always)]
+    pub fn has_null_surfaces(&self) -> bool {
+        self.null_surfaces
     }
 
     /// The medium `id` (a lane's current medium, never [`MediumId::NONE`]).
@@ -995,7 +1004,8 @@ impl SceneBuilder {
         } else {
             boundaries.clear();
         }
-        let volumetric = !self.media.is_empty() || self.materials.iter().any(|(m, _)| m.is_null());
+        let null_surfaces = self.materials.iter().any(|(m, _)| m.is_null());
+        let volumetric = !self.media.is_empty() || null_surfaces;
         Ok(Scene {
             prims,
             unbounded,
@@ -1013,6 +1023,7 @@ impl SceneBuilder {
             boundaries,
             camera_medium: self.camera_medium.map_or(MediumId::NONE, |m| m.0),
             volumetric,
+            null_surfaces,
         })
     }
 }

@@ -187,9 +187,7 @@ pub(super) fn shadow_transmittance(scene: &Scene, origin: Vec3, dir: Vec3, t_max
         let ray = Ray::new(origin, dir);
         let hit = scene.intersect(&ray, remaining);
         let segment = hit.map_or(remaining, |h| h.hit.t);
-        if medium != MediumId::NONE {
-            tr *= scene.medium(medium).transmittance(segment);
-        }
+        tr *= segment_transmittance(scene, medium, segment);
         let Some(hit) = hit else { return tr };
         let it = scene.interaction(&ray, &hit);
         if !it.material.is_null() || tr.is_black() {
@@ -207,6 +205,18 @@ pub(super) fn shadow_transmittance(scene: &Scene, origin: Vec3, dir: Vec3, t_max
         }
     }
     Rgb::BLACK
+}
+
+/// The transmittance of a segment of length `t` inside `medium` ([`MediumId::NONE`]: vacuum, 1).
+/// With no `null` surfaces in the scene, this is a shadow ray's whole transmittance once it is
+/// known to be unoccluded: it crosses no surface, so it stays in the medium it starts in.
+#[inline(always)]
+pub(super) fn segment_transmittance(scene: &Scene, medium: u32, t: f32) -> Rgb {
+    if medium == MediumId::NONE {
+        Rgb::splat(1.0)
+    } else {
+        scene.medium(medium).transmittance(t)
+    }
 }
 
 /// The medium a ray leaving lane `i`'s vertex along `dir` starts in: the boundary's side at a
