@@ -103,13 +103,17 @@ const STACK_SIZE: usize = 3 * 64 + 1;
 /// stamped each single-ray walk three times into the render loop.
 type WalkStack<T> = ArrayVec<T, STACK_SIZE>;
 /// A node that fewer rays of a group reach is traversed ray by ray (see
-/// [`Bvh::intersect_lanes`]).
-const SINGLE_RAY_BELOW: u32 = 3;
+/// [`Bvh::intersect_lanes`]). A group visit tests every lane of the group (32 with AVX-512), so
+/// with few rays left a single-ray walk is cheaper: 6 against 3 took 0.947 of mesh-1m's time,
+/// 0.975 of the bunny's and 0.969 of copper's, within 1% elsewhere (docs/benchmarks.md,
+/// "The switch to single rays at 6"); 9 and 12 gained nothing more.
+const SINGLE_RAY_BELOW: u32 = 6;
 /// A leaf reached by at least this many rays of a group tests each of its primitives against
 /// those rays at once (lanes = rays); fewer rays test it one at a time (lanes = primitives). A
 /// ray-lane test costs one primitive's test in every lane, a single-ray test four primitives'
-/// for one ray, so they break even near four rays.
-const RAY_LANES_FROM: u32 = 4;
+/// for one ray; measured, 6 was 1–2% faster than 4 on mesh-1m, bunny and copper, and 8 the
+/// same as 6.
+const RAY_LANES_FROM: u32 = 6;
 
 impl Bvh {
     /// Builds over the given primitive bounds with the production options (binned SAH, on
