@@ -74,7 +74,7 @@ fn random_split(rng: &mut Lcg, parts: u32) -> Vec<SampleRange> {
     cuts.windows(2).map(|w| SampleRange::new(w[0], w[1])).collect()
 }
 
-/// Whether AVX-512 runs here (then `Kernel::Wide` is 16 lanes and `Wide8` is 8). Builds with
+/// Whether AVX-512 runs here (then `Kernel::Wide` runs groups of 32 lanes and `Wide8` of 8). Builds with
 /// debug assertions, as this test's, compile only the portable 8-lane loop (`render/tile.rs`).
 fn has_avx512() -> bool {
     if cfg!(debug_assertions) {

@@ -35,7 +35,7 @@ use crate::scene::Scene;
 /// How many paths the estimator traces at once.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Kernel {
-    /// Groups of 8 paths in SIMD lanes (16 with AVX-512): the default. `auto` and `wide` are
+    /// Groups of 8 paths in SIMD lanes (32 with AVX-512): the default. `auto` and `wide` are
     /// the same since every scene runs in lanes; both names are kept for scripts.
     #[default]
     Auto,
