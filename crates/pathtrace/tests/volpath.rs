@@ -14,7 +14,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use pathtrace::integrator::Strategy;
-use pathtrace::light::{DirectionalLight, EnvironmentLight};
+use pathtrace::light::{DirectionalLight, EnvironmentLight, PointLight};
 use pathtrace::material::{Dielectric, Lambertian, Material};
 use pathtrace::math::{Rgb, Transform, Vec3};
 use pathtrace::medium::{HomogeneousMedium, MediumId, PhaseFunction};
@@ -160,6 +160,44 @@ fn shadow_rays_through_a_null_bounded_slab_carry_its_transmittance() {
     for c in 0..3 {
         let rel = est.mean[c] / expected[c] - 1.0;
         assert!(rel.abs() < 0.01, "channel {c}: {} vs (ρ/π)·E·exp(−2σt·d) = {}", est.mean[c], expected[c]);
+    }
+}
+
+/// With media but no `null` surface, shadow rays take the group occlusion walk and carry the
+/// transmittance of the medium they start in (`path.rs::add_transmitted_light`): a camera inside
+/// an absorbing medium that fills space sees a floor lit by a point light straight above, through
+/// the medium on the way down and on the way up.
+#[test]
+fn shadow_rays_inside_a_medium_without_boundaries_carry_its_transmittance() {
+    let sigma_t = Rgb::new(0.2, 0.5, 0.9);
+    let (rho, light_height, camera_height) = (0.6f32, 1.5f32, 1.0f32);
+    let mut b = SceneBuilder::new();
+    let m = b.medium(HomogeneousMedium::from_extinction(sigma_t, Rgb::BLACK, 1.0, PhaseFunction::Isotropic)).unwrap();
+    let grey = b.material(Material::Lambertian(Lambertian { albedo: Rgb::splat(rho) }));
+    let quad = Quad::new(Vec3::new(-40.0, -40.0, 0.0), Vec3::new(80.0, 0.0, 0.0), Vec3::new(0.0, 80.0, 0.0));
+    b.shape(Shape::Quad(quad.unwrap()), grey, &Transform::IDENTITY).unwrap();
+    b.point_light(PointLight { position: Vec3::new(0.0, 0.0, light_height), intensity: SKY }).unwrap();
+    b.camera(CameraDesc {
+        look_from: Vec3::new(0.0, 0.0, camera_height),
+        look_at: Vec3::ZERO,
+        up: Vec3::Y,
+        vfov_degrees: 40.0,
+        focal_length: 1.0,
+        // A view 0.01 across: every pixel sees the floor straight below the light.
+        lens: Lens::Orthographic { height: 0.01 },
+    });
+    b.camera_medium(Some(m)).unwrap();
+    let out = render(Arc::new(b.build().unwrap()), settings(8, 1024, Strategy::Mis)).unwrap();
+    let est = out.film.region_estimate(0, 0, 8, 8);
+    // (ρ/π)·I/h²·exp(−σt·h) from the light, times exp(−σt·c) on the way to the camera.
+    let expected: [f64; 3] = std::array::from_fn(|c| {
+        let s = f64::from(sigma_t.to_array()[c]);
+        let (h, cam) = (f64::from(light_height), f64::from(camera_height));
+        f64::from(rho) / std::f64::consts::PI * f64::from(SKY.to_array()[c]) / (h * h) * (-s * (h + cam)).exp()
+    });
+    for c in 0..3 {
+        let rel = est.mean[c] / expected[c] - 1.0;
+        assert!(rel.abs() < 0.02, "channel {c}: {} vs (ρ/π)·I/h²·exp(−σt·(h + c)) = {}", est.mean[c], expected[c]);
     }
 }
 
