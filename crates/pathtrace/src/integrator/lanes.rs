@@ -27,8 +27,8 @@ pub(crate) struct Paths<const N: usize> {
     /// The direction came from a Dirac lobe or the camera: emission found counts in full.
     pub prev_specular: Ms<N>,
     /// Where in its pixel each lane's camera sample is (`[0, 1)²` from the corner), for
-    /// splatting filters (`film/splat.rs`).
-    pub jitter: [Vec2; N],
+    /// splatting filters (`film/splat.rs`): x and y.
+    pub jitter: [F32s<N>; 2],
     /// Path segments so far (Mitsuba's depth convention).
     pub segments: [u32; N],
     /// The medium each lane's ray travels in (`MediumId::NONE`: vacuum; always so in scenes
@@ -39,8 +39,8 @@ pub(crate) struct Paths<const N: usize> {
     pub hero: [u8; N],
     /// Per channel, the density of the path's medium events had that channel been followed,
     /// relative to the followed one's (pbrt-v4's r_u); `beta` already holds the throughput
-    /// divided by their average (`integrator::media`).
-    pub channel_density: [Rgb; N],
+    /// divided by their average (`integrator::media`). Per channel, over the lanes.
+    pub channel_density: [F32s<N>; 3],
     /// The pixel (index in the tile) each lane's sample belongs to.
     pub pixel: [u32; N],
     /// Lanes whose feature sample still waits for its first non-specular hit (never set when
@@ -98,11 +98,11 @@ impl<const N: usize> Paths<N> {
             prev_p: Vec3s::default(),
             prev_pdf: F32s::default(),
             prev_specular: Ms::default(),
-            jitter: [Vec2::ZERO; N],
+            jitter: [F32s::ZERO; 2],
             segments: [0; N],
             medium: [MediumId::NONE; N],
             hero: [Self::NO_CHANNEL; N],
-            channel_density: [Rgb::splat(1.0); N],
+            channel_density: [F32s::ONE; 3],
             pixel: [0; N],
             feature_pending: Ms::default(),
             feature: [FeatureSample::default(); N],
@@ -112,8 +112,10 @@ impl<const N: usize> Paths<N> {
 
     /// Starts camera paths in the lanes of `fresh`: lane `i` for tile pixel `pixel[i]`, its ray
     /// from `origin` along `dir` in `medium`, at `jitter` in its pixel; `features`: the paths
-    /// record feature samples. The SIMD fields are set for the whole group at once (lane by lane,
-    /// the twenty-odd stores per lane were 10% of the teapot's render).
+    /// record feature samples. The fields are set for the whole group at once, as SIMD blends
+    /// (lane by lane, the twenty-odd stores per lane were 10% of the teapot's render; the last
+    /// few, the jitter and the media fields, were still 7% of the instructions of a frame of
+    /// camera rays that miss everything).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub fn start(
@@ -137,7 +139,13 @@ impl<const N: usize> Paths<N> {
         self.prev_p = Vec3s::select(fresh, origin, &self.prev_p);
         self.prev_pdf = F32s::select(fresh, F32s::ZERO, self.prev_pdf);
         self.prev_specular = self.prev_specular | fresh;
-        // One index walks four arrays (the mask and three fields) in step.
+        for (old, new) in self.jitter.iter_mut().zip(jitter) {
+            *old = F32s::select(fresh, *new, *old);
+        }
+        for c in 0..3 {
+            self.channel_density[c] = F32s::select(fresh, F32s::ONE, self.channel_density[c]);
+        }
+        // One index walks five arrays (the mask and four fields) in step.
         #[allow(clippy::needless_range_loop)]
         for i in 0..N {
             // Blended through the lane mask (all bits set or clear), so these compile to SIMD
@@ -146,12 +154,10 @@ impl<const N: usize> Paths<N> {
             self.segments[i] = (1 & new) | (self.segments[i] & !new);
             self.medium[i] = (medium & new) | (self.medium[i] & !new);
             self.pixel[i] = (pixel[i] & new) | (self.pixel[i] & !new);
+            self.hero[i] = (Self::NO_CHANNEL & new as u8) | (self.hero[i] & !new as u8);
         }
-        for i in fresh.lanes() {
-            self.jitter[i] = Vec2::new(jitter[0].0[i], jitter[1].0[i]);
-            self.hero[i] = Self::NO_CHANNEL;
-            self.channel_density[i] = Rgb::splat(1.0);
-            if features {
+        if features {
+            for i in fresh.lanes() {
                 self.feature_pending.0[i] = u32::MAX;
                 self.feature[i] = FeatureSample::default();
                 self.feature_tint[i] = Rgb::splat(1.0);
@@ -186,7 +192,7 @@ impl<const N: usize> Paths<N> {
                 features[self.pixel[i] as usize].add(&self.feature[i], 1.0);
             }
             if let Some(splat) = &mut out.splat {
-                splat.add(self.pixel[i], self.jitter[i], l);
+                splat.add(self.pixel[i], Vec2::new(self.jitter[0].0[i], self.jitter[1].0[i]), l);
             }
         } else {
             out.dropped += 1;

@@ -65,7 +65,15 @@ pub(super) fn travel<const N: usize>(
                 }
                 let hero = paths.hero[i] as usize;
                 let flight = scene.medium(paths.medium[i]).sample_distance_in(t_hit, hero, u_distance.0[i]);
-                let w = path_weight(&mut paths.channel_density[i], flight.throughput, flight.density, hero);
+                let mut r = Rgb::new(
+                    paths.channel_density[0].0[i],
+                    paths.channel_density[1].0[i],
+                    paths.channel_density[2].0[i],
+                );
+                let w = path_weight(&mut r, flight.throughput, flight.density, hero);
+                for (density, r) in paths.channel_density.iter_mut().zip(r.to_array()) {
+                    density.0[i] = r;
+                }
                 for (beta, w) in paths.beta.iter_mut().zip(w) {
                     beta.0[i] *= w;
                 }
