@@ -13,6 +13,7 @@ use super::environment::EnvironmentLight;
 use super::kind::Light;
 use crate::math::{Rgb, Vec2, Vec3};
 use crate::sampling::Distribution1D;
+use crate::wide::simd::{F32s, Ms};
 
 /// A light sample as the integrator sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -248,11 +249,12 @@ impl LightSet {
         self.selection.as_ref().map_or(0.0, |d| d.pmf(id as usize))
     }
 
-    /// Picks a light index for next-event estimation (as [`LightSet::sample`] does) and its
-    /// probability; `None` when no light has power.
+    /// Picks a light index for next-event estimation for each lane of `active` (as
+    /// [`LightSet::sample`] does for one point), with its probability; `None` when no light
+    /// has power.
     #[inline(always)]
-    pub fn pick(&self, u_select: f32) -> Option<(usize, f32)> {
-        self.selection.as_ref().map(|d| d.sample(u_select))
+    pub fn pick_lanes<const N: usize>(&self, u_select: &F32s<N>, active: Ms<N>) -> Option<([u32; N], F32s<N>)> {
+        self.selection.as_ref().map(|d| d.sample_lanes(u_select, active))
     }
 
     /// Picks a light (any kind) and a point on it: next-event estimation.

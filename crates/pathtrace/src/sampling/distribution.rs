@@ -2,7 +2,8 @@
 //! light by power, and a row or column of an environment map), sampled by inverting its
 //! cumulative distribution through a guide table (expected O(1) steps; see guide.rs).
 
-use super::guide::CdfGuide;
+use super::guide::{CdfGuide, SCAN_ITEMS};
+use crate::wide::simd::{F32s, Ms};
 
 /// Piecewise-constant discrete distribution.
 #[derive(Clone, Debug, Default)]
@@ -76,6 +77,37 @@ impl Distribution1D {
         (i, self.pmf(i))
     }
 
+    /// [`Distribution1D::sample`] for each lane of `active` (the other lanes' items are
+    /// meaningless): the items as indices, and their probabilities.
+    ///
+    /// A few items (a scene's lights, searched by a plain scan): in SIMD, counting per lane the
+    /// items before the last whose cdf is at most `u`. The cdf does not decrease, so those are
+    /// exactly the items the scan steps over, and the count is its answer; the probability is
+    /// then [`Distribution1D::pmf`] of the counted item, selected. Picked lane by lane, a
+    /// teapot lit by two point lights spent 4.5% of its render in the per-lane search.
+    #[inline(always)]
+    pub fn sample_lanes<const N: usize>(&self, u: &F32s<N>, active: Ms<N>) -> ([u32; N], F32s<N>) {
+        let n = self.cdf.len();
+        if n <= SCAN_ITEMS {
+            let mut count = F32s::<N>::ZERO;
+            for &c in &self.cdf[..n.saturating_sub(1)] {
+                count = count + F32s::select(F32s::splat(c).le(*u), F32s::ONE, F32s::ZERO);
+            }
+            let mut pmf = F32s::splat(self.pmf(0));
+            for i in 1..n {
+                pmf = F32s::select(count.eq(F32s::splat(i as f32)), F32s::splat(self.pmf(i)), pmf);
+            }
+            return (count.0.map(|c| c as u32), pmf);
+        }
+        let mut items = [0; N];
+        let mut pmf = F32s::ZERO;
+        for i in active.lanes() {
+            let (item, p) = self.sample(u.0[i]);
+            (items[i], pmf.0[i]) = (item as u32, p);
+        }
+        (items, pmf)
+    }
+
     /// Like [`Distribution1D::sample`], also returning `u` rescaled to `[0,1)` within the picked
     /// item's cdf interval, so one random number can place a continuous sample inside the bin
     /// (pbrt-v4 §A.4.2 `PiecewiseConstant1D::Sample`).
@@ -110,6 +142,31 @@ const ONE_BELOW: f32 = 1.0 - f32::EPSILON / 2.0;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The lanes' picks are `sample`'s, bit for bit, for few items (the SIMD count) and many
+    /// (the search lane by lane), at the cdf's own values, just beside them, and at 0 and
+    /// just below 1; zero-weight items are skipped the same way.
+    #[test]
+    fn lanes_pick_what_sample_picks() {
+        const N: usize = 8;
+        for n in 1..=12usize {
+            let weights: Vec<f32> = (0..n).map(|i| if i % 3 == 1 { 0.0 } else { 1.0 + (i * 7 % 5) as f32 }).collect();
+            let Some(d) = Distribution1D::new(&weights) else { continue };
+            let mut us = vec![0.0, ONE_BELOW, 0.5];
+            for &c in &d.cdf {
+                us.extend([c, f32::from_bits(c.to_bits() - 1), f32::from_bits(c.to_bits() + 1)]);
+            }
+            us.extend((0..64).map(|k| k as f32 / 64.0));
+            for chunk in us.chunks(N) {
+                let u = F32s::<N>::from_fn(|i| chunk.get(i).copied().unwrap_or(0.25).min(ONE_BELOW));
+                let (items, pmf) = d.sample_lanes(&u, Ms::ALL);
+                for ((&lane_item, &lane_pmf), &u) in items.iter().zip(&pmf.0).zip(&u.0) {
+                    let (item, p) = d.sample(u);
+                    assert_eq!((lane_item as usize, lane_pmf.to_bits()), (item, p.to_bits()), "{n} items, u = {u}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn sampling_follows_the_weights() {

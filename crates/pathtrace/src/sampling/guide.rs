@@ -21,7 +21,7 @@ const ITEMS_PER_BUCKET: usize = 4;
 
 /// Up to this many items a plain scan is as quick as the table (a scene's few lights, where
 /// a single light needs no search at all), and no table is kept.
-const SCAN_ITEMS: usize = 8;
+pub(super) const SCAN_ITEMS: usize = 8;
 
 /// A cdf's number type: `f32` (distributions over images and lights) or `f64` (the pixel
 /// filter's table).

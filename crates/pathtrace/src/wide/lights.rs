@@ -2,59 +2,60 @@
 //! triangle, disk and sphere area lights (a radiance texture is looked up per lane at the
 //! sampled point), point, spot and directional lights, and the environment.
 //!
-//! Each lane picks its light with the scene's own selection distribution ([`LightSet::pick`]),
-//! then the point on it, the direction and the density are computed for all lanes together by
+//! Each lane picks its light with the scene's own selection distribution
+//! ([`LightSet::pick_lanes`]) and the lanes' lights are gathered per kind (`light_picks.rs`:
+//! in scenes of a few lights, the lanes that drew one light together); then the point on it,
+//! the direction and the density are computed for all lanes together by
 //! `light::area::sample_flat_lanes`, `sample_disk_lanes`, `sample_sphere_lanes`,
 //! `PointLight::sample_lanes`, `SpotLanes::sample` and `EnvironmentLight::sample_lanes`: the
 //! formulas the scalar light set runs in one lane.
 
+use super::light_picks::{Lane, Masked, Picks, GROUPED_LIGHTS};
 use super::simd::{F32s, Ms, Vec3s};
-use crate::light::area::{
-    sample_disk_lanes, sample_flat_lanes, sample_sphere_lanes, DiskLights, FlatLights, FlatSamples, SphereLights,
-};
-use crate::light::{EnvironmentLight, Light, LightSet, LightShape, PointLight, SpotLanes, SpotLight};
+use crate::light::area::{sample_disk_lanes, sample_flat_lanes, sample_sphere_lanes, FlatSamples};
+use crate::light::{EnvironmentLight, Light, LightSet, LightShape, PointLight, SpotLight};
 use crate::math::{Rgb, Vec3};
 
 /// One flat light: `origin + s·e1 + t·e2`.
 #[derive(Clone, Copy, Debug)]
-struct FlatLight {
-    origin: Vec3,
-    e1: Vec3,
-    e2: Vec3,
-    triangle: bool,
-    normal: Vec3,
-    area: f32,
-    radiance: Rgb,
-    two_sided: bool,
+pub(super) struct FlatLight {
+    pub(super) origin: Vec3,
+    pub(super) e1: Vec3,
+    pub(super) e2: Vec3,
+    pub(super) triangle: bool,
+    pub(super) normal: Vec3,
+    pub(super) area: f32,
+    pub(super) radiance: Rgb,
+    pub(super) two_sided: bool,
     /// Its index in the light set when a texture scales its radiance.
-    textured: Option<usize>,
+    pub(super) textured: Option<usize>,
 }
 
 /// One disk light: `center + a·u + b·v` over the unit disk.
 #[derive(Clone, Copy, Debug)]
-struct DiskLight {
-    center: Vec3,
-    u: Vec3,
-    v: Vec3,
-    normal: Vec3,
-    area: f32,
-    radiance: Rgb,
-    two_sided: bool,
+pub(super) struct DiskLight {
+    pub(super) center: Vec3,
+    pub(super) u: Vec3,
+    pub(super) v: Vec3,
+    pub(super) normal: Vec3,
+    pub(super) area: f32,
+    pub(super) radiance: Rgb,
+    pub(super) two_sided: bool,
 }
 
 /// One sphere light.
 #[derive(Clone, Copy, Debug)]
-struct SphereLight {
-    center: Vec3,
-    radius: f32,
-    inward: bool,
-    radiance: Rgb,
-    two_sided: bool,
+pub(super) struct SphereLight {
+    pub(super) center: Vec3,
+    pub(super) radius: f32,
+    pub(super) inward: bool,
+    pub(super) radiance: Rgb,
+    pub(super) two_sided: bool,
 }
 
 /// A light as the lanes sample it.
 #[derive(Clone, Copy, Debug)]
-enum WideLight {
+pub(super) enum WideLight {
     Flat(FlatLight),
     Disk(DiskLight),
     Sphere(SphereLight),
@@ -198,116 +199,47 @@ impl WideLights {
         u1: F32s<N>,
         u2: F32s<N>,
     ) -> LightSamples<N> {
-        // Gather each lane's light (scalar: one table lookup per lane).
-        let mut f = FlatLights {
-            origin: Vec3s::default(),
-            e1: Vec3s::default(),
-            e2: Vec3s::default(),
-            normal: Vec3s::default(),
-            triangle: Ms::NONE,
-        };
-        // The other kinds' lanes are set up when a lane first picks such a light: a group
-        // pays for the kinds it drew, not for every kind (zeroing them all for every group was
-        // 1.7% of the Cornell box's instructions).
-        let mut textured: Option<[usize; N]> = None;
-        let mut on_textured = Ms::<N>::NONE;
-        let mut disks: Option<DiskLights<N>> = None;
-        let mut on_disk = Ms::<N>::NONE;
-        let mut spheres: Option<SphereLights<N>> = None;
-        let mut on_sphere = Ms::<N>::NONE;
-        let mut on_environment = Ms::<N>::NONE;
-        let mut points: Option<(Vec3s<N>, [F32s<N>; 3])> = None;
-        let mut on_point = Ms::<N>::NONE;
-        let mut spots: Option<SpotLanes<N>> = None;
-        let mut on_spot = Ms::<N>::NONE;
-        let mut directional_wi: Option<Vec3s<N>> = None;
-        let mut on_directional = Ms::<N>::NONE;
-        // The selection pmf, divided by the area for flat lights (whose density is per area).
-        let mut pmf_factor = F32s::<N>::ZERO;
-        let mut radiance = [F32s::<N>::ZERO; 3];
-        let mut two_sided = Ms::<N>::NONE;
-        let mut picked = Ms::<N>::NONE;
-        for i in active.lanes() {
-            let Some((id, pmf)) = set.pick(u_select.0[i]) else { continue };
-            let Some(light) = self.lights.get(id) else { continue };
-            let (emitted, both_faces) = match light {
-                WideLight::Flat(l) => {
-                    f.origin.set(i, l.origin);
-                    f.e1.set(i, l.e1);
-                    f.e2.set(i, l.e2);
-                    f.normal.set(i, l.normal);
-                    f.triangle.0[i] = if l.triangle { u32::MAX } else { 0 };
-                    if let Some(id) = l.textured {
-                        textured.get_or_insert([usize::MAX; N])[i] = id;
-                        on_textured.0[i] = u32::MAX;
+        let mut picks = Picks::none();
+        if let Some((ids, pmf)) = set.pick_lanes(u_select, active) {
+            if self.lights.len() <= GROUPED_LIGHTS {
+                // Lanes that drew the same light take it together.
+                let mut left = active.bitmask();
+                while left != 0 {
+                    let id = ids[left.trailing_zeros() as usize];
+                    let on = active & Ms::from_fn(|j| ids[j] == id);
+                    left &= !on.bitmask();
+                    if let Some(light) = self.lights.get(id as usize) {
+                        picks.take(Masked(on), light, &pmf);
                     }
-                    pmf_factor.0[i] = pmf / l.area;
-                    (l.radiance, l.two_sided)
                 }
-                WideLight::Disk(l) => {
-                    let disks = disks.get_or_insert_with(|| DiskLights {
-                        center: Vec3s::default(),
-                        u: Vec3s::default(),
-                        v: Vec3s::default(),
-                        normal: Vec3s::default(),
-                        area: F32s::ONE,
-                    });
-                    disks.center.set(i, l.center);
-                    disks.u.set(i, l.u);
-                    disks.v.set(i, l.v);
-                    disks.normal.set(i, l.normal);
-                    disks.area.0[i] = l.area;
-                    on_disk.0[i] = u32::MAX;
-                    pmf_factor.0[i] = pmf;
-                    (l.radiance, l.two_sided)
+            } else {
+                for i in active.lanes() {
+                    if let Some(light) = self.lights.get(ids[i] as usize) {
+                        picks.take(Lane(i), light, &pmf);
+                    }
                 }
-                WideLight::Sphere(l) => {
-                    let spheres = spheres.get_or_insert_with(|| SphereLights {
-                        center: Vec3s::default(),
-                        radius: F32s::ZERO,
-                        inward: Ms::NONE,
-                    });
-                    spheres.center.set(i, l.center);
-                    spheres.radius.0[i] = l.radius;
-                    spheres.inward.0[i] = u32::from(l.inward).wrapping_neg();
-                    on_sphere.0[i] = u32::MAX;
-                    pmf_factor.0[i] = pmf;
-                    (l.radiance, l.two_sided)
-                }
-                // Its radiance depends on the direction (below); it faces every point.
-                WideLight::Environment => {
-                    on_environment.0[i] = u32::MAX;
-                    pmf_factor.0[i] = pmf;
-                    (Rgb::BLACK, true)
-                }
-                // I/r², below; a point has no facing.
-                WideLight::Point(l) => {
-                    on_point.0[i] = u32::MAX;
-                    let (point_position, intensity) = points.get_or_insert_with(|| (Vec3s::default(), [F32s::ZERO; 3]));
-                    point_position.set(i, l.position);
-                    [intensity[0].0[i], intensity[1].0[i], intensity[2].0[i]] = l.intensity.to_array();
-                    pmf_factor.0[i] = pmf;
-                    (Rgb::BLACK, true)
-                }
-                // I·falloff/r², below.
-                WideLight::Spot(l) => {
-                    on_spot.0[i] = u32::MAX;
-                    spots.get_or_insert_with(|| l.lanes()).set(i, l);
-                    pmf_factor.0[i] = pmf;
-                    (Rgb::BLACK, true)
-                }
-                // The same direction and irradiance from every point.
-                WideLight::Directional { wi, irradiance } => {
-                    on_directional.0[i] = u32::MAX;
-                    directional_wi.get_or_insert_with(Vec3s::default).set(i, *wi);
-                    pmf_factor.0[i] = pmf;
-                    (*irradiance, true)
-                }
-            };
-            [radiance[0].0[i], radiance[1].0[i], radiance[2].0[i]] = emitted.to_array();
-            two_sided.0[i] = if both_faces { u32::MAX } else { 0 };
-            picked.0[i] = u32::MAX;
+            }
         }
+        let Picks {
+            flat: f,
+            textured,
+            on_textured,
+            disks,
+            on_disk,
+            spheres,
+            on_sphere,
+            on_environment,
+            points,
+            on_point,
+            spots,
+            on_spot,
+            directional_wi,
+            on_directional,
+            pmf_factor,
+            radiance,
+            two_sided,
+            picked,
+        } = picks;
         let mut d = Drawn {
             point: Vec3s::default(),
             wi: Vec3s::default(),
@@ -438,7 +370,7 @@ mod tests {
     use std::sync::Arc;
 
     /// One light of every kind, and one-sided ones seen from both sides.
-    fn every_kind() -> LightSet {
+    fn every_kind() -> Vec<Light> {
         let lamp = |r: f32, two_sided: bool| Emission { radiance: Rgb::new(r, 0.5 * r, 0.2 * r), two_sided };
         let quad = Quad::new(Vec3::new(-0.5, 1.0, -0.8), Vec3::new(1.5, 0.2, 0.0), Vec3::new(0.0, 0.3, 1.2)).unwrap();
         let board = Checkerboard {
@@ -471,18 +403,29 @@ mod tests {
         let sun = DirectionalLight::new(Vec3::new(0.2, -1.0, 0.3), Rgb::new(1.0, 0.9, 0.7)).unwrap();
         let env = EnvironmentLight::constant(Rgb::new(0.1, 0.2, 0.3));
         let others = [Light::Point(point), Light::Spot(spot), Light::Directional(sun), Light::Environment(env)];
-        LightSet::new(area.into_iter().map(Light::Area).chain(others).collect(), 3.0)
+        area.into_iter().map(Light::Area).chain(others).collect()
     }
 
     /// Every lane of a group gets the scalar light set's sample from its own numbers: the same
     /// light, point, direction, radiance and flags, bit for bit, and the same density up to
     /// the order of one product (a flat light's density is r²/|cos θ_l| · (pmf / A) here and
     /// (r²/|cos θ_l| / A) · pmf in the set).
+    ///
+    /// Ten lights, picked lane by lane through the selection's search, and two sets of eight
+    /// that cover every kind between them, picked in SIMD (`Distribution1D::sample_lanes`).
     #[test]
     fn lanes_of_every_light_kind_match_the_scalar_light_set() {
+        let all = every_kind();
+        let n = all.len();
+        assert!(n > 8, "the whole set must take the per-lane search");
+        for lights in [all.clone(), all[..8].to_vec(), all[n - 8..].to_vec()] {
+            lanes_match_the_scalar_light_set(&LightSet::new(lights, 3.0));
+        }
+    }
+
+    fn lanes_match_the_scalar_light_set(set: &LightSet) {
         const N: usize = 16;
-        let set = every_kind();
-        let wide = WideLights::new(&set);
+        let wide = WideLights::new(set);
         let mut x = 0x2545_f491u32;
         let mut next = || {
             x ^= x << 13;
@@ -499,7 +442,7 @@ mod tests {
                 let u: [f32; N] = std::array::from_fn(|_| next());
                 F32s(u)
             });
-            let s = wide.sample(&set, &p, Ms::ALL, &u_select, u1, u2);
+            let s = wide.sample(set, &p, Ms::ALL, &u_select, u1, u2);
             for i in 0..N {
                 let one = set.sample(p.lane(i), u_select.0[i], Vec2::new(u1.0[i], u2.0[i]));
                 // The set's sample of a light facing away has radiance 0; the lanes drop it.

@@ -16,6 +16,7 @@
 mod boxes;
 mod geometry;
 pub mod inverse_trig;
+mod light_picks;
 mod lights;
 pub mod prefetch;
 mod sampler;
