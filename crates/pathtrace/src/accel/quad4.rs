@@ -43,7 +43,11 @@ impl Quad4 {
         t_min: f32,
         t_max: F32s<N>,
     ) -> HitL<F32s<N>> {
-        let [q, n, u_dual, v_dual] = [&self.q, &self.n, &self.u_dual, &self.v_dual].map(|v| Vec3L::splat(v.lane(k)));
+        // One splat each, not `[_; 4]::map` (see `Tri4::intersect_rays`).
+        let q = Vec3L::splat(self.q.lane(k));
+        let n = Vec3L::splat(self.n.lane(k));
+        let u_dual = Vec3L::splat(self.u_dual.lane(k));
+        let v_dual = Vec3L::splat(self.v_dual.lane(k));
         plane_and_duals(rays, [&q, &n, &u_dual, &v_dual], t_min, t_max)
     }
 }

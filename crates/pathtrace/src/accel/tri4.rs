@@ -43,7 +43,13 @@ impl Tri4 {
         t_min: f32,
         t_max: F32s<N>,
     ) -> HitL<F32s<N>> {
-        let [p0, e1, e2] = [&self.p0, &self.e1, &self.e2].map(|v| Vec3L::splat(v.lane(k)));
+        // Each corner splatted on its own: through `[_; 3]::map`, LLVM put the three splats
+        // out of line in a function compiled for baseline x86-64, which wrote the group-wide
+        // vectors (over 1 KB with 32 lanes) to memory in 16-byte pieces for the test to load
+        // back (`try_map`, 2% of a teapot's profile on its own).
+        let p0 = Vec3L::splat(self.p0.lane(k));
+        let e1 = Vec3L::splat(self.e1.lane(k));
+        let e2 = Vec3L::splat(self.e2.lane(k));
         moller_trumbore(rays, &p0, &e1, &e2, t_min, t_max)
     }
 }
