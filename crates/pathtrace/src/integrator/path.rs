@@ -32,7 +32,7 @@ use crate::material::{
 use crate::math::{offset_ray_origin_lanes, Ray, Rgb, Vec2, Vec3};
 use crate::scene::{Interaction, Primitive, Scene};
 use crate::texture::NormalPerturbation;
-use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::simd::{made, F32s, Ms, Vec3s};
 use crate::wide::warp;
 use crate::wide::{LaneForm, LaneSamplers, LightSamples};
 
@@ -256,7 +256,7 @@ pub(crate) fn vertex<const N: usize>(
         for i in (alive & !scatter).lanes() {
             let class = &lanes.classes[s.material[i] as usize];
             if class.textured && class.lane_form.is_some() {
-                textured.get_or_insert([None; N])[i] = Some(textured_material(scene, &s, i));
+                made(&mut textured, || [None; N])[i] = Some(textured_material(scene, &s, i));
             }
         }
     }
@@ -291,52 +291,52 @@ pub(crate) fn vertex<const N: usize>(
             if let Some(p) = class.perturbed.then(|| scene.normal_perturbation(s.material[i])).flatten() {
                 perturbed.0[i] = u32::MAX;
                 let frame = perturbed_frame(scene, &s, i, material, p, wo.lane(i));
-                frames.get_or_insert_with(|| std::array::from_fn(|_| None))[i] = Some(frame);
+                made(&mut frames, || std::array::from_fn(|_| None))[i] = Some(frame);
             }
             match (form, material) {
                 (LaneForm::RoughConductor, Material::RoughConductor(m)) => {
                     conductor.0[i] = u32::MAX;
-                    conductors.get_or_insert_with(|| m.lanes()).set(i, m);
+                    made(&mut conductors, || m.lanes()).set(i, m);
                 }
                 (LaneForm::RoughPlastic, Material::RoughPlastic(m)) => {
                     plastic.0[i] = u32::MAX;
-                    plastics.get_or_insert_with(|| m.lanes()).set(i, m);
+                    made(&mut plastics, || m.lanes()).set(i, m);
                 }
                 (LaneForm::Plastic, Material::Plastic(m)) => {
                     smooth_plastic.0[i] = u32::MAX;
-                    smooth_plastics.get_or_insert_with(|| m.lanes()).set(i, m);
+                    made(&mut smooth_plastics, || m.lanes()).set(i, m);
                 }
                 (LaneForm::Dielectric, Material::Dielectric(m)) => {
                     dielectric.0[i] = u32::MAX;
-                    dielectrics.get_or_insert_with(|| m.lanes()).set(i, m);
+                    made(&mut dielectrics, || m.lanes()).set(i, m);
                 }
                 (LaneForm::SmoothConductor, Material::Conductor(m)) => {
                     reflector.0[i] = u32::MAX;
-                    reflectors.get_or_insert_with(SmoothConductorLanes::none).set_conductor(i, m);
+                    made(&mut reflectors, SmoothConductorLanes::none).set_conductor(i, m);
                 }
                 (LaneForm::SmoothConductor, Material::Mirror(m)) => {
                     reflector.0[i] = u32::MAX;
-                    reflectors.get_or_insert_with(SmoothConductorLanes::none).set_mirror(i, m);
+                    made(&mut reflectors, SmoothConductorLanes::none).set_mirror(i, m);
                 }
                 (LaneForm::Diffuse, Material::Diffuse(m)) => {
                     uniform.0[i] = u32::MAX;
-                    uniforms.get_or_insert_with(|| m.lanes()).set(i, m);
+                    made(&mut uniforms, || m.lanes()).set(i, m);
                 }
                 (LaneForm::Glossy, Material::Glossy(m)) => {
                     phong.0[i] = u32::MAX;
-                    phongs.get_or_insert_with(|| m.lanes()).set(i, m);
+                    made(&mut phongs, || m.lanes()).set(i, m);
                 }
                 (LaneForm::Lambertian, Material::Lambertian(m)) => {
                     lambert.0[i] = u32::MAX;
-                    lamberts.get_or_insert_with(|| m.lanes()).set(i, m);
+                    made(&mut lamberts, || m.lanes()).set(i, m);
                 }
                 (LaneForm::RoughDielectric, Material::RoughDielectric(m)) => {
                     rough_glass.0[i] = u32::MAX;
-                    rough_glasses.get_or_insert_with(|| m.lanes()).set(i, m);
+                    made(&mut rough_glasses, || m.lanes()).set(i, m);
                 }
                 (LaneForm::ThinDielectric, Material::ThinDielectric(m)) => {
                     slab.0[i] = u32::MAX;
-                    slabs.get_or_insert_with(|| m.lanes()).set(i, m);
+                    made(&mut slabs, || m.lanes()).set(i, m);
                 }
                 // `WideScene::new` gives each form to its model only.
                 _ => unreachable!("lane form {form:?} on another material"),

@@ -7,7 +7,7 @@
 use super::lanes::{DeltaModel, LaneDeltaScattering, LaneSamples};
 use super::reflect_local_lanes;
 use crate::math::Rgb;
-use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::simd::{map_rgb, F32s, Ms, Vec3s};
 
 /// Smooth dielectric interface with interior index of refraction `ior` (exterior 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,7 +94,7 @@ impl<const N: usize> LaneDeltaScattering<N> for DielectricLanes<N> {
         LaneSamples {
             valid: active,
             wi: Vec3s::select(reflect, &mirrored, &refracted),
-            weight: self.tint.map(|c| F32s::select(reflect, c, c * compression)),
+            weight: map_rgb(self.tint, |c| F32s::select(reflect, c, c * compression)),
             pdf: F32s::select(reflect, f, 1.0 - f),
             specular: active,
             eta: F32s::select(reflect, F32s::ONE, eta),

@@ -15,7 +15,7 @@ use super::dielectric::fresnel_dielectric_lanes;
 use super::lanes::{LaneSamples, LaneScattering, SmoothModel};
 use super::microfacet::{reflect_about_lanes, refract_about_lanes, Microfacet, MicrofacetLanes};
 use crate::math::Rgb;
-use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::simd::{map_rgb, F32s, Ms, Vec3s};
 
 /// A rough dielectric interface with interior index `ior` (exterior 1).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -170,7 +170,7 @@ impl<const N: usize> LaneScattering<N> for RoughDielectricLanes<N> {
         let pdf_reflect = f * pdf_m / (4.0 * cos_om);
         let pdf_refract = (1.0 - f) * pdf_m * o.eta * o.eta * cos_im.abs() / (denom * denom);
         let pdf = F32s::select(reflect, pdf_reflect, pdf_refract);
-        (self.tinted(value).map(|c| F32s::select(ok, c, zero)), F32s::select(ok, pdf, zero))
+        (map_rgb(self.tinted(value), |c| F32s::select(ok, c, zero)), F32s::select(ok, pdf, zero))
     }
 }
 

@@ -26,7 +26,7 @@ use super::rough_plastic_alpha::RoughPlasticAlphaTable;
 use crate::math::special::gauss_legendre;
 use crate::math::{Rgb, Vec3, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf_lanes;
-use crate::wide::simd::{F32s, Ms, Vec3s, LANES_256};
+use crate::wide::simd::{map_rgb, F32s, Ms, Vec3s, LANES_256};
 use crate::wide::warp as warp_lanes;
 use rayon::prelude::*;
 
@@ -259,7 +259,7 @@ impl<const N: usize> LaneScattering<N> for RoughPlasticLanes<'_, N> {
         let (f, pdf) = self.eval_pdf(wo, &wi);
         let valid = active & !wi.z.le(zero) & pdf.is_finite() & pdf.gt(zero);
         let inv_pdf = 1.0 / pdf;
-        LaneSamples { valid, wi, weight: f.map(|c| c * inv_pdf), pdf, specular: Ms::NONE, eta: F32s::ONE }
+        LaneSamples { valid, wi, weight: map_rgb(f, |c| c * inv_pdf), pdf, specular: Ms::NONE, eta: F32s::ONE }
     }
 
     /// f·cos θi and the density of `wi` per lane.

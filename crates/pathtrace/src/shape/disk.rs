@@ -64,6 +64,9 @@ impl Disk {
     }
 
     /// The surface at a hit; `uv` is (radius, angle/2π) in the disk's own coordinates, as Mitsuba.
+    // Inlined so that the SIMD kernels' hit records run it as AVX code: out of line it was
+    // baseline x86-64 code, called per lane with a `vzeroupper` on each side.
+    #[inline(always)]
     pub fn surface(&self, _ray: &Ray, hit: &PrimHit) -> SurfacePoint {
         let n = self.normal();
         let r = (hit.u * hit.u + hit.v * hit.v).sqrt();

@@ -42,6 +42,9 @@ impl Sphere {
         (self.center + out * self.radius, if self.inward { -out } else { out })
     }
 
+    // Inlined so that the SIMD kernels' hit records run it as AVX code: out of line it was
+    // baseline x86-64 code, called per lane with a `vzeroupper` on each side.
+    #[inline(always)]
     pub fn surface(&self, ray: &Ray, hit: &PrimHit) -> SurfacePoint {
         let (p, n) = self.point_and_normal(ray.at(hit.t));
         // The parameterisation is the outward direction's whichever way the normal faces (as
@@ -163,6 +166,9 @@ impl Ellipsoid {
         Self::UNIT.intersect(&self.object_ray(ray), t_min, t_max)
     }
 
+    // Inlined so that the SIMD kernels' hit records run it as AVX code: out of line it was
+    // baseline x86-64 code, called per lane with a `vzeroupper` on each side.
+    #[inline(always)]
     pub fn surface(&self, ray: &Ray, hit: &PrimHit) -> SurfacePoint {
         let local = Self::UNIT.surface(&self.object_ray(ray), hit);
         let n = self.to_world.normal(if self.inward { -local.n_geometric } else { local.n_geometric });

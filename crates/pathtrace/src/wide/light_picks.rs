@@ -10,7 +10,7 @@
 //! over the whole group per lane cost 8% of such a scene's time: those go lane by lane.
 
 use super::lights::WideLight;
-use super::simd::{F32s, Ms, Vec3s};
+use super::simd::{made, map_rgb, F32s, Ms, Vec3s};
 use crate::light::area::{DiskLights, FlatLights, SphereLights};
 use crate::light::SpotLanes;
 use crate::math::{Rgb, Vec3};
@@ -22,11 +22,12 @@ pub(super) const GROUPED_LIGHTS: usize = 8;
 
 /// Each lane's drawn light: the fields of its kind, which kinds were drawn where, the selection
 /// pmf (over the area for flat lights), the emitted radiance (where it does not depend on the
-/// sample) and the facing. Kinds other than flat lights are set up when a lane first draws one:
-/// a group pays for the kinds it drew, not for every kind (zeroing them all for every group
-/// was 1.7% of the Cornell box's instructions).
+/// sample) and the facing. Each kind's lanes are set up when a lane first draws one, filled
+/// with that light (the kind's other lanes are never read): a group pays for the kinds it drew,
+/// not for every kind (zeroing them all for every group was 1.7% of the Cornell box's
+/// instructions, and zeroing the flat lights' lanes, a `memset`, 1.6% of its time).
 pub(super) struct Picks<const N: usize> {
-    pub flat: FlatLights<N>,
+    pub flat: Option<FlatLights<N>>,
     /// Light ids of the lanes whose flat light has a radiance texture.
     pub textured: Option<[usize; N]>,
     pub on_textured: Ms<N>,
@@ -130,13 +131,7 @@ impl<const N: usize> Picks<N> {
     #[inline(always)]
     pub fn none() -> Self {
         Self {
-            flat: FlatLights {
-                origin: Vec3s::default(),
-                e1: Vec3s::default(),
-                e2: Vec3s::default(),
-                normal: Vec3s::default(),
-                triangle: Ms::NONE,
-            },
+            flat: None,
             textured: None,
             on_textured: Ms::NONE,
             disks: None,
@@ -162,7 +157,13 @@ impl<const N: usize> Picks<N> {
     pub fn take<T: Target<N>>(&mut self, to: T, light: &WideLight, pmf: &F32s<N>) {
         let (emitted, both_faces) = match light {
             WideLight::Flat(l) => {
-                let f = &mut self.flat;
+                let f = made(&mut self.flat, || FlatLights {
+                    origin: Vec3s::splat(l.origin),
+                    e1: Vec3s::splat(l.e1),
+                    e2: Vec3s::splat(l.e2),
+                    normal: Vec3s::splat(l.normal),
+                    triangle: Ms::NONE,
+                });
                 to.vec3(&mut f.origin, l.origin);
                 to.vec3(&mut f.e1, l.e1);
                 to.vec3(&mut f.e2, l.e2);
@@ -171,7 +172,7 @@ impl<const N: usize> Picks<N> {
                     to.mark(&mut f.triangle);
                 }
                 if let Some(id) = l.textured {
-                    let textured = self.textured.get_or_insert([usize::MAX; N]);
+                    let textured = made(&mut self.textured, || [id; N]);
                     for i in to.lanes() {
                         textured[i] = id;
                     }
@@ -181,12 +182,12 @@ impl<const N: usize> Picks<N> {
                 (l.radiance, l.two_sided)
             }
             WideLight::Disk(l) => {
-                let disks = self.disks.get_or_insert_with(|| DiskLights {
-                    center: Vec3s::default(),
-                    u: Vec3s::default(),
-                    v: Vec3s::default(),
-                    normal: Vec3s::default(),
-                    area: F32s::ONE,
+                let disks = made(&mut self.disks, || DiskLights {
+                    center: Vec3s::splat(l.center),
+                    u: Vec3s::splat(l.u),
+                    v: Vec3s::splat(l.v),
+                    normal: Vec3s::splat(l.normal),
+                    area: F32s::splat(l.area),
                 });
                 to.vec3(&mut disks.center, l.center);
                 to.vec3(&mut disks.u, l.u);
@@ -198,9 +199,9 @@ impl<const N: usize> Picks<N> {
                 (l.radiance, l.two_sided)
             }
             WideLight::Sphere(l) => {
-                let spheres = self.spheres.get_or_insert_with(|| SphereLights {
-                    center: Vec3s::default(),
-                    radius: F32s::ZERO,
+                let spheres = made(&mut self.spheres, || SphereLights {
+                    center: Vec3s::splat(l.center),
+                    radius: F32s::splat(l.radius),
                     inward: Ms::NONE,
                 });
                 to.vec3(&mut spheres.center, l.center);
@@ -221,7 +222,8 @@ impl<const N: usize> Picks<N> {
             // I/r², set by the sampling; a point has no facing.
             WideLight::Point(l) => {
                 to.mark(&mut self.on_point);
-                let (position, intensity) = self.points.get_or_insert_with(|| (Vec3s::default(), [F32s::ZERO; 3]));
+                let (position, intensity) =
+                    made(&mut self.points, || (Vec3s::splat(l.position), map_rgb(l.intensity.to_array(), F32s::splat)));
                 to.vec3(position, l.position);
                 for (c, v) in intensity.iter_mut().zip(l.intensity.to_array()) {
                     to.value(c, v);
@@ -232,7 +234,7 @@ impl<const N: usize> Picks<N> {
             // I·falloff/r², set by the sampling.
             WideLight::Spot(l) => {
                 to.mark(&mut self.on_spot);
-                let spots = self.spots.get_or_insert_with(|| l.lanes());
+                let spots = made(&mut self.spots, || l.lanes());
                 for i in to.lanes() {
                     spots.set(i, l);
                 }
@@ -242,7 +244,7 @@ impl<const N: usize> Picks<N> {
             // The same direction and irradiance from every point.
             WideLight::Directional { wi, irradiance } => {
                 to.mark(&mut self.on_directional);
-                to.vec3(self.directional_wi.get_or_insert_with(Vec3s::default), *wi);
+                to.vec3(made(&mut self.directional_wi, || Vec3s::splat(*wi)), *wi);
                 to.pmf(&mut self.pmf_factor, pmf, None);
                 (*irradiance, true)
             }

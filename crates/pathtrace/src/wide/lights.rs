@@ -73,10 +73,8 @@ pub(super) enum WideLight {
 /// The scene's lights, in their lane-parallel forms.
 #[derive(Clone, Debug)]
 pub struct WideLights {
+    /// Each kind's lanes are computed only when a lane of the group drew one.
     lights: Vec<WideLight>,
-    /// The scene has flat lights (their lanes are computed only then; the other kinds' only
-    /// when a lane of the group drew one).
-    any_flat: bool,
     /// The environment, if the scene has one (a scene has at most one).
     environment: Option<EnvironmentLight>,
 }
@@ -183,8 +181,7 @@ impl WideLights {
                 WideLight::Flat(FlatLight { origin, e1, e2, triangle, normal, area, radiance, two_sided, textured })
             })
             .collect::<Vec<_>>();
-        let any = |f: fn(&WideLight) -> bool| lights.iter().any(f);
-        Self { any_flat: any(|l| matches!(l, WideLight::Flat(_))), lights, environment }
+        Self { lights, environment }
     }
 
     /// Samples a light point for each lane of `active` from `p`, with the selection numbers
@@ -221,7 +218,7 @@ impl WideLights {
             }
         }
         let Picks {
-            flat: f,
+            flat,
             textured,
             on_textured,
             disks,
@@ -239,27 +236,30 @@ impl WideLights {
             radiance,
             two_sided,
             picked,
-        } = picks;
+        } = &picks;
+        let (on_disk, on_sphere, on_environment, on_point, on_spot, on_directional) =
+            (*on_disk, *on_sphere, *on_environment, *on_point, *on_spot, *on_directional);
+        let (pmf_factor, on_textured, two_sided, picked) = (*pmf_factor, *on_textured, *two_sided, *picked);
         let mut d = Drawn {
             point: Vec3s::default(),
             wi: Vec3s::default(),
             dist: F32s::ZERO,
             cos_l: F32s::ZERO,
             pdf: F32s::ZERO,
-            radiance,
+            radiance: *radiance,
             no_sample: Ms::NONE,
         };
-        if self.any_flat {
-            let FlatSamples { point, wi, dist, cos_l, pdf_area_one } = sample_flat_lanes(&f, p, u1, u2);
+        if let Some(f) = flat {
+            let FlatSamples { point, wi, dist, cos_l, pdf_area_one } = sample_flat_lanes(f, p, u1, u2);
             (d.point, d.wi, d.dist, d.cos_l, d.pdf) = (point, wi, dist, cos_l, pdf_area_one * pmf_factor);
         }
-        if let Some(disks) = &disks {
+        if let Some(disks) = disks {
             let s = sample_disk_lanes(disks, p, u1, u2);
             d.take(on_disk, &s.point, &s.wi, s.dist, s.pdf * pmf_factor);
             d.cos_l = F32s::select(on_disk, s.cos_l, d.cos_l);
             d.no_sample = d.no_sample | on_disk & !s.valid;
         }
-        if let Some(spheres) = &spheres {
+        if let Some(spheres) = spheres {
             let s = sample_sphere_lanes(spheres, p, u1, u2);
             d.take(on_sphere, &s.point, &s.wi, s.dist, s.pdf * pmf_factor);
             d.cos_l = F32s::select(on_sphere, s.normal.dot(&s.wi), d.cos_l);
@@ -271,14 +271,14 @@ impl WideLights {
             d.take(on_environment, &p.add(&e.dir), &e.dir, F32s::splat(f32::INFINITY), e.pdf * pmf_factor);
             d.take_radiance(on_environment, &e.radiance);
         }
-        if let Some((position, intensity)) = &points {
+        if let Some((position, intensity)) = points {
             let sample = PointLight::sample_lanes(position, *intensity, p);
             d.take_dirac(on_point, position, sample, pmf_factor);
         }
         if let Some(spots) = spots {
             d.take_dirac(on_spot, &spots.position, spots.sample(p), pmf_factor);
         }
-        if let Some(directional_wi) = &directional_wi {
+        if let Some(directional_wi) = directional_wi {
             // At infinity, like the environment: the point is the scalar light set's p + wi.
             let at = p.add(directional_wi);
             d.take(on_directional, &at, directional_wi, F32s::splat(f32::INFINITY), pmf_factor);
@@ -290,7 +290,7 @@ impl WideLights {
             picked & !no_sample & faces_p & pdf.gt(F32s::<N>::ZERO) & pdf.is_finite() & dist.gt(F32s::<N>::ZERO);
         // A radiance texture scales a flat light's radiance at the sampled point: looked up for the
         // valid samples only (the others' radiance is never used).
-        if let Some(textured) = &textured {
+        if let (Some(textured), Some(f)) = (textured, flat) {
             for i in (on_textured & valid).lanes() {
                 let Some(Light::Area(l)) = set.lights().get(textured[i]) else { continue };
                 let Some(t) = l.texture() else { continue };

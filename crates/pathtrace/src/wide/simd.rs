@@ -353,6 +353,32 @@ pub fn rgb_black<const N: usize>(c: &[F32s<N>; 3]) -> Ms<N> {
     c[0].eq(zero) & c[1].eq(zero) & c[2].eq(zero)
 }
 
+/// `f` applied to each of three channels (one lane group each).
+///
+/// Why not `[_; 3]::map`: inside the SIMD kernels LLVM compiled it out of line, as baseline
+/// x86-64 code (SSE registers, a `vzeroupper` and a call per use, in the glass materials).
+#[inline(always)]
+pub fn map_rgb<T, U>(c: [T; 3], mut f: impl FnMut(T) -> U) -> [U; 3] {
+    let [r, g, b] = c;
+    [f(r), f(g), f(b)]
+}
+
+/// The value in `slot`, made by `make` if there is none yet: a group's per-kind lanes (of its
+/// materials, of its lights) are set up when a lane first needs them.
+///
+/// Why not `Option::get_or_insert_with`: inside the SIMD kernels LLVM compiled it out of line,
+/// as baseline x86-64 code, once per kind and vertex.
+#[inline(always)]
+pub fn made<T>(slot: &mut Option<T>, make: impl FnOnce() -> T) -> &mut T {
+    if slot.is_none() {
+        *slot = Some(make());
+    }
+    match slot {
+        Some(value) => value,
+        None => unreachable!("the slot was just filled"),
+    }
+}
+
 /// Three coordinates of `N` vectors.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Vec3s<const N: usize> {
