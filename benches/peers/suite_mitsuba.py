@@ -22,7 +22,8 @@ to both renderers alike.)
 
 The media scenes (`--only media`) are the repository's own (crates/pathtrace-scene/tests/data/media).
 The 1M-triangle scene is generated (a displaced grid of 1,000,000 triangles, PLY, under a quad
-light) into target/bench-scenes/. See docs/benchmarks.md for the measured table.
+light) into target/bench-scenes/, and so is teapot-zoomed (teapot-simple through a 12-degree
+field of view, so the teapot fills the frame). See docs/benchmarks.md for the measured table.
 """
 
 from __future__ import annotations
@@ -59,6 +60,7 @@ SCENES = (
     ("matpreview-plastic", "matpreview/docs/scenes/bsdf_plastic_shiny.xml", {}, 4),
     ("bunny", "bunny/docs/scenes/shape_ply_bunny.xml", {}, 4),
     ("teapot-simple", "teapot-simple/simple.xml", {}, 64),
+    ("teapot-zoomed", "teapot-zoomed", {}, 64),
     ("mesh-1m", "mesh-1m", {}, 16),
     # Participating media (issue #19): the repository's own test scenes (64 x 64 films).
     ("media-fog-shafts", "repo:crates/pathtrace-scene/tests/data/media/fog_shafts.xml", {}, 256),
@@ -114,9 +116,34 @@ def mesh_1m_scene(folder):
     return xml
 
 
+def teapot_zoomed_scene(scenes, folder):
+    """teapot-simple seen through a 12-degree field of view: the teapot fills the frame, so every
+    sample is a mesh hit shaded by the two point lights (79% of teapot-simple's frame is
+    background, whose misses are cheap for us). Written from the shared file each time, with the
+    mesh's path made absolute; None without the shared scenes."""
+    source = os.path.join(scenes, "teapot-simple", "simple.xml")
+    if not os.path.exists(source):
+        return None
+    with open(source) as fh:
+        xml = fh.read()
+    sensor, mesh = '<sensor type="perspective" id="sensor">', 'value="meshes/teapot.ply"'
+    if xml.count(sensor) != 1 or xml.count(mesh) != 1:
+        sys.exit(f"{source}: not the teapot-simple scene teapot-zoomed is derived from")
+    xml = xml.replace(sensor, sensor + '<float name="fov" value="12"/>')
+    xml = xml.replace(mesh, f'value="{os.path.join(scenes, "teapot-simple", "meshes", "teapot.ply")}"')
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, "teapot-zoomed.xml")
+    with open(path, "w") as fh:
+        fh.write(xml)
+    return path
+
+
 def scene_path(rel, args):
     if rel == "mesh-1m":
         return mesh_1m_scene(os.path.join(REPO, "target", "bench-scenes"))
+    if rel == "teapot-zoomed":
+        path = teapot_zoomed_scene(os.path.abspath(args.scenes), os.path.join(REPO, "target", "bench-scenes"))
+        return path or os.path.join(args.scenes, "teapot-simple", "simple.xml")
     if rel.startswith("repo:"):
         return os.path.join(REPO, rel[len("repo:"):])
     return os.path.join(args.scenes, rel)

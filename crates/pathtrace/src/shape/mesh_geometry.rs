@@ -84,18 +84,13 @@ impl MeshGeometry {
         })
     }
 
-    /// Triangle `i` (flat: its vertex normals stay in the mesh).
+    /// Triangle `i` (flat: its vertex normals stay in the mesh). Built without
+    /// [`Triangle::new`]'s degeneracy test (a cross product and a square root per hit record):
+    /// the mesh's triangles were checked when it was built.
     #[inline(always)]
     pub fn triangle(&self, i: u32) -> Triangle {
         let [a, b, c] = self.indices[i as usize].map(|v| self.positions[v as usize]);
-        // Same corners as when the mesh was checked, so never degenerate; the fallback only
-        // keeps this function total.
-        Triangle::new(a, b, c, Triangle::FLAT).unwrap_or(Triangle {
-            p0: a,
-            e1: b - a,
-            e2: c - a,
-            shading: Triangle::FLAT,
-        })
+        Triangle { p0: a, e1: b - a, e2: c - a, shading: Triangle::FLAT }
     }
 
     /// Bounding box of triangle `i`.
