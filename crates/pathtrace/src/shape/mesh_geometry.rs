@@ -85,8 +85,8 @@ impl MeshGeometry {
     }
 
     /// Triangle `i` (flat: its vertex normals stay in the mesh). Built without
-    /// [`Triangle::new`]'s degeneracy test (a cross product and a square root per hit record):
-    /// the mesh's triangles were checked when it was built.
+    /// [`Triangle::new`]'s degeneracy test, which hit records need not repeat: the mesh's
+    /// triangles were checked when it was built.
     #[inline(always)]
     pub fn triangle(&self, i: u32) -> Triangle {
         let [a, b, c] = self.indices[i as usize].map(|v| self.positions[v as usize]);
