@@ -6,7 +6,7 @@
 use crate::accel::{Packable, PrimitiveSet};
 use crate::math::{Aabb, Ray, Vec3};
 use crate::scene::Primitive;
-use crate::shape::{MeshGeometry, PrimHit, Shape, Sphere, SurfacePoint, Triangle};
+use crate::shape::{with_unit_normals, MeshGeometry, PrimHit, Shape, Sphere, SurfacePoint, Triangle};
 
 /// A mesh in a scene.
 #[derive(Clone, Debug)]
@@ -139,15 +139,24 @@ impl PrimitiveStore {
     /// Surface, material and light of primitive `index` at a hit.
     #[inline(always)]
     pub fn surface(&self, index: u32, ray: &Ray, hit: &PrimHit) -> (SurfacePoint, u32, u32) {
+        let (surface, material, light, normalised) = self.surface_unless_mesh_normals(index, ray, hit);
+        (if normalised { surface } else { with_unit_normals(surface) }, material, light)
+    }
+
+    /// [`PrimitiveStore::surface`], except that a mesh triangle's normals are left as
+    /// [`Triangle::surface_before_normalising`] leaves them, for [`unit_normals`](crate::shape::unit_normals) to finish:
+    /// the last value is false then.
+    #[inline(always)]
+    pub fn surface_unless_mesh_normals(&self, index: u32, ray: &Ray, hit: &PrimHit) -> (SurfacePoint, u32, u32, bool) {
         match self.item(index) {
             Item::Shape(i) => {
                 let p = &self.shapes[i as usize];
-                (p.shape.surface(ray, hit, &[]), p.material, p.light)
+                (p.shape.surface(ray, hit, &[]), p.material, p.light, true)
             }
             Item::MeshTriangle { mesh, triangle } => {
                 let m = &self.meshes[mesh as usize];
                 let light = if m.first_light == Primitive::NO_LIGHT { m.first_light } else { m.first_light + triangle };
-                (m.geometry.surface(triangle, hit), m.material, light)
+                (m.geometry.surface_before_normalising(triangle, hit), m.material, light, false)
             }
         }
     }

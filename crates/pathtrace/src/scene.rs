@@ -12,7 +12,7 @@ use crate::material::{Blend, Material, Mixture, RoughPlasticAlphaTable};
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::medium::{HomogeneousMedium, MediumBoundary, MediumId};
 use crate::primitive_store::{PrimitiveStore, SceneMesh};
-use crate::shape::{MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
+use crate::shape::{with_unit_normals, MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
 use crate::texture::{ColourSlot, NormalPerturbation, Opacity, PerturbationKind, Texture, TextureBindings, TextureId};
 use crate::wide::simd::{F32s, Ms, Vec3s};
 use std::sync::Arc;
@@ -231,18 +231,33 @@ impl Scene {
     /// Surface details of a hit found with `ray`.
     #[inline(always)]
     pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction<'_> {
-        let (surface, material, light) = match hit.prim {
-            PrimRef::Bounded(i) => self.prims.surface(i, ray, &hit.hit),
+        let (mut it, normalised) = self.interaction_unless_mesh_normals(ray, hit);
+        if !normalised {
+            it.surface = with_unit_normals(it.surface);
+        }
+        it
+    }
+
+    /// [`Scene::interaction`], except that a mesh triangle's normals are left for
+    /// [`unit_normals`](crate::shape::unit_normals) to finish (the flag is false then): the
+    /// estimator normalises a group's together.
+    #[inline(always)]
+    pub fn interaction_unless_mesh_normals(&self, ray: &Ray, hit: &Hit) -> (Interaction<'_>, bool) {
+        let (surface, material, light, normalised) = match hit.prim {
+            PrimRef::Bounded(i) => self.prims.surface_unless_mesh_normals(i, ray, &hit.hit),
             PrimRef::Unbounded(i) => {
                 let p = &self.unbounded[i as usize];
-                (p.shape.surface(ray, &hit.hit, &[]), p.material, p.light)
+                (p.shape.surface(ray, &hit.hit, &[]), p.material, p.light, true)
             }
             PrimRef::Instance { instance, prim } => {
                 let (surface, material) = self.instances.surface(instance, prim, ray, &hit.hit);
-                (surface, material, Primitive::NO_LIGHT)
+                (surface, material, Primitive::NO_LIGHT, true)
             }
         };
-        Interaction { surface, material: &self.materials[material as usize], material_id: material, light }
+        (
+            Interaction { surface, material: &self.materials[material as usize], material_id: material, light },
+            normalised,
+        )
     }
 
     /// The materials, indexed by material id.

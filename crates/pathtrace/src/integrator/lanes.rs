@@ -9,7 +9,7 @@ use crate::integrator::PathStats;
 use crate::math::{Rgb, Vec2, Vec3, Vec4};
 use crate::medium::MediumId;
 use crate::scene::{Interaction, Primitive};
-use crate::shape::SurfacePoint;
+use crate::shape::{unit_normals, SurfacePoint};
 use crate::wide::simd::{rgb_black, F32s, Ms, Vec3s};
 
 /// The state of `N` paths (lanes outside `active` hold stale values).
@@ -358,6 +358,15 @@ impl<const N: usize> Surfaces<N> {
         self.vertex_tangent[i] = it.surface.vertex_tangent;
         self.material[i] = it.material_id;
         self.light[i] = it.light;
+    }
+
+    /// The normals of `lanes` made unit length as a triangle's are
+    /// ([`unit_normals`]), for the group's mesh hits recorded before normalising.
+    #[inline(always)]
+    pub fn normalise(&mut self, lanes: Ms<N>) {
+        let (n, s) = unit_normals(&self.n_geometric, &self.n_shading);
+        self.n_geometric = Vec3s::select(lanes, &n, &self.n_geometric);
+        self.n_shading = Vec3s::select(lanes, &s, &self.n_shading);
     }
 
     /// Lane `i`'s hit as the shapes describe it.

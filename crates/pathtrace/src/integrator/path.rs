@@ -803,6 +803,11 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
     // features, and left to itself LLVM compiled it out of line for baseline x86-64 (the hit
     // record, `Scene::interaction`: 9% of the teapot's profile as its own symbol, 3% of the
     // bunny's), with the record passed through memory.
+    // Mesh triangles' hits are recorded with their normals as the triangle makes them, and the
+    // group's are normalised together afterwards: lane by lane, each hit's two square roots and
+    // divisions were a chain the loop waited on (zoomed teapot 0.925× the time, bunny 0.977×;
+    // docs/benchmarks.md, "A group's mesh normals normalised together").
+    let mut unnormalised = 0u32;
     job.scene.intersect_lanes(
         &paths.origin,
         &paths.dir,
@@ -811,9 +816,14 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
         #[inline(always)]
         |i, hit| {
             let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
-            s.set_hit(i, &job.scene.interaction(&ray, &hit));
+            let (it, normalised) = job.scene.interaction_unless_mesh_normals(&ray, &hit);
+            s.set_hit(i, &it);
+            unnormalised |= u32::from(!normalised) << i;
         },
     );
+    if unnormalised != 0 {
+        s.normalise(Ms::from_fn(|i| unnormalised >> i & 1 != 0));
+    }
     for i in (active & !group).lanes() {
         let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
         if let Some((ray, hit)) = job.scene.intersect_opaque(&ray) {

@@ -4,6 +4,7 @@
 //! full shape per triangle. Triangles are rebuilt from their corners when they are needed (for
 //! the BVH's packets, for shading a hit, for the brute-force reference).
 
+use super::triangle::with_unit_normals;
 use super::{MeshError, PrimHit, SurfacePoint, Triangle, TriangleMesh};
 use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, Vec4};
 
@@ -108,10 +109,17 @@ impl MeshGeometry {
     /// coordinates when the mesh has them.
     #[inline(always)]
     pub fn surface(&self, i: u32, hit: &PrimHit) -> SurfacePoint {
+        with_unit_normals(self.surface_before_normalising(i, hit))
+    }
+
+    /// [`MeshGeometry::surface`] with its normals as [`Triangle::surface_before_normalising`]
+    /// leaves them, for [`unit_normals`](super::triangle::unit_normals) to finish.
+    #[inline(always)]
+    pub fn surface_before_normalising(&self, i: u32, hit: &PrimHit) -> SurfacePoint {
         let tri = self.indices[i as usize];
         let normals = self.normals.as_ref().map(|ns| tri.map(|v| ns[v as usize]));
         let uvs = self.uvs.as_ref().map(|uv| tri.map(|v| uv[v as usize]));
-        let mut surface = self.triangle(i).surface_with(hit, normals, uvs);
+        let mut surface = self.triangle(i).surface_before_normalising(hit, normals, uvs);
         if let Some(ts) = &self.tangents {
             surface.vertex_tangent = interpolated_tangent(tri.map(|v| ts[v as usize]), hit);
         }

@@ -19,6 +19,7 @@ pub(crate) use sphere::sphere_hits;
 pub use sphere::{Ellipsoid, Sphere};
 pub use triangle::Triangle;
 pub(crate) use triangle::EDGE_SLACK;
+pub use triangle::{unit_normals, with_unit_normals};
 pub use vertex_normals::angle_weighted_normals;
 
 use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, Vec4};

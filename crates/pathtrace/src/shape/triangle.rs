@@ -3,6 +3,7 @@
 
 use super::{PrimHit, SurfacePoint};
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec4};
+use crate::wide::simd::{F32s, Vec3s};
 
 /// Barycentric slack: edges are tested against `-EDGE_SLACK` rather than 0 so that a ray through
 /// an edge shared by two triangles hits at least one of them despite rounding (both may
@@ -73,19 +74,26 @@ impl Triangle {
     /// corners, as in Mitsuba 3.
     #[inline(always)]
     pub fn surface_with(&self, hit: &PrimHit, normals: Option<[Vec3; 3]>, uvs: Option<[Vec2; 3]>) -> SurfacePoint {
+        with_unit_normals(self.surface_before_normalising(hit, normals, uvs))
+    }
+
+    /// [`Triangle::surface_with`] before [`unit_normals`]: the geometric normal is e1 × e2 and
+    /// the shading normal the interpolated vertex normals (e1 × e2 without them), both of
+    /// any length. The estimator's lanes record their hits this way and normalise the group's
+    /// normals together, in SIMD: lane by lane, each hit's two square roots and divisions
+    /// were a chain the render loop waited on (docs/benchmarks.md).
+    #[inline(always)]
+    pub fn surface_before_normalising(
+        &self,
+        hit: &PrimHit,
+        normals: Option<[Vec3; 3]>,
+        uvs: Option<[Vec2; 3]>,
+    ) -> SurfacePoint {
         let (b1, b2) = (hit.u.max(0.0), hit.v.max(0.0));
         let p = self.p0 + b1 * self.e1 + b2 * self.e2;
-        let n = self.e1.cross(self.e2).normalize();
+        let n = self.e1.cross(self.e2);
         let n_shading = match normals {
-            Some([n0, n1, n2]) => {
-                let s = ((1.0 - b1 - b2) * n0 + b1 * n1 + b2 * n2).normalize_or(n);
-                // Keep the shading normal on the geometric normal's side.
-                if s.dot(n) < 0.0 {
-                    -s
-                } else {
-                    s
-                }
-            }
+            Some([n0, n1, n2]) => (1.0 - b1 - b2) * n0 + b1 * n1 + b2 * n2,
             None => n,
         };
         let uv = match uvs {
@@ -103,6 +111,30 @@ impl Triangle {
     pub fn area(&self) -> f32 {
         0.5 * self.e1.cross(self.e2).length()
     }
+}
+
+/// A triangle hit's unit normals from [`Triangle::surface_before_normalising`]'s: the geometric
+/// normal normalised; the shading normal normalised (the geometric one where that fails: a zero
+/// or non-finite interpolation) and turned to the geometric normal's side. Lane by lane the
+/// same operations as glam's `normalize` and `normalize_or` (times the reciprocal of the
+/// length), so one lane gives the scalar code's bits.
+#[inline(always)]
+pub fn unit_normals<const N: usize>(geometric: &Vec3s<N>, shading: &Vec3s<N>) -> (Vec3s<N>, Vec3s<N>) {
+    let n = geometric.normalize();
+    let rcp = 1.0 / shading.length();
+    let usable = rcp.is_finite() & rcp.gt(F32s::ZERO);
+    let s = Vec3s::select(usable, &shading.scale(rcp), &n);
+    // Keep the shading normal on the geometric normal's side.
+    let behind = s.dot(&n).lt(F32s::ZERO);
+    (n, Vec3s::select(behind, &s.neg(), &s))
+}
+
+/// `surface` with [`unit_normals`] (one lane of them).
+#[inline(always)]
+pub fn with_unit_normals(mut surface: SurfacePoint) -> SurfacePoint {
+    let (n, s) = unit_normals::<1>(&Vec3s::splat(surface.n_geometric), &Vec3s::splat(surface.n_shading));
+    (surface.n_geometric, surface.n_shading) = (n.lane(0), s.lane(0));
+    surface
 }
 
 /// ∂p/∂u and ∂p/∂v of a triangle with edges `e1 = p1 − p0`, `e2 = p2 − p0`: solving
@@ -181,5 +213,41 @@ mod tests {
         let hit = PrimHit { t: 1.0, u: 0.2, v: 0.2 };
         let s = t.surface(&hit, &table);
         assert!(s.n_shading.dot(s.n_geometric) > 0.0);
+    }
+
+    /// The lanes' unit normals are, bit for bit, glam's `normalize` of the geometric normal
+    /// and `normalize_or` of the shading one turned to its side (the scalar formulas they
+    /// replace), in every lane of a group: long, short, opposite, zero, infinite and NaN
+    /// shading normals among them.
+    #[test]
+    fn lane_unit_normals_are_glams_bit_for_bit() {
+        const N: usize = 8;
+        let mut x = 0x2545_f491u32;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / (1u32 << 23) as f32 * 2.0 - 1.0
+        };
+        let special =
+            [Vec3::ZERO, Vec3::splat(f32::INFINITY), Vec3::new(f32::NAN, 0.0, 1.0), Vec3::new(1e-30, 0.0, 0.0)];
+        for round in 0..200 {
+            let geometric: [Vec3; N] =
+                std::array::from_fn(|_| Vec3::new(next(), next(), next()) * (1.0 + 100.0 * next().abs()));
+            let shading: [Vec3; N] = std::array::from_fn(|i| match (round + i) % 6 {
+                0 => special[(round / 6 + i) % special.len()],
+                1 => -geometric[i] + Vec3::new(next(), next(), next()) * 0.1,
+                _ => Vec3::new(next(), next(), next()) * 1e3,
+            });
+            let (n, s) = unit_normals::<N>(&Vec3s::from_fn(|i| geometric[i]), &Vec3s::from_fn(|i| shading[i]));
+            for i in 0..N {
+                let want_n = geometric[i].normalize();
+                let unit = shading[i].normalize_or(want_n);
+                let want_s = if unit.dot(want_n) < 0.0 { -unit } else { unit };
+                let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+                assert_eq!(bits(n.lane(i)), bits(want_n), "geometric {:?}", geometric[i]);
+                assert_eq!(bits(s.lane(i)), bits(want_s), "shading {:?}", shading[i]);
+            }
+        }
     }
 }
