@@ -376,9 +376,17 @@ pub(crate) fn vertex<const N: usize>(
         LightSamples::none()
     };
 
+    // Lanes whose path ends at this vertex whatever they scatter: the last segment but one in a
+    // scene without emitters to find (see "Last segment" below). A Lambertian group of only
+    // such lanes (every vertex of a direct-lighting render) skips drawing directions.
+    let ending_here = if !lanes.emitters_hittable && max_segments != u32::MAX {
+        !paths.feature_pending & Ms::from_fn(|i| paths.segments[i] + 1 >= max_segments)
+    } else {
+        Ms::NONE
+    };
     let mut sc = Scattered::none();
     let lambert_light = if simd.any() {
-        lambertian_lanes(job, &s, &wo, simd, one_sided, nee, &light_samples, [&ud1, &ud2], &mut sc)
+        lambertian_lanes(job, &s, &wo, simd, one_sided, nee, ending_here, &light_samples, [&ud1, &ud2], &mut sc)
     } else {
         LambertLight::none()
     };
@@ -548,12 +556,10 @@ pub(crate) fn vertex<const N: usize>(
     // for emission; with no area light or environment in the scene that ray finds nothing
     // and draws no random numbers, so the path ends here with the same result (unless its
     // feature samples still wait for a non-specular hit).
-    if !lanes.emitters_hittable && max_segments != u32::MAX {
-        let last = alive & !paths.feature_pending & Ms::from_fn(|i| paths.segments[i] + 1 >= max_segments);
-        if last.any() {
-            paths.finish_all(last, out);
-            alive = alive & !last;
-        }
+    let last = alive & ending_here;
+    if last.any() {
+        paths.finish_all(last, out);
+        alive = alive & !last;
     }
 
     // ---- Next segment ------------------------------------------------------------------
@@ -702,6 +708,7 @@ fn lambertian_lanes<const N: usize>(
     simd: Ms<N>,
     one_sided: Ms<N>,
     nee: Ms<N>,
+    ending_here: Ms<N>,
     ls: &LightSamples<N>,
     [ud1, ud2]: [&F32s<N>; 2],
     sc: &mut Scattered<N>,
@@ -744,6 +751,13 @@ fn lambertian_lanes<const N: usize>(
     }
 
     // ---- Direction: cosine-weighted hemisphere (weight = albedo) ------------------------
+    // Not drawn when every lane ends here anyway: they end now instead of after the
+    // continuation (their numbers are drawn all the same, so no sampler changes course).
+    sc.specular = sc.specular & !simd;
+    if !(simd & !ending_here).any() {
+        sc.goes_on = sc.goes_on & !simd;
+        return light;
+    }
     let (local, valid, pdf) = lambertian::sample_lanes(wo_z, *ud1, *ud2);
     let wi = warp::to_world(&n_s, &local);
     // Reflection must stay on the viewer's side of the true surface (shading normals can
@@ -753,7 +767,6 @@ fn lambertian_lanes<const N: usize>(
     sc.origin = Vec3s::select(simd, &origin, &sc.origin);
     sc.dir = Vec3s::select(simd, &wi, &sc.dir);
     sc.pdf = F32s::select(simd, pdf, sc.pdf);
-    sc.specular = sc.specular & !simd;
     sc.eta = F32s::select(simd, F32s::ONE, sc.eta);
     light
 }
