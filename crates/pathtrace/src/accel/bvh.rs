@@ -7,10 +7,10 @@ use arrayvec::ArrayVec;
 use rayon::prelude::*;
 
 use super::build::{BuildItem, BuildOptions};
-use super::lanes::RayX4;
+use super::lanes::{lane_of, RayX4};
 use super::leaf::{Leaves, Packable};
 use super::subtree::build_tree;
-use super::wide::{collapse, prefetch, wide_depth, Node4, RayBox4, RayBoxes, EMPTY, LEAF};
+use super::wide::{collapse, prefetch, wide_depth, Node4, RayBox4, RayBoxes, RayInterval, EMPTY, LEAF};
 use crate::math::{Aabb, Ray};
 use crate::shape::PrimHit;
 use crate::wide::simd::{F32s, Ms, Vec3s};
@@ -226,6 +226,14 @@ impl Bvh {
         if entering == 0 {
             return best;
         }
+        // A group whose rays go one way on every axis is bounded once (`RayInterval`), and each
+        // node's four boxes are first tested against the bounds: the children no ray can hit
+        // are dropped, and those every ray hits taken by all, without their per-ray tests
+        // (most of a coherent group's walk). `far` holds the least and greatest `t_far` of the
+        // walk's rays, lowered as they find hits.
+        let walk = Ms::<N>::from_fn(|i| entering >> i & 1 != 0);
+        let interval = RayInterval::of(&rays, walk);
+        let mut far = (t_max, t_max);
         let mut stack = WalkStack::new();
         stack.push((0, entering));
         while let Some((node, mask)) = stack.pop() {
@@ -239,28 +247,41 @@ impl Bvh {
                         t_far.0[i] = hit.t;
                     }
                 }
+                if interval.is_some() {
+                    far = (t_far.min_over(walk), t_far.max_over(walk));
+                }
                 continue;
             }
             let n = &self.wide[node as usize];
+            let (may_hit, all_hit, entries) = match &interval {
+                Some(iv) => n.interval_hits(iv, t_min, far.0, far.1),
+                None => (0b1111, 0, glam::Vec4::ZERO),
+            };
             let mut kids = [(0u32, 0u32, 0f32); 4];
             let mut k = 0;
+            let mut leaf_tested = false;
             for lane in 0..4 {
                 let child = n.children[lane];
-                if child == EMPTY {
+                if child == EMPTY || may_hit >> lane & 1 == 0 {
                     continue;
                 }
-                let (hit, near) = n.child_hit_lanes(lane, &rays, lo, t_far);
-                let hit = hit & mask;
-                if hit == 0 {
-                    continue;
-                }
+                // The entry of the first ray that hits orders the children (or, for a child
+                // every ray hits, the group's least entry). Any order gives the same hits (the
+                // closest hit and its tie rule do not depend on it), so this only has to be a
+                // good guess, and one lane's entry is nearly the group's nearest for the
+                // coherent rays that reach here; the nearest over the hit lanes was a scalar
+                // loop, about 6% of the teapot's time.
+                let (hit, entry) = if all_hit >> lane & 1 != 0 {
+                    (mask, lane_of(&entries, lane))
+                } else {
+                    let (hit, near) = n.child_hit_lanes(lane, &rays, lo, t_far);
+                    let hit = hit & mask;
+                    if hit == 0 {
+                        continue;
+                    }
+                    (hit, near.0[hit.trailing_zeros() as usize])
+                };
                 if child & LEAF == 0 {
-                    // The entry of the first ray that hits orders the children. Any order gives
-                    // the same hits (the closest hit and its tie rule do not depend on it), so
-                    // this only has to be a good guess, and one lane's entry is nearly the
-                    // group's nearest for the coherent rays that reach here; the nearest over
-                    // the hit lanes was a scalar loop, about 6% of the teapot's time.
-                    let entry = near.0[hit.trailing_zeros() as usize];
                     let mut i = k;
                     while i > 0 && kids[i - 1].2 < entry {
                         kids[i] = kids[i - 1];
@@ -269,8 +290,10 @@ impl Bvh {
                     kids[i] = (child, hit, entry);
                     k += 1;
                 } else if hit.count_ones() >= RAY_LANES_FROM {
+                    leaf_tested = true;
                     t_far = self.leaves.intersect_rays(child & !LEAF, prims, origin, dir, hit, t_min, t_far, &mut best);
                 } else {
+                    leaf_tested = true;
                     let mut lanes = hit;
                     while lanes != 0 {
                         let i = lanes.trailing_zeros() as usize;
@@ -287,6 +310,9 @@ impl Bvh {
                         );
                     }
                 }
+            }
+            if leaf_tested && interval.is_some() {
+                far = (t_far.min_over(walk), t_far.max_over(walk));
             }
             for &(child, hit, _) in &kids[..k] {
                 prefetch(&self.wide, child);
@@ -397,6 +423,10 @@ impl Bvh {
         let ray = |i: usize| Ray::new(origin.lane(i), dir.lane(i));
         let rays = RayBoxes::new(origin, dir);
         let lo = F32s::<N>::splat(t_min);
+        // Coherent groups' boxes tested against the group's bounds first, as in
+        // `intersect_lanes`.
+        let interval = RayInterval::of(&rays, active);
+        let far = if interval.is_some() { (t_max.min_over(active), t_max.max_over(active)) } else { (0.0, 0.0) };
         let mut stack = WalkStack::new();
         stack.push((0, active.bitmask()));
         while let Some((node, mask)) = stack.pop() {
@@ -413,12 +443,18 @@ impl Bvh {
                 continue;
             }
             let n = &self.wide[node as usize];
+            let (may_hit, all_hit, _) = match &interval {
+                Some(iv) => n.interval_hits(iv, t_min, far.0, far.1),
+                None => (0b1111, 0, glam::Vec4::ZERO),
+            };
             for lane in 0..4 {
                 let child = n.children[lane];
-                if child == EMPTY {
+                if child == EMPTY || may_hit >> lane & 1 == 0 {
                     continue;
                 }
-                let hit = n.child_hit_lanes(lane, &rays, lo, t_max).0 & mask & !blocked;
+                let hit =
+                    if all_hit >> lane & 1 != 0 { mask } else { n.child_hit_lanes(lane, &rays, lo, t_max).0 & mask };
+                let hit = hit & !blocked;
                 if hit == 0 {
                     continue;
                 }

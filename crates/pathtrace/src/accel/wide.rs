@@ -7,7 +7,7 @@ use glam::{BVec4A, Vec4};
 use super::bvh::Node;
 use super::lanes::lane_of;
 use crate::math::Ray;
-use crate::wide::simd::{F32s, Vec3s};
+use crate::wide::simd::{F32s, Ms, Vec3s};
 
 /// Child tag for leaves (the low bits are the leaf record).
 pub(super) const LEAF: u32 = 1 << 31;
@@ -72,6 +72,72 @@ impl<const N: usize> RayBoxes<N> {
     }
 }
 
+/// A group of rays bounded together, for testing a node's four boxes against the whole group at
+/// once (Boulos et al., "Geometric and Arithmetic Culling Methods for Entire Ray Packets", 2006):
+/// per axis, the extremes of the rays' origins and of their reciprocal directions, which all have
+/// one sign. Made only for such groups (a pixel's camera rays, the shadow rays of nearby points
+/// to one light); a group whose directions' signs differ on some axis gets none.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RayInterval {
+    /// Per axis: which of a box's planes the rays enter through (`axis` for the min plane,
+    /// `axis + 3` for the max), and which they leave through.
+    entry_plane: [usize; 3],
+    exit_plane: [usize; 3],
+    /// Per axis: the origin bound that gives the least entry distance (the greatest origin for
+    /// rays going up the axis, the least for rays going down), and the one that gives the
+    /// greatest exit distance.
+    entry_origin: [Vec4; 3],
+    exit_origin: [Vec4; 3],
+    /// Per axis: the least and greatest reciprocal direction.
+    inv_lo: [Vec4; 3],
+    inv_hi: [Vec4; 3],
+}
+
+impl RayInterval {
+    /// The bounds of the rays of `lanes`; `None` if, on some axis, their directions do not all
+    /// have one sign or some origin or reciprocal direction is not finite.
+    #[inline(always)]
+    pub fn of<const N: usize>(r: &RayBoxes<N>, lanes: Ms<N>) -> Option<Self> {
+        // One ray's bounds are the ray: its own test is as cheap.
+        if N == 1 {
+            return None;
+        }
+        let finite = (0..3).fold(lanes, |m, a| m & r.origin[a].is_finite() & r.inv_dir[a].is_finite());
+        if (lanes & !finite).any() {
+            return None;
+        }
+        let mut iv = RayInterval {
+            entry_plane: [0; 3],
+            exit_plane: [0; 3],
+            entry_origin: [Vec4::ZERO; 3],
+            exit_origin: [Vec4::ZERO; 3],
+            inv_lo: [Vec4::ZERO; 3],
+            inv_hi: [Vec4::ZERO; 3],
+        };
+        for axis in 0..3 {
+            let (lo, hi) = (r.inv_dir[axis].min_over(lanes), r.inv_dir[axis].max_over(lanes));
+            let up = if lo > 0.0 {
+                true
+            } else if hi < 0.0 {
+                false
+            } else {
+                return None;
+            };
+            let (o_lo, o_hi) = (r.origin[axis].min_over(lanes), r.origin[axis].max_over(lanes));
+            // Going up the axis the rays enter through the min plane, and the entry distance
+            // (plane − o)·inv is least for the greatest origin; going down, through the max
+            // plane, least for the least origin. The exit the other way round.
+            iv.entry_plane[axis] = if up { axis } else { axis + 3 };
+            iv.exit_plane[axis] = if up { axis + 3 } else { axis };
+            iv.entry_origin[axis] = Vec4::splat(if up { o_hi } else { o_lo });
+            iv.exit_origin[axis] = Vec4::splat(if up { o_lo } else { o_hi });
+            iv.inv_lo[axis] = Vec4::splat(lo);
+            iv.inv_hi[axis] = Vec4::splat(hi);
+        }
+        Some(iv)
+    }
+}
+
 impl Default for Node4 {
     /// No children.
     fn default() -> Self {
@@ -111,6 +177,40 @@ impl Node4 {
             far = far.min(t0.max(t1));
         }
         (near.le(far).bitmask(), near)
+    }
+
+    /// The group bounded by `iv` against the four boxes, each ray's range `[t_min, t_far]`
+    /// with `t_far` within `[far_lo, far_hi]`: the children some ray may hit, the children
+    /// every ray hits (bitmasks, lane 0 lowest), and per child a lower bound of the rays' entry
+    /// distances. Both masks agree with [`Node4::child_hit_lanes`]'s own test of each ray: a
+    /// child outside the first is missed by all of them, a child in the second hit by all.
+    ///
+    /// Why: the per-ray test computes, per axis, fl(fl(plane − o) · inv). Rounding is
+    /// monotone, so fl(plane − o) falls as o grows, and the product is monotone in each factor
+    /// for a fixed sign of the other; so over the interval, a ray's entry distance lies between
+    /// the least and the greatest of fl(fl(entry plane − o) · inv) at the ends of o's and
+    /// inv's ranges (for the least: the origin bound `entry_origin`, both ends of inv), and
+    /// its exit distance likewise. If the greatest entry bound over the axes (and `t_min`)
+    /// exceeds the least exit bound (and `far_hi`), every ray's near distance exceeds its far
+    /// one: the per-ray test fails for all. If the greatest entry is at most the least exit
+    /// (and `far_lo`), it passes for all.
+    #[inline(always)]
+    pub fn interval_hits(&self, iv: &RayInterval, t_min: f32, far_lo: f32, far_hi: f32) -> (u32, u32, Vec4) {
+        let (mut near_lo, mut near_hi) = (Vec4::splat(t_min), Vec4::splat(t_min));
+        let (mut exit_lo, mut exit_hi) = (Vec4::splat(far_lo), Vec4::splat(far_hi));
+        for axis in 0..3 {
+            let (entry, exit) = (self.bounds[iv.entry_plane[axis]], self.bounds[iv.exit_plane[axis]]);
+            let (lo, hi) = (iv.inv_lo[axis], iv.inv_hi[axis]);
+            // The least entry and greatest exit: the origin bounds that make them extreme.
+            let (d_in, d_out) = (entry - iv.entry_origin[axis], exit - iv.exit_origin[axis]);
+            near_lo = near_lo.max((d_in * lo).min(d_in * hi));
+            exit_hi = exit_hi.min((d_out * lo).max(d_out * hi));
+            // The greatest entry and least exit: the other origin bounds.
+            let (d_in, d_out) = (entry - iv.exit_origin[axis], exit - iv.entry_origin[axis]);
+            near_hi = near_hi.max((d_in * lo).max(d_in * hi));
+            exit_lo = exit_lo.min((d_out * lo).min(d_out * hi));
+        }
+        (near_lo.cmple(exit_hi).bitmask(), near_hi.cmple(exit_lo).bitmask(), near_lo)
     }
 
     /// Same boxes (bit for bit) and children.
@@ -210,5 +310,78 @@ pub(super) fn wide_depth(nodes: &[Node4]) -> usize {
         0
     } else {
         depth(nodes, 0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampling::Pcg32;
+    use glam::Vec3;
+
+    fn uniform(rng: &mut Pcg32, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32
+    }
+
+    fn point(rng: &mut Pcg32, extent: f32) -> Vec3 {
+        Vec3::new(uniform(rng, -extent, extent), uniform(rng, -extent, extent), uniform(rng, -extent, extent))
+    }
+
+    /// A child the interval test drops is missed by every ray of the group in the per-ray test,
+    /// and a child it says every ray hits is hit by all (the walks' results depend on that
+    /// alone); for groups that go one way the test finds most of the children all rays miss,
+    /// and many that all rays hit. Groups: one origin or a patch of origins,
+    /// directions in a narrow or a wide cone, some lanes off, and `t_far` finite or not.
+    #[test]
+    fn interval_masks_agree_with_each_rays_test() {
+        const N: usize = 32;
+        let mut rng = Pcg32::new(11, 5);
+        let (mut missed_by_all, mut dropped, mut groups) = (0, 0, 0);
+        let (mut hit_by_all, mut kept_whole) = (0, 0);
+        for g in 0..3000 {
+            let centre = point(&mut rng, 6.0);
+            let aim = point(&mut rng, 1.0).normalize_or(Vec3::X);
+            let spread = [0.0, 0.02, 0.3][g % 3];
+            let patch = [0.0, 0.05, 1.0][g / 3 % 3];
+            let (mut origin, mut dir) = (Vec3s::<N>::default(), Vec3s::<N>::default());
+            for i in 0..N {
+                origin.set(i, centre + point(&mut rng, patch));
+                dir.set(i, (aim + point(&mut rng, spread)).normalize_or(Vec3::X));
+            }
+            let lanes = Ms::<N>::from_fn(|_| g % 4 != 3 || !rng.next_u32().is_multiple_of(3));
+            let rays = RayBoxes::new(&origin, &dir);
+            let Some(iv) = RayInterval::of(&rays, lanes) else { continue };
+            groups += 1;
+            let t_far = F32s::<N>::from_fn(|_| if g % 2 == 0 { f32::INFINITY } else { uniform(&mut rng, 0.5, 12.0) });
+            let t_min = F32s::<N>::splat(0.0);
+            let (least, bound) = (t_far.min_over(lanes), t_far.max_over(lanes));
+            for _ in 0..8 {
+                let mut node = Node4::default();
+                for lane in 0..4 {
+                    let (c, h) = (point(&mut rng, 8.0), point(&mut rng, 1.5).abs());
+                    for axis in 0..3 {
+                        node.bounds[axis][lane] = c[axis] - h[axis];
+                        node.bounds[axis + 3][lane] = c[axis] + h[axis];
+                    }
+                }
+                let (may, all, _) = node.interval_hits(&iv, 0.0, least, bound);
+                for lane in 0..4 {
+                    let hits = node.child_hit_lanes(lane, &rays, t_min, t_far).0 & lanes.bitmask();
+                    if may >> lane & 1 == 0 {
+                        assert_eq!(hits, 0, "group {g}: a dropped box is hit by rays {hits:#x}");
+                        dropped += 1;
+                    }
+                    if all >> lane & 1 != 0 {
+                        assert_eq!(hits, lanes.bitmask(), "group {g}: a box said hit by all is missed by some");
+                        kept_whole += 1;
+                    }
+                    missed_by_all += usize::from(hits == 0);
+                    hit_by_all += usize::from(hits == lanes.bitmask());
+                }
+            }
+        }
+        assert!(groups > 1500, "{groups} groups went one way");
+        assert!(dropped * 10 > missed_by_all * 9, "dropped {dropped} of {missed_by_all} boxes all rays miss");
+        assert!(kept_whole * 2 > hit_by_all, "{kept_whole} of {hit_by_all} boxes every ray hits said so");
     }
 }

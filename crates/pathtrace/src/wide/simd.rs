@@ -58,6 +58,40 @@ fn zip<const N: usize>(a: F32s<N>, b: F32s<N>, f: impl Fn(f32, f32) -> f32) -> F
     F32s(out)
 }
 
+/// `f` folded over the lanes in halves (lanes `i` and `i + N/2`, then `i` and `i + N/4`, …): each
+/// step is one vector operation, where a lane-by-lane fold is a chain of `N` scalar ones. The
+/// steps are written out because a loop over them, five iterations for 32 lanes, is not
+/// unrolled (`.cargo/config.toml` caps full unrolling at 4), and its inner loops would then
+/// have unknown lengths. For up to 32 lanes, a power of two.
+#[inline(always)]
+fn fold_halves<const N: usize>(mut v: [f32; N], f: impl Fn(f32, f32) -> f32) -> f32 {
+    const { assert!(N.is_power_of_two() && N <= 32) };
+    if N >= 32 {
+        for i in 0..16 {
+            v[i] = f(v[i], v[i + 16]);
+        }
+    }
+    if N >= 16 {
+        for i in 0..8 {
+            v[i] = f(v[i], v[i + 8]);
+        }
+    }
+    if N >= 8 {
+        for i in 0..4 {
+            v[i] = f(v[i], v[i + 4]);
+        }
+    }
+    if N >= 4 {
+        for i in 0..2 {
+            v[i] = f(v[i], v[i + 2]);
+        }
+    }
+    if N >= 2 {
+        v[0] = f(v[0], v[1]);
+    }
+    v[0]
+}
+
 #[inline(always)]
 fn compare<const N: usize>(a: F32s<N>, b: F32s<N>, f: impl Fn(f32, f32) -> bool) -> Ms<N> {
     let mut out = [0u32; N];
@@ -167,6 +201,18 @@ impl<const N: usize> F32s<N> {
     #[inline(always)]
     pub fn ge(self, b: Self) -> Ms<N> {
         compare(self, b, |a, b| a >= b)
+    }
+
+    /// The least lane of `mask` (+∞ without one), compared with `<` as [`F32s::min`] does.
+    #[inline(always)]
+    pub fn min_over(self, mask: Ms<N>) -> f32 {
+        fold_halves(Self::select(mask, self, Self::splat(f32::INFINITY)).0, |a, b| if a < b { a } else { b })
+    }
+
+    /// The greatest lane of `mask` (−∞ without one), compared with `>` as [`F32s::max`] does.
+    #[inline(always)]
+    pub fn max_over(self, mask: Ms<N>) -> f32 {
+        fold_halves(Self::select(mask, self, Self::splat(f32::NEG_INFINITY)).0, |a, b| if a > b { a } else { b })
     }
 
     /// Finite lanes (neither infinite nor NaN).
@@ -474,6 +520,23 @@ mod tests {
     use super::*;
 
     const N: usize = LANES_256;
+
+    #[test]
+    fn extremes_over_a_mask_are_the_masked_lanes_extremes() {
+        fn check<const M: usize>() {
+            let v = F32s::<M>::from_fn(|i| ((i * 7919) % 31) as f32 - 15.25);
+            for pattern in [0u32, 1, 0b1010, 0x8000_0001, 0xffff_ffff, 0x0f0f_f0f0, 1 << (M - 1)] {
+                let mask = Ms::<M>::from_fn(|i| pattern >> i & 1 != 0);
+                let lanes = || (0..M).filter(|&i| mask.lane(i)).map(|i| v.0[i]);
+                assert_eq!(v.min_over(mask), lanes().fold(f32::INFINITY, f32::min), "{M} lanes, {pattern:#x}");
+                assert_eq!(v.max_over(mask), lanes().fold(f32::NEG_INFINITY, f32::max), "{M} lanes, {pattern:#x}");
+            }
+        }
+        check::<1>();
+        check::<8>();
+        check::<16>();
+        check::<32>();
+    }
 
     #[test]
     fn lane_ops_match_scalar_ops() {
