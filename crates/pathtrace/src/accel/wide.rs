@@ -102,6 +102,15 @@ impl RayInterval {
         if N == 1 {
             return None;
         }
+        // Mixed signs, the usual way out (bounce rays), are found by six compares, before the
+        // finiteness test and the folds.
+        let zero = F32s::splat(0.0);
+        for axis in 0..3 {
+            let (up, down) = (r.inv_dir[axis].gt(zero), r.inv_dir[axis].lt(zero));
+            if (lanes & !up).any() && (lanes & !down).any() {
+                return None;
+            }
+        }
         let finite = (0..3).fold(lanes, |m, a| m & r.origin[a].is_finite() & r.inv_dir[a].is_finite());
         if (lanes & !finite).any() {
             return None;
