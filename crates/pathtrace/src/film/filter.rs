@@ -143,6 +143,32 @@ impl PixelFilter {
         }
     }
 
+    /// The first pixel (one axis) whose centre, at index + ½, a sample at film coordinate `p`
+    /// can give a non-zero weight; the others follow, [`PixelFilter::support_len`] in all.
+    /// The tent's and the gaussian's f₁ are zero at ±r (support open: centres strictly
+    /// within r of `p`), the box's is one there (closed). `p` and r are exact in f64, so is the
+    /// comparison.
+    #[inline(always)]
+    pub fn support_start(&self, p: f64) -> i64 {
+        let a = p - 0.5 - self.radius() as f64;
+        match self {
+            PixelFilter::Pixel | PixelFilter::Box { .. } => a.ceil() as i64,
+            PixelFilter::Tent { .. } | PixelFilter::Gaussian(_) => a.floor() as i64 + 1,
+        }
+    }
+
+    /// How many pixels from [`PixelFilter::support_start`] a sample may reach, the same for
+    /// every position: ⌈2r⌉ integers lie in an open interval of length 2r, at most ⌊2r⌋ + 1 in
+    /// a closed one. (Splats loop over a fixed count, which branch predictors learn; a tent of
+    /// radius 1 reaches 3 × 3 centres around its pixel but weights 2 × 2 of them.)
+    pub fn support_len(&self) -> usize {
+        let two_r = 2.0 * self.radius() as f64;
+        match self {
+            PixelFilter::Pixel | PixelFilter::Box { .. } => two_r.floor() as usize + 1,
+            PixelFilter::Tent { .. } | PixelFilter::Gaussian(_) => two_r.ceil() as usize,
+        }
+    }
+
     /// f₁ at the offsets `x0`, `x0 + 1`, … of a row of pixel centres, into `out`: what a splat
     /// needs per axis. The gaussian's row costs two exponentials instead of one per pixel
     /// ([`GaussianFilter::eval_row`]); the others are [`PixelFilter::profile`] at each offset.
@@ -242,6 +268,53 @@ mod tests {
             let mut row = [0.0; 5];
             f.profile_row(-2.3, &mut row);
             assert_eq!(row, std::array::from_fn(|i| f.profile(-2.3 + i as f64)));
+        }
+    }
+
+    /// Outside its support window a splat's row of f₁ holds only zeros (the gaussian's
+    /// recurrence may leave values of a few ulps of its cut-off there, far below the film's
+    /// fixed-point grid), and the window lies within the row: for positions across a pixel,
+    /// its edges and the exact halves included, for narrow and wide filters of each kind.
+    #[test]
+    fn splat_rows_are_zero_outside_the_support_window() {
+        let mut filters = vec![
+            PixelFilter::Tent { radius: 1.0 },
+            PixelFilter::Tent { radius: 0.75 },
+            PixelFilter::Tent { radius: 1.5 },
+            PixelFilter::Tent { radius: 2.3 },
+            PixelFilter::Box { radius: 0.75 },
+            PixelFilter::Box { radius: 1.0 },
+            PixelFilter::Box { radius: 1.6 },
+        ];
+        for sigma in [0.13f32, 0.3, 0.375, 0.5, 1.0, 2.5] {
+            filters.push(PixelFilter::Gaussian(GaussianFilter::new(sigma).unwrap()));
+        }
+        let mut fracs: Vec<f64> = (0..=512).map(|k| k as f64 / 512.0).filter(|&f| f < 1.0).collect();
+        fracs.extend([1e-30, 0.5 - 1e-7, 0.5 + 6e-8, 1.0 - 6e-8].map(|f: f64| f as f32 as f64));
+        for f in &filters {
+            let m = (f.radius() as f64 - 0.5).ceil().max(0.0) as i64;
+            let n = 2 * m as usize + 1;
+            let len = f.support_len() as i64;
+            assert!(len <= n as i64, "{f:?}: window {len} wider than the row {n}");
+            for x in [0.0, 7.0, 1023.0] {
+                for &frac in &fracs {
+                    let p = x + frac;
+                    let fx = p.floor() as i64 - m;
+                    let mut row = vec![0.0; n];
+                    f.profile_row(fx as f64 + 0.5 - p, &mut row);
+                    let s = f.support_start(p) - fx;
+                    for (i, &w) in row.iter().enumerate() {
+                        let inside = (s..s + len).contains(&(i as i64));
+                        let limit = if matches!(f, PixelFilter::Gaussian(_)) { 1e-18 } else { 0.0 };
+                        assert!(inside || w <= limit, "{f:?} at {p}: weight {w} at {i} outside {s}..{}", s + len);
+                        // Inside, only centres at the support's edge may be zero.
+                        if inside && (0..n as i64).contains(&(i as i64)) && w == 0.0 {
+                            let d = (fx + i as i64) as f64 + 0.5 - p;
+                            assert!(d.abs() >= f.radius() as f64 * (1.0 - 1e-6), "{f:?} at {p}: zero at {d} inside");
+                        }
+                    }
+                }
+            }
         }
     }
 

@@ -109,6 +109,8 @@ pub struct SplatBlock {
     /// Splats since `small` was last added into `pixels`.
     pending: u32,
     margin: u32,
+    /// The filter's [`PixelFilter::support_len`].
+    support_len: i64,
     /// f₁ at the footprint's columns and rows, reused from sample to sample.
     wx: Vec<f64>,
     wy: Vec<f64>,
@@ -133,6 +135,7 @@ impl SplatBlock {
             small: vec![[0; 4]; bw as usize * bh as usize],
             pending: 0,
             margin,
+            support_len: filter.support_len() as i64,
             wx: vec![0.0; n],
             wy: vec![0.0; n],
         }
@@ -153,12 +156,16 @@ impl SplatBlock {
         // position all fit f64's 53 bits); the row's others follow at +1, +2, ….
         filter.profile_row(fx as f64 + 0.5 - px, &mut self.wx);
         filter.profile_row(fy as f64 + 0.5 - py, &mut self.wy);
-        // The footprint clipped to the block once, rather than tested pixel by pixel.
+        // Only the pixels within the filter's support, a fixed count per axis (the rows above
+        // hold zeros at the others), clipped to the block once rather than tested pixel by
+        // pixel. (Trimming the zeros by testing the weights made cbb's splats about 10% slower:
+        // the tests' outcomes follow the sample's position, which no predictor can guess.)
         let n = self.wx.len() as i64;
+        let (sx, sy) = (filter.support_start(px) - fx, filter.support_start(py) - fy);
         let (bx0, by0) = (self.x0 as i64, self.y0 as i64);
         let (bw, bh) = (self.w as i64, self.h as i64);
-        let (i0, i1) = ((bx0 - fx).max(0), (bx0 + bw - fx).min(n));
-        let (j0, j1) = ((by0 - fy).max(0), (by0 + bh - fy).min(n));
+        let (i0, i1) = ((bx0 - fx).max(sx).max(0), (bx0 + bw - fx).min(sx + self.support_len).min(n));
+        let (j0, j1) = ((by0 - fy).max(sy).max(0), (by0 + bh - fy).min(sy + self.support_len).min(n));
         if i0 >= i1 || j0 >= j1 {
             return;
         }
@@ -171,9 +178,6 @@ impl SplatBlock {
         let l = c.to_array().map(f64::from);
         for j in j0..j1 {
             let wy = self.wy[j as usize];
-            if wy == 0.0 {
-                continue;
-            }
             let row = (fy + j - by0) * bw - bx0 + fx;
             for i in i0..i1 {
                 let wx = self.wx[i as usize];
@@ -185,7 +189,7 @@ impl SplatBlock {
                     for (sum, term) in self.small[p].iter_mut().zip(terms) {
                         *sum += fixed_small(term);
                     }
-                } else if wx != 0.0 {
+                } else if wx != 0.0 && wy != 0.0 {
                     self.pixels[p].add(wx * wy, c);
                 }
             }
