@@ -160,6 +160,8 @@ impl SplatBlock {
         // hold zeros at the others), clipped to the block once rather than tested pixel by
         // pixel. (Trimming the zeros by testing the weights made cbb's splats about 10% slower:
         // the tests' outcomes follow the sample's position, which no predictor can guess.)
+        // A box's closed support can start one centre before the row, at exactly r from a
+        // sample on a pixel edge; the `max(0)` leaves it out, as the footprint always has.
         let n = self.wx.len() as i64;
         let (sx, sy) = (filter.support_start(px) - fx, filter.support_start(py) - fy);
         let (bx0, by0) = (self.x0 as i64, self.y0 as i64);
