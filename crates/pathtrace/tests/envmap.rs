@@ -8,9 +8,13 @@
 //!   the sun makes it vary enormously; and both estimate the same ∫ L dω.
 //! - Furnace: a convex Lambertian sphere of albedo a under a map that is L everywhere shows a·L.
 //! - MIS: a glossy sphere under the sun-and-sky map, relative MSE against a high-spp reference.
+//! - MIS compensation: the density of the luminance above the map's mean passes the same
+//!   chi-square test, is zero where the map is dim, lowers the variance of an MIS estimate of
+//!   irradiance without moving its mean, and renders agree with an estimator that keeps the
+//!   complete density.
 
 use pathtrace::integrator::Strategy;
-use pathtrace::light::{EnvMap, EnvironmentLight, Light, LightSet};
+use pathtrace::light::{EnvMap, EnvSampling, EnvironmentLight, Light, LightSet};
 use pathtrace::material::{Glossy, Lambertian, Material};
 use pathtrace::math::{Rgb, Transform, Vec2, Vec3};
 use pathtrace::metrics::relative_mse;
@@ -70,12 +74,12 @@ fn lat_long(u: f64, v: f64) -> Vec3 {
     Vec3::new((st * sp) as f32, ct as f32, (-st * cp) as f32)
 }
 
-/// Chi-square test of `map.sample` against `map.pdf` (map of `w × h` texels, identity
+/// Chi-square test of `map.sample_with` against `map.pdf_with` under `how` (map of `w × h` texels, identity
 /// `to_world`) on lat-long bins of 2 texel columns by 1 texel row, their u edges shifted by half
 /// a texel so that they follow the cells of the sampling distribution; the expected count of a
 /// bin integrates pdf · dω = pdf · 2π² sin θ du dv by the midpoint rule on 8 × 8 points per cell,
 /// exact for a density constant per cell in (u, v). Returns the p-value.
-fn lat_long_chi_square(map: &EnvMap, w: usize, h: usize, samples: usize) -> f64 {
+fn lat_long_chi_square(map: &EnvMap, how: EnvSampling, w: usize, h: usize, samples: usize) -> f64 {
     let (bu, bv) = (w / 2, h - 1);
     let shift = 0.5 / w as f64;
     let bin_of = |d: Vec3| {
@@ -88,7 +92,7 @@ fn lat_long_chi_square(map: &EnvMap, w: usize, h: usize, samples: usize) -> f64 
     let mut observed = vec![0.0f64; bu * bv];
     let mut rng = TestRng::new(17);
     for _ in 0..samples {
-        let (d, pdf) = map.sample(v2(rng.next_2d()));
+        let (d, pdf) = map.sample_with(v2(rng.next_2d()), how);
         if pdf > 0.0 {
             observed[bin_of(d)] += 1.0;
         }
@@ -105,7 +109,7 @@ fn lat_long_chi_square(map: &EnvMap, w: usize, h: usize, samples: usize) -> f64 
                     let v = (j * 8 + b) as f64 * dv + 0.5 * dv;
                     let sin_theta = (std::f64::consts::PI * v).sin();
                     let jac = 2.0 * std::f64::consts::PI.powi(2) * sin_theta;
-                    p += map.pdf(lat_long(u, v)) as f64 * jac * du * dv;
+                    p += map.pdf_with(lat_long(u, v), how) as f64 * jac * du * dv;
                 }
             }
             expected[j * bu + i] = p * samples as f64;
@@ -135,7 +139,7 @@ fn lat_long_chi_square(map: &EnvMap, w: usize, h: usize, samples: usize) -> f64 
 fn samples_follow_the_pdf_and_the_pdf_integrates_to_one() {
     let (w, h) = (64, 32);
     let map = sky_map(Transform::IDENTITY);
-    let p = lat_long_chi_square(&map, w, h, 1_000_000);
+    let p = lat_long_chi_square(&map, EnvSampling::Complete, w, h, 1_000_000);
     assert!(p > 0.01, "chi-square rejected the sampler (p = {p})");
     // Rotated (and mirrored, as Mitsuba's matpreview is): integrates to 1 in world directions,
     // and every sample's own pdf is the pdf of its direction.
@@ -151,6 +155,90 @@ fn samples_follow_the_pdf_and_the_pdf_integrates_to_one() {
             assert!((pdf - map.pdf(d)).abs() <= 2e-3 * pdf, "{name}: {pdf} vs {}", map.pdf(d));
         }
     }
+}
+
+#[test]
+fn compensated_samples_follow_their_pdf_which_leaves_out_the_sky_below_the_mean() {
+    let (w, h) = (64, 32);
+    let map = sky_map(Transform::IDENTITY);
+    let p = lat_long_chi_square(&map, EnvSampling::Compensated, w, h, 1_000_000);
+    assert!(p > 0.01, "chi-square rejected the compensated sampler (p = {p})");
+    let tilted = Transform::rotate_x(30.0).then(&Transform::rotate_y(-110.0));
+    let map = sky_map(tilted);
+    let pdf = |d: Vec3| map.pdf_with(d, EnvSampling::Compensated);
+    let integral = midpoint_over_sphere(|d| pdf(d) as f64, 1024);
+    assert!((integral - 1.0).abs() < 5e-3, "the compensated pdf integrates to {integral}");
+    let mut rng = TestRng::new(5);
+    for _ in 0..2000 {
+        let (d, p) = map.sample_with(v2(rng.next_2d()), EnvSampling::Compensated);
+        assert!((p - pdf(d)).abs() <= 2e-3 * p, "{p} vs {}", pdf(d));
+    }
+    // The sun holds most of the light, so the whole sky is below the mean: the compensated
+    // density is zero there (the complete one is not) and larger on the sun.
+    let to_world = |u: f64, v: f64| tilted.vector(lat_long(u, v));
+    let (sky, sun) = (to_world(0.8, 0.2), to_world((20.0 + 0.5) / w as f64, 9.0 / (h - 1) as f64));
+    assert_eq!(pdf(sky), 0.0);
+    assert!(map.pdf(sky) > 0.0);
+    assert!(pdf(sun) > map.pdf(sun), "{} vs {}", pdf(sun), map.pdf(sun));
+}
+
+#[test]
+fn a_map_with_nothing_above_its_mean_keeps_the_complete_density() {
+    let map = EnvMap::new(8, 5, vec![Rgb::new(1.0, 2.0, 4.0); 40], 1.0, Transform::rotate_x(70.0)).unwrap();
+    let mut rng = TestRng::new(9);
+    for _ in 0..200 {
+        let u = v2(rng.next_2d());
+        let (complete, compensated) = (map.sample(u), map.sample_with(u, EnvSampling::Compensated));
+        assert_eq!(complete.0.to_array(), compensated.0.to_array());
+        assert_eq!(complete.1, compensated.1);
+    }
+}
+
+/// Mean and variance of one-sample-per-technique MIS estimates (power heuristic) of the
+/// irradiance ∫ L cos θ dω at the normal `n`: a light sample drawn with the map's density under
+/// `how` and a cosine-weighted direction, each weighed against the other's density.
+fn mis_irradiance(map: &EnvMap, how: EnvSampling, n: Vec3, samples: usize) -> (f64, f64) {
+    let frame = pathtrace::math::Frame::from_normal(n);
+    let power = |a: f32, b: f32| if a > 0.0 { a * a / (a * a + b * b) } else { 0.0 };
+    let mut rng = TestRng::new(23);
+    let (mut s, mut s2) = (0.0f64, 0.0f64);
+    for _ in 0..samples {
+        let mut estimate = 0.0f32;
+        let (d, p_light) = map.sample_with(v2(rng.next_2d()), how);
+        let cos = d.dot(n);
+        if p_light > 0.0 && cos > 0.0 {
+            let w = power(p_light, cos / std::f32::consts::PI);
+            estimate += map.radiance(d).luminance() * cos * w / p_light;
+        }
+        let d = frame.to_world(pathtrace::sampling::warp::square_to_cosine_hemisphere(v2(rng.next_2d())));
+        let cos = d.dot(n);
+        if cos > 0.0 {
+            let p_bsdf = cos / std::f32::consts::PI;
+            let w = power(p_bsdf, map.pdf_with(d, how));
+            estimate += map.radiance(d).luminance() * cos * w / p_bsdf;
+        }
+        s += estimate as f64;
+        s2 += (estimate as f64).powi(2);
+    }
+    let mean = s / samples as f64;
+    (mean, (s2 / samples as f64 - mean * mean).max(0.0))
+}
+
+#[test]
+fn compensation_lowers_the_variance_of_mis_and_keeps_its_mean() {
+    // The sun is 52° from the zenith: the sky and the sun both light an upward normal.
+    let map = sky_map(Transform::IDENTITY);
+    let n = Vec3::Y;
+    let exact = midpoint_over_sphere(|d| (map.radiance(d).luminance() * d.dot(n).max(0.0)) as f64, 1024);
+    let samples = 400_000;
+    let (complete, var_complete) = mis_irradiance(&map, EnvSampling::Complete, n, samples);
+    let (compensated, var_compensated) = mis_irradiance(&map, EnvSampling::Compensated, n, samples);
+    eprintln!("irradiance {exact:.4}: complete {complete:.4} (variance {var_complete:.4}), compensated {compensated:.4} (variance {var_compensated:.4})");
+    for (name, mean, var) in [("complete", complete, var_complete), ("compensated", compensated, var_compensated)] {
+        let se = (var / samples as f64).sqrt();
+        assert!((mean - exact).abs() < 4.0 * se + 2e-3 * exact, "{name}: {mean} vs {exact} (se {se})");
+    }
+    assert!(var_compensated < 0.9 * var_complete, "compensated {var_compensated} vs complete {var_complete}");
 }
 
 #[test]
@@ -269,6 +357,27 @@ pub fn glossy_errors(spp: u32, ref_spp: u32, seeds: u64) -> Vec<(Strategy, f64)>
             (s, total / seeds as f64)
         })
         .collect()
+}
+
+/// Renders under `mis` sample the map with the compensated density, under `mixture` with the
+/// complete one: both converge to the same image (a diffuse and a glossy sphere, seen whole
+/// against the sky, and the sky itself).
+#[test]
+fn compensated_mis_renders_agree_with_the_complete_density() {
+    let pixels = sun_and_sky(128, 64, (40.0, 20.0), 2.0, 300.0);
+    let map = EnvMap::new(128, 64, pixels, 1.0, Transform::rotate_y(130.0)).unwrap();
+    let diffuse = Material::Lambertian(Lambertian { albedo: Rgb::new(0.8, 0.6, 0.4) });
+    let glossy = Material::Glossy(Glossy { albedo: Rgb::splat(0.8), exponent: 8.0 });
+    for (name, material) in [("diffuse", diffuse), ("glossy", glossy)] {
+        let scene = sphere_scene(material, EnvironmentLight::map(map.clone()), 45.0);
+        let est = |strategy: Strategy, spp: u32| {
+            render(scene.clone(), settings(strategy, spp, 31)).unwrap().film.region_estimate(0, 0, 16, 16)
+        };
+        let (mis, mixture) = (est(Strategy::Mis, 512), est(Strategy::Mixture, 1024));
+        let z = mis.max_z_score(&mixture);
+        assert!(z < 4.5, "{name}: mis {:?} vs mixture {:?} (z = {z:.2})", mis.mean, mixture.mean);
+        assert!(mis.variance_of_mean[0].sqrt() < 0.01 * mis.mean[0], "{name}: too noisy to judge");
+    }
 }
 
 #[test]

@@ -183,7 +183,7 @@ pub(crate) fn vertex<const N: usize>(
             // The escaped lanes look the map up together; those that MIS weighs also get the
             // density (LightSet::pdf_environment's product), from the same lookup.
             let weighed = if strategy.is_mis() { escaped & !paths.prev_specular } else { Ms::NONE };
-            let (radiance, pdf) = env.lookup_lanes(&paths.dir, escaped, weighed);
+            let (radiance, pdf) = env.lookup_lanes(&paths.dir, escaped, weighed, lanes.lights.env_sampling());
             let pick = scene_lights.environment_pmf();
             let w = strategy.mis_weight_lanes(paths.prev_pdf, pick * pdf);
             let w = F32s::select(weighed, w, F32s::ONE);

@@ -9,7 +9,7 @@
 
 use std::sync::Arc;
 
-use super::envmap::{EnvMap, EnvSamples};
+use super::envmap::{EnvMap, EnvSamples, EnvSampling};
 use crate::math::{Rgb, Vec2, Vec3, INV_4PI};
 use crate::sampling::warp;
 use crate::wide::simd::{F32s, Ms, Vec3s};
@@ -64,20 +64,21 @@ impl EnvironmentLight {
     }
 
     /// Per lane of `active`, the radiance seen along the unit direction `dir`, and in the lanes
-    /// of `with_pdf` (a subset) [`EnvironmentLight::pdf`] of it (0 elsewhere): the escaped paths
-    /// of a lane group, looked up together.
+    /// of `with_pdf` (a subset) the density of [`EnvironmentLight::sample_lanes`] under `how`
+    /// along it (0 elsewhere): the escaped paths of a lane group, looked up together.
     #[inline(always)]
     pub fn lookup_lanes<const N: usize>(
         &self,
         dir: &Vec3s<N>,
         active: Ms<N>,
         with_pdf: Ms<N>,
+        how: EnvSampling,
     ) -> ([F32s<N>; 3], F32s<N>) {
         match &self.map {
             None => {
                 (self.radiance.to_array().map(F32s::splat), F32s::select(with_pdf, F32s::splat(INV_4PI), F32s::ZERO))
             }
-            Some(map) => map.lookup_lanes(dir, active, with_pdf),
+            Some(map) => map.lookup_lanes(dir, active, with_pdf, how),
         }
     }
 
@@ -92,11 +93,19 @@ impl EnvironmentLight {
     }
 
     /// [`EnvironmentLight::sample`] for the lanes of `active` (a map's directions computed
-    /// together, a constant environment's lane by lane).
+    /// together, a constant environment's lane by lane), a map's drawn with the density `how`
+    /// asks for. A constant environment has nothing above its mean: [`EnvSampling`] leaves its
+    /// uniform density as it is.
     #[inline(always)]
-    pub fn sample_lanes<const N: usize>(&self, u1: &F32s<N>, u2: &F32s<N>, active: Ms<N>) -> EnvSamples<N> {
+    pub fn sample_lanes<const N: usize>(
+        &self,
+        u1: &F32s<N>,
+        u2: &F32s<N>,
+        active: Ms<N>,
+        how: EnvSampling,
+    ) -> EnvSamples<N> {
         if let Some(map) = &self.map {
-            return map.sample_lanes(u1, u2, active);
+            return map.sample_lanes(u1, u2, active, how);
         }
         let mut out = EnvSamples { dir: Vec3s::default(), pdf: F32s::ZERO, radiance: [F32s::ZERO; 3] };
         for i in active.lanes() {

@@ -13,6 +13,16 @@
 //! centre, so every direction with radiance has a positive density. A point (u, v) of density
 //! p_uv maps to a direction of solid-angle density p_uv / (2π² sin θ), since
 //! dω = sin θ dθ dφ = 2π² sin θ du dv.
+//!
+//! MIS compensation (Karlík, Šik, Vévoda, Skřivan & Křivánek, "MIS Compensation: Optimizing
+//! Sampling Techniques in Multiple Importance Sampling", SIGGRAPH Asia 2019; pbrt-v4's
+//! `ImageInfiniteLight::compensatedDistribution`): where next-event estimation is combined by MIS
+//! with material sampling, the light's density can leave to the material the directions whose
+//! radiance is at most the map's mean, L̄ = ∫ L dω / 4π, and sample in proportion to
+//! max(L − L̄, 0) instead; material sampling still covers every direction, so the estimate
+//! stays unbiased, and the light's samples concentrate on the bright parts MIS gives them.
+//! [`EnvSampling`] says which density an estimator uses, for its samples and its MIS weights
+//! alike.
 
 use crate::math::{Mat4, Rgb, Transform, Vec2, Vec3, PI};
 use crate::sampling::Distribution2D;
@@ -21,7 +31,21 @@ use crate::wide::prefetch::prefetch;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 use crate::wide::warp::cos_sin_turn;
 
-/// A lat-long radiance image with its sampling distribution.
+/// Which density the map is sampled with (and its MIS weights computed with).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EnvSampling {
+    /// In proportion to luminance × sin θ: every direction with radiance has a positive
+    /// density. Light sampling alone (the `light` and `mixture` strategies, media) needs this.
+    #[default]
+    Complete,
+    /// In proportion to max(luminance − mean, 0) × sin θ (MIS compensation, see the module
+    /// comment): for estimators that weigh light samples by MIS against material samples,
+    /// which reach the directions this density leaves out. A map with nothing above its mean
+    /// (a constant one) keeps the complete density.
+    Compensated,
+}
+
+/// A lat-long radiance image with its sampling distributions.
 #[derive(Clone, Debug)]
 pub struct EnvMap {
     width: usize,
@@ -31,6 +55,9 @@ pub struct EnvMap {
     to_world: Transform,
     /// Distribution over `width × cell_rows` cells (in u shifted by half a texel).
     distribution: Distribution2D,
+    /// The same cells weighted by the luminance above the map's mean ([`EnvSampling`]);
+    /// `None` when no cell is above it.
+    compensated: Option<Distribution2D>,
     /// ∫ luminance dω over the sphere (of the piecewise-constant approximation the sampler uses).
     luminance_integral: f64,
 }
@@ -85,66 +112,83 @@ impl EnvMap {
             ));
         }
         let rows = cell_rows(h);
-        let mut weights = Vec::with_capacity(w * rows);
+        // Per cell, the mean luminance of its corners and sin θ at its centre.
+        let mut cells = Vec::with_capacity(w * rows);
         for j in 0..rows {
-            let sin_theta = (PI * (j as f32 + 0.5) / rows as f32).sin();
+            let sin_theta = f64::from((PI * (j as f32 + 0.5) / rows as f32).sin());
             let (j0, j1) = (j.min(h - 1), (j + 1).min(h - 1));
             for i in 0..w {
                 let i1 = (i + 1) % w;
                 let corners = [(i, j0), (i1, j0), (i, j1), (i1, j1)];
                 let mean = corners.iter().map(|&(x, y)| pixels[y * w + x].luminance_f64().max(0.0)).sum::<f64>() / 4.0;
-                weights.push(mean * f64::from(sin_theta));
+                cells.push((mean, sin_theta));
             }
         }
+        let weights: Vec<f64> = cells.iter().map(|&(l, sin_theta)| l * sin_theta).collect();
         let total: f64 = weights.iter().sum();
-        // Normalised to the largest weight so that maps near the f32 limit keep a finite sum; a
-        // cell with any light keeps a nonzero weight, however dim beside the brightest.
-        let max = weights.iter().copied().fold(0.0, f64::max);
-        let weights: Vec<f32> =
-            weights.iter().map(|&x| if x > 0.0 { ((x / max) as f32).max(f32::MIN_POSITIVE) } else { 0.0 }).collect();
-        let distribution = Distribution2D::new(&weights, w, rows)
+        let distribution = cell_distribution(&weights, w, rows)
             .ok_or_else(|| "an environment map must have some positive radiance".to_string())?;
+        // The mean over solid angle: cells equal in uv cover solid angle in proportion to sin θ.
+        let mean = total / cells.iter().map(|&(_, sin_theta)| sin_theta).sum::<f64>();
+        let compensated = cell_distribution(&compensated_weights(&cells, mean), w, rows);
         // Σ weight · (cell area in uv) · 2π² (the Jacobian above).
         let luminance_integral = total * 2.0 * (PI as f64).powi(2) / (w * rows) as f64;
-        Ok(EnvMap { width: w, height: h, pixels, to_world, distribution, luminance_integral })
+        Ok(EnvMap { width: w, height: h, pixels, to_world, distribution, compensated, luminance_integral })
+    }
+
+    /// The distribution `how` asks for.
+    #[inline(always)]
+    fn distribution(&self, how: EnvSampling) -> &Distribution2D {
+        match (how, &self.compensated) {
+            (EnvSampling::Compensated, Some(d)) => d,
+            _ => &self.distribution,
+        }
     }
 
     /// Radiance seen looking along the unit world direction `dir` (bilinear between texels).
     #[inline]
     pub fn radiance(&self, dir: Vec3) -> Rgb {
-        lane_rgb(self.lookup_lanes(&Vec3s::splat(dir), Ms::ALL, Ms::NONE).0)
+        lane_rgb(self.lookup_lanes(&Vec3s::splat(dir), Ms::ALL, Ms::NONE, EnvSampling::Complete).0)
     }
 
     /// [`EnvMap::radiance`] and [`EnvMap::pdf`] of one direction (an escaped path weighs what it
     /// sees by MIS), mapping the direction to the image once.
     #[inline]
     pub fn radiance_and_pdf(&self, dir: Vec3) -> (Rgb, f32) {
-        let (radiance, pdf) = self.lookup_lanes(&Vec3s::splat(dir), Ms::ALL, Ms::ALL);
+        let (radiance, pdf) = self.lookup_lanes(&Vec3s::splat(dir), Ms::ALL, Ms::ALL, EnvSampling::Complete);
         (lane_rgb(radiance), pdf.0[0])
     }
 
     /// Solid-angle density of [`EnvMap::sample`] for the unit world direction `dir`.
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
+        self.pdf_with(dir, EnvSampling::Complete)
+    }
+
+    /// Solid-angle density of [`EnvMap::sample_with`] under `how` for the unit world direction
+    /// `dir`.
+    #[inline]
+    pub fn pdf_with(&self, dir: Vec3, how: EnvSampling) -> f32 {
         let (local, cell_u, v) = self.image_coordinates(&Vec3s::<1>::splat(dir));
-        self.pdf_at_lanes(cell_u, v, &local, Ms::ALL).0[0]
+        self.pdf_at_lanes(cell_u, v, &local, Ms::ALL, how).0[0]
     }
 
     /// Per lane of `active`, the radiance seen along the unit world direction `dir` and, in the
-    /// lanes of `with_pdf` (a subset), [`EnvMap::pdf`] of it (0 elsewhere). The one-lane
-    /// instance is [`EnvMap::radiance`] and [`EnvMap::radiance_and_pdf`].
+    /// lanes of `with_pdf` (a subset), [`EnvMap::pdf_with`] of it under `how` (0 elsewhere). The
+    /// one-lane instance is [`EnvMap::radiance`] and [`EnvMap::radiance_and_pdf`].
     #[inline(always)]
     pub fn lookup_lanes<const N: usize>(
         &self,
         dir: &Vec3s<N>,
         active: Ms<N>,
         with_pdf: Ms<N>,
+        how: EnvSampling,
     ) -> ([F32s<N>; 3], F32s<N>) {
         let (local, cell_u, v) = self.image_coordinates(dir);
         // The texels are asked for first, so their misses are served while the density's rows
         // are found and read.
         let texels = self.footprints_lanes(cell_u, v, active);
-        let pdf = if with_pdf.any() { self.pdf_at_lanes(cell_u, v, &local, with_pdf) } else { F32s::ZERO };
+        let pdf = if with_pdf.any() { self.pdf_at_lanes(cell_u, v, &local, with_pdf, how) } else { F32s::ZERO };
         (self.blend_lanes(&texels, active), pdf)
     }
 
@@ -234,25 +278,37 @@ impl EnvMap {
     /// A world direction drawn in proportion to luminance × sin θ, and its solid-angle density
     /// (0 when the sample hits a pole, where the density is undefined).
     pub fn sample(&self, u: Vec2) -> (Vec3, f32) {
-        let (dir, pdf, _) = self.sample_with_radiance(u);
-        (dir, pdf)
+        self.sample_with(u, EnvSampling::Complete)
+    }
+
+    /// [`EnvMap::sample`] with the density `how` asks for.
+    pub fn sample_with(&self, u: Vec2, how: EnvSampling) -> (Vec3, f32) {
+        let s = self.sample_lanes(&F32s::<1>::splat(u.x), &F32s::splat(u.y), Ms::ALL, how);
+        (s.dir.lane(0), s.pdf.0[0])
     }
 
     /// [`EnvMap::sample`] and the radiance along the sampled direction: the one-lane instance of
     /// [`EnvMap::sample_lanes`].
     #[inline]
     pub fn sample_with_radiance(&self, u: Vec2) -> (Vec3, f32, Rgb) {
-        let s = self.sample_lanes(&F32s::<1>::splat(u.x), &F32s::splat(u.y), Ms::ALL);
+        let s = self.sample_lanes(&F32s::<1>::splat(u.x), &F32s::splat(u.y), Ms::ALL, EnvSampling::Complete);
         (s.dir.lane(0), s.pdf.0[0], lane_rgb(s.radiance))
     }
 
-    /// One direction per lane of `active` from the numbers `(u1, u2)`, with its density and the
+    /// One direction per lane of `active` from the numbers `(u1, u2)`, drawn with the density
+    /// `how` asks for, with that density and the
     /// radiance along it, looked up at the sampled image coordinates (as Mitsuba's `envmap`
     /// does), so the direction is not mapped back to the image; equal to `radiance(dir)` up to
     /// the rounding of that round trip.
     #[inline(always)]
-    pub fn sample_lanes<const N: usize>(&self, u1: &F32s<N>, u2: &F32s<N>, active: Ms<N>) -> EnvSamples<N> {
-        let (cell_u, cell_v, pdf_uv) = self.distribution.sample_lanes(u1, u2, active);
+    pub fn sample_lanes<const N: usize>(
+        &self,
+        u1: &F32s<N>,
+        u2: &F32s<N>,
+        active: Ms<N>,
+        how: EnvSampling,
+    ) -> EnvSamples<N> {
+        let (cell_u, cell_v, pdf_uv) = self.distribution(how).sample_lanes(u1, u2, active);
         let radiance = self.radiance_at_lanes(cell_u, cell_v, active);
         let u = wrap01(cell_u + 0.5 / self.width as f32);
         // θ = πv and φ = 2πu, as turns.
@@ -263,11 +319,18 @@ impl EnvMap {
         EnvSamples { dir, pdf: solid_angle_pdf(pdf_uv, sin_theta), radiance }
     }
 
-    /// The density at `cell_u` and v of the local direction `local`, in the lanes of `active`
-    /// (0 in the others).
+    /// The density under `how` at `cell_u` and v of the local direction `local`, in the lanes
+    /// of `active` (0 in the others).
     #[inline(always)]
-    fn pdf_at_lanes<const N: usize>(&self, cell_u: F32s<N>, v: F32s<N>, local: &Vec3s<N>, active: Ms<N>) -> F32s<N> {
-        let pdf_uv = self.distribution.pdf_lanes(&cell_u, &v, active);
+    fn pdf_at_lanes<const N: usize>(
+        &self,
+        cell_u: F32s<N>,
+        v: F32s<N>,
+        local: &Vec3s<N>,
+        active: Ms<N>,
+        how: EnvSampling,
+    ) -> F32s<N> {
+        let pdf_uv = self.distribution(how).pdf_lanes(&cell_u, &v, active);
         let sin_theta = (1.0 - local.y * local.y).max(F32s::ZERO).sqrt();
         solid_angle_pdf(pdf_uv, sin_theta)
     }
@@ -281,6 +344,33 @@ impl EnvMap {
 /// Rows of cells between texel rows: H − 1, or one row for a single-row image.
 fn cell_rows(height: usize) -> usize {
     (height - 1).max(1)
+}
+
+/// The distribution over `w × rows` cells of the non-negative `weights`; `None` if all are 0.
+fn cell_distribution(weights: &[f64], w: usize, rows: usize) -> Option<Distribution2D> {
+    // Normalised to the largest weight so that maps near the f32 limit keep a finite sum; a
+    // cell with any weight keeps a nonzero one, however dim beside the brightest.
+    let max = weights.iter().copied().fold(0.0, f64::max);
+    let weights: Vec<f32> =
+        weights.iter().map(|&x| if x > 0.0 { ((x / max) as f32).max(f32::MIN_POSITIVE) } else { 0.0 }).collect();
+    Distribution2D::new(&weights, w, rows)
+}
+
+/// MIS compensation's cell weights: each cell's (mean corner luminance, sin θ) gives
+/// max(luminance − `mean`, 0) · sin θ. Excesses within a millionth of the mean count as none:
+/// they are the rounding of a mean over cells that all hold it (a constant map), not light.
+fn compensated_weights(cells: &[(f64, f64)], mean: f64) -> Vec<f64> {
+    cells
+        .iter()
+        .map(|&(l, sin_theta)| {
+            let excess = l - mean;
+            if excess > 1e-6 * mean {
+                excess * sin_theta
+            } else {
+                0.0
+            }
+        })
+        .collect()
 }
 
 /// x − ⌊x⌋ in [0, 1) per lane, for x in [−1, 2) (every caller's range: a u in [0, 1) shifted by

@@ -14,7 +14,7 @@ mod spot;
 pub use area::{AreaLight, Emission, LightShape};
 pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;
-pub use envmap::{EnvMap, EnvSamples};
+pub use envmap::{EnvMap, EnvSamples, EnvSampling};
 pub use kind::Light;
 pub use point::PointLight;
 pub use radiance_texture::RadianceTexture;

@@ -13,7 +13,7 @@
 use super::light_picks::{Lane, Masked, Picks, GROUPED_LIGHTS};
 use super::simd::{F32s, Ms, Vec3s};
 use crate::light::area::{sample_disk_lanes, sample_flat_lanes, sample_sphere_lanes, FlatSamples};
-use crate::light::{EnvironmentLight, Light, LightSet, LightShape, PointLight, SpotLight};
+use crate::light::{EnvSampling, EnvironmentLight, Light, LightSet, LightShape, PointLight, SpotLight};
 use crate::math::{Rgb, Vec3};
 
 /// One flat light: `origin + s·e1 + t·e2`.
@@ -77,6 +77,8 @@ pub struct WideLights {
     lights: Vec<WideLight>,
     /// The environment, if the scene has one (a scene has at most one).
     environment: Option<EnvironmentLight>,
+    /// The density the environment is sampled with (and its escaped paths weighed by).
+    env_sampling: EnvSampling,
 }
 
 /// `N` light samples (meaningful in `valid` lanes).
@@ -141,8 +143,9 @@ impl<const N: usize> LightSamples<N> {
 }
 
 impl WideLights {
-    /// The lane-parallel form of every light of `set`.
-    pub fn new(set: &LightSet) -> Self {
+    /// The lane-parallel form of every light of `set`, an environment map sampled with the
+    /// density `env_sampling` asks for.
+    pub fn new(set: &LightSet, env_sampling: EnvSampling) -> Self {
         let mut environment = None;
         let lights = set
             .lights()
@@ -181,7 +184,14 @@ impl WideLights {
                 WideLight::Flat(FlatLight { origin, e1, e2, triangle, normal, area, radiance, two_sided, textured })
             })
             .collect::<Vec<_>>();
-        Self { lights, environment }
+        Self { lights, environment, env_sampling }
+    }
+
+    /// The density the environment's samples are drawn with: an escaped path's MIS weight
+    /// must use the same.
+    #[inline(always)]
+    pub fn env_sampling(&self) -> EnvSampling {
+        self.env_sampling
     }
 
     /// Samples a light point for each lane of `active` from `p`, with the selection numbers
@@ -267,7 +277,7 @@ impl WideLights {
         if let Some(env) = self.environment.as_ref().filter(|_| on_environment.any()) {
             // At infinity along wi (the shadow ray is unoccluded if it leaves the scene); the
             // point is the scalar light set's p + wi.
-            let e = env.sample_lanes(&u1, &u2, on_environment);
+            let e = env.sample_lanes(&u1, &u2, on_environment, self.env_sampling);
             d.take(on_environment, &p.add(&e.dir), &e.dir, F32s::splat(f32::INFINITY), e.pdf * pmf_factor);
             d.take_radiance(on_environment, &e.radiance);
         }
@@ -425,7 +435,7 @@ mod tests {
 
     fn lanes_match_the_scalar_light_set(set: &LightSet) {
         const N: usize = 16;
-        let wide = WideLights::new(set);
+        let wide = WideLights::new(set, EnvSampling::Complete);
         let mut x = 0x2545_f491u32;
         let mut next = || {
             x ^= x << 13;

@@ -29,6 +29,7 @@ pub(crate) use lights::{LaneLightSample, LightSamples, WideLights};
 pub(crate) use sampler::LaneSamplers;
 
 use crate::integrator::{PathSettings, Strategy};
+use crate::light::EnvSampling;
 use crate::material::Material;
 use crate::math::Rgb;
 use crate::scene::Scene;
@@ -214,9 +215,18 @@ impl WideScene {
             scene.small_scene_shapes().filter(|p| p.len() <= MAX_FLAT_POLYGONS).and_then(|p| FlatGeometry::new(&p))
         };
         let emitters_hittable = scene.lights.area_lights().next().is_some() || scene.lights.environment().is_some();
+        // MIS compensation of an environment map (`light/envmap.rs`) needs every light sample
+        // weighed by MIS against a material sample, with one density for both: surface vertices
+        // under `mis` draw their light samples here, but a medium vertex draws its own from the
+        // scalar light set, with the complete density, so volumetric scenes keep that one.
+        let env_sampling = if settings.strategy.is_mis() && !scene.is_volumetric() {
+            EnvSampling::Compensated
+        } else {
+            EnvSampling::Complete
+        };
         Self {
             geometry,
-            lights: WideLights::new(&scene.lights),
+            lights: WideLights::new(&scene.lights, env_sampling),
             classes,
             textured_forms,
             settings: *settings,
