@@ -181,7 +181,8 @@ pub(crate) fn vertex<const N: usize>(
     if escaped.any() {
         if let Some(env) = scene_lights.environment() {
             // The escaped lanes look the map up together; those that MIS weighs also get the
-            // density (LightSet::pdf_environment's product), from the same lookup.
+            // density (LightSet::pdf_environment's product, with the density the light samples
+            // were drawn with: `EnvSampling`), from the same lookup.
             let weighed = if strategy.is_mis() { escaped & !paths.prev_specular } else { Ms::NONE };
             let (radiance, pdf) = env.lookup_lanes(&paths.dir, escaped, weighed, lanes.lights.env_sampling());
             let pick = scene_lights.environment_pmf();
