@@ -13,7 +13,9 @@ of its chain (inclusive shares: nested matches overlap).
     benches/profile_shares.py prof.data target/release/pathtrace --hot 30
 
 Patterns are Python regular expressions searched in the demangled frame names.
-`--hot N` lists the N most sampled innermost frames with their source lines.
+`--hot N` lists the N most sampled innermost frames with their source lines; with
+`--within PATTERN`, only those of samples whose chain has a frame matching PATTERN
+(`--hot 25 --within surface_unless` breaks one inlined function down by line).
 The binary must be the one recorded, with line tables (the release profile keeps them).
 """
 
@@ -97,6 +99,7 @@ def main():
     parser.add_argument("binary", help="the profiled executable")
     parser.add_argument("patterns", nargs="*", help="regular expressions over frame names")
     parser.add_argument("--hot", type=int, default=0, help="list the N hottest innermost frames")
+    parser.add_argument("--within", metavar="PATTERN", help="--hot counts only samples with a frame matching PATTERN")
     args = parser.parse_args()
     for path in (args.data, args.binary):
         if not os.path.isfile(path):
@@ -120,8 +123,9 @@ def main():
         print(f"{100 * n / total:5.1f}% {pattern}")
     if args.hot:
         hot = collections.Counter()
+        within = re.compile(args.within) if args.within else None
         for c, chain in samples:
-            if chain:
+            if chain and (within is None or any(within.search(f) for f, _ in chain)):
                 function, location = chain[0]
                 hot[f"{re.sub(r'<.*>', '<>', function)[:90]} @{os.path.basename(location)}"] += c
         for key, c in hot.most_common(args.hot):

@@ -53,11 +53,13 @@ SHARED = os.path.abspath(os.path.join(REPO, "..", "shared", "scenes"))
 SCENES = (
     ("cornell-box-bitterli", "cornell-box-bitterli/scene_v3.xml", {}, 16),
     ("cbox", "cbox/cbox.xml", {}, 64),
+    ("cbox-classic", "cbox-classic/docs/scenes/integrator_depth_inf.xml", {}, 16),
     ("veach-mis", "veach-mis/docs/scenes/integrator_direct_both.xml", {}, 16),
     ("veach-mis-bitterli", "veach-mis-bitterli/scene_v3.xml", {"integrator": "path"}, 8),
     ("matpreview-copper", "matpreview/docs/scenes/bsdf_roughconductor_copper.xml", {}, 4),
     ("matpreview-glass", "matpreview/docs/scenes/bsdf_dielectric_glass.xml", {}, 4),
     ("matpreview-plastic", "matpreview/docs/scenes/bsdf_plastic_shiny.xml", {}, 4),
+    ("matpreview-diffuse", "matpreview/docs/scenes/bsdf_diffuse_plain.xml", {}, 4),
     ("bunny", "bunny/docs/scenes/shape_ply_bunny.xml", {}, 4),
     ("teapot-simple", "teapot-simple/simple.xml", {}, 64),
     ("teapot-zoomed", "teapot-zoomed", {}, 64),

@@ -1,6 +1,7 @@
 //! Acceptance for meshes without stored normals: the public scenes whose PLY or OBJ files have
-//! no normals (the bunny, the teapot) agree with Mitsuba 3 block by
-//! block, which needs Mitsuba's smooth vertex normals (angle-weighted, computed after the
+//! no normals (the bunny, the teapot, and cbox-classic, whose non-planar red wall then shades
+//! smoothly in a scene small enough for the brute-force intersector) agree with Mitsuba 3 block
+//! by block, which needs Mitsuba's smooth vertex normals (angle-weighted, computed after the
 //! transform). The same renders with flat shading (the `file` choice, pathtrace's reading before
 //! smooth normals) disagree, which shows the test can see the difference.
 //!
@@ -13,6 +14,9 @@
 mod blocks;
 
 use blocks::{assert_agrees, block_test};
+use pathtrace::integrator::PathSettings;
+use pathtrace::wide::WideScene;
+use pathtrace_scene::mitsuba::{build_model, convert_file};
 use pathtrace_scene::native::model::MeshNormals;
 use std::path::{Path, PathBuf};
 
@@ -48,4 +52,21 @@ fn flat_shaded_bunny_is_seen_to_disagree() {
 #[test]
 fn teapot_agrees_with_mitsuba_block_by_block() {
     assert_agrees_shared("teapot-simple/simple.xml", 512, &TEAPOT_MEAN, &TEAPOT_SE);
+}
+
+const CBOX_CLASSIC: &str = "cbox-classic/docs/scenes/integrator_depth_inf.xml";
+
+#[test]
+fn cbox_classic_agrees_with_mitsuba_block_by_block() {
+    assert_agrees_shared(CBOX_CLASSIC, 512, &CBOX_CLASSIC_MEAN, &CBOX_CLASSIC_SE);
+}
+
+/// The test above exercises the brute-force intersector's smooth normals only if the scene
+/// takes it (38 triangles, the red wall's two not coplanar).
+#[test]
+fn cbox_classic_takes_the_brute_force_intersector() {
+    let Some(path) = shared(CBOX_CLASSIC) else { return };
+    let (file, _) = convert_file(&path, &[]).unwrap();
+    let loaded = build_model(&file, &path).unwrap();
+    assert!(WideScene::new(&loaded.scene, &PathSettings::default()).brute_force());
 }

@@ -27,6 +27,9 @@ pub(crate) struct FlatPolygon {
     pub e1: Vec3,
     pub e2: Vec3,
     pub triangle: bool,
+    /// A mesh triangle's vertex normals at its corners (`origin`, `origin + e1`,
+    /// `origin + e2`), when they depart from its face: its shading normal interpolates them.
+    pub corner_normals: Option<[Vec3; 3]>,
     pub material: u32,
     pub light: u32,
 }
@@ -161,9 +164,10 @@ impl PrimitiveStore {
         }
     }
 
-    /// Every primitive as a flat polygon or a sphere, or `None` if some primitive is another
-    /// shape or a mesh triangle whose shading normal departs from its face's: what the
-    /// estimator's brute-force lane intersector (`wide/geometry.rs`) can hold.
+    /// Every primitive as a flat polygon (a mesh triangle with the vertex normals its shading
+    /// normal interpolates, unless they are its face's) or a sphere, or `None` if some
+    /// primitive is another shape: what the estimator's brute-force lane intersector
+    /// (`wide/geometry.rs`) can hold.
     pub fn small_scene_shapes(&self) -> Option<SmallSceneShapes> {
         let mut out = SmallSceneShapes { polygons: Vec::with_capacity(self.len()), spheres: Vec::new() };
         for p in &self.shapes {
@@ -176,17 +180,33 @@ impl PrimitiveStore {
                 }
                 _ => return None,
             };
-            out.polygons.push(FlatPolygon { origin, e1, e2, triangle, material: p.material, light: p.light });
+            let corner_normals = None;
+            out.polygons.push(FlatPolygon {
+                origin,
+                e1,
+                e2,
+                triangle,
+                corner_normals,
+                material: p.material,
+                light: p.light,
+            });
         }
         for m in &self.meshes {
-            if !m.geometry.is_planar_shaded() {
-                return None;
-            }
+            // A planar-shaded mesh's triangles shade with their face normals, as quads do.
+            let smooth = !m.geometry.is_planar_shaded();
             for i in 0..m.geometry.len() as u32 {
                 let t = m.geometry.triangle(i);
                 let light = if m.first_light == Primitive::NO_LIGHT { m.first_light } else { m.first_light + i };
-                let polygon =
-                    FlatPolygon { origin: t.p0, e1: t.e1, e2: t.e2, triangle: true, material: m.material, light };
+                let corner_normals = if smooth { m.geometry.corner_normals(i) } else { None };
+                let polygon = FlatPolygon {
+                    origin: t.p0,
+                    e1: t.e1,
+                    e2: t.e2,
+                    triangle: true,
+                    corner_normals,
+                    material: m.material,
+                    light,
+                };
                 out.polygons.push(polygon);
             }
         }

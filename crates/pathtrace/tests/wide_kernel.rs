@@ -105,17 +105,9 @@ fn assert_kernels_agree(scene: Scene, sampler: SamplerKind, spp: u32) {
     let scalar = render(scene, settings(Kernel::Scalar, sampler, size, spp, 6)).unwrap();
     assert_eq!(wide.progress.dropped_samples + scalar.progress.dropped_samples, 0);
     let (w, s) = (&wide.film, &scalar.film);
-    let whole = w.region_estimate(0, 0, size, size).max_z_score(&s.region_estimate(0, 0, size, size));
+    let (whole, worst) = z_scores(w, s, size);
     assert!(whole < 4.0, "{sampler}: image means differ, z = {whole:.2}");
     // 64 blocks × 3 channels: max |z| < 4.5 has p ≈ 1e-3 under agreement.
-    let mut worst = 0.0f64;
-    for by in 0..8 {
-        for bx in 0..8 {
-            let (x0, y0) = (bx * 4, by * 4);
-            let z = w.region_estimate(x0, y0, x0 + 4, y0 + 4).max_z_score(&s.region_estimate(x0, y0, x0 + 4, y0 + 4));
-            worst = worst.max(z);
-        }
-    }
     assert!(worst < 4.5, "{sampler}: a block differs, z = {worst:.2}");
     // The comparison must be sharp enough to see a 2% bias on the image mean.
     let est = w.region_estimate(0, 0, size, size);
@@ -130,6 +122,90 @@ fn small_scenes_are_intersected_by_brute_force_and_larger_ones_by_the_bvh() {
     assert!(WideScene::new(&cornell(false), &settings).brute_force());
     let meshes = cornell(true);
     assert!(!WideScene::new(&meshes, &settings).brute_force(), "> {MAX_FLAT_POLYGONS} polygons");
+}
+
+/// An octahedron subdivided once onto the unit sphere (32 triangles, outward), with the
+/// sphere's normals at its vertices when `smooth`.
+fn ball(smooth: bool) -> TriangleMesh {
+    let mut triangles = Vec::new();
+    for corner in 0..8 {
+        let s = |bit: u32| if corner >> bit & 1 == 0 { 1.0 } else { -1.0 };
+        let (x, y, z) = (Vec3::X * s(0), Vec3::Y * s(1), Vec3::Z * s(2));
+        // Counter-clockwise seen from outside: (x, y, z) is when the octant's signs multiply to +1.
+        let (a, b, c) = if s(0) * s(1) * s(2) > 0.0 { (x, y, z) } else { (x, z, y) };
+        let (ab, bc, ca) = ((a + b).normalize(), (b + c).normalize(), (c + a).normalize());
+        triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+    }
+    let positions: Vec<Vec3> = triangles.iter().flatten().copied().collect();
+    TriangleMesh {
+        indices: (0..triangles.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(),
+        normals: smooth.then(|| positions.clone()),
+        positions,
+        uvs: None,
+        tangents: None,
+    }
+}
+
+/// The ball on a floor under a quad light, and `specks` tiny quads far below the floor (which
+/// no path meets in practice; they only make the scene too large for brute force).
+fn ball_scene(smooth: bool, specks: u32) -> Scene {
+    let mut b = SceneBuilder::new();
+    let white = b.material(lambertian(0.8, 0.8, 0.8));
+    let grey = b.material(lambertian(0.5, 0.5, 0.5));
+    let light = b.emissive(Emission { radiance: Rgb::splat(10.0), two_sided: false });
+    b.mesh(&ball(smooth), white, &Transform::scale(Vec3::splat(0.5)).unwrap()).unwrap();
+    let mut quad = |q: Vec3, u: Vec3, v: Vec3, m| {
+        b.shape(Shape::Quad(Quad::new(q, u, v).unwrap()), m, &Transform::IDENTITY).unwrap();
+    };
+    quad(Vec3::new(-2.0, -0.5, -2.0), Vec3::Z * 4.0, Vec3::X * 4.0, grey);
+    quad(Vec3::new(-0.5, 2.0, -0.5), Vec3::X, Vec3::Z, light);
+    for k in 0..specks {
+        quad(Vec3::new(0.01 * k as f32, -100.0, 0.0), Vec3::X * 1e-3, Vec3::Z * 1e-3, grey);
+    }
+    b.camera(CameraDesc {
+        look_from: Vec3::new(0.0, 0.8, 2.5),
+        look_at: Vec3::ZERO,
+        up: Vec3::Y,
+        vfov_degrees: 30.0,
+        focal_length: 1.0,
+        ..Default::default()
+    });
+    b.build().unwrap()
+}
+
+/// Largest z-score of two films' means over the whole image and over its 4×4-pixel blocks.
+fn z_scores(a: &pathtrace::film::Film, b: &pathtrace::film::Film, size: u32) -> (f64, f64) {
+    let whole = a.region_estimate(0, 0, size, size).max_z_score(&b.region_estimate(0, 0, size, size));
+    let mut worst = 0.0f64;
+    for y0 in (0..size).step_by(4) {
+        for x0 in (0..size).step_by(4) {
+            let z = a.region_estimate(x0, y0, x0 + 4, y0 + 4).max_z_score(&b.region_estimate(x0, y0, x0 + 4, y0 + 4));
+            worst = worst.max(z);
+        }
+    }
+    (whole, worst)
+}
+
+/// A small scene with a smooth-shaded mesh takes the brute-force intersector, whose hits
+/// interpolate the mesh's vertex normals as the BVH's do: the same image as the scene made
+/// too large for brute force, and not the faceted ball's.
+#[test]
+fn brute_force_interpolates_vertex_normals_as_the_bvh_does() {
+    let path = settings(Kernel::Wide, SamplerKind::Independent, 8, 1, 0).path;
+    let small = ball_scene(true, 0);
+    let polygons = 32 + 2;
+    let specked = ball_scene(true, MAX_FLAT_POLYGONS as u32 + 1 - polygons);
+    assert!(WideScene::new(&small, &path).brute_force());
+    assert!(!WideScene::new(&specked, &path).brute_force());
+    let size = 32;
+    let film = |scene: Scene, seed| {
+        render(Arc::new(scene), settings(Kernel::Wide, SamplerKind::Independent, size, 256, seed)).unwrap().film
+    };
+    let (brute, bvh, faceted) = (film(small, 1), film(specked, 2), film(ball_scene(false, 0), 3));
+    let (whole, worst) = z_scores(&brute, &bvh, size);
+    assert!(whole < 4.0 && worst < 4.5, "brute force vs BVH: z = {whole:.2} (image), {worst:.2} (block)");
+    let (_, faceted) = z_scores(&brute, &faceted, size);
+    assert!(faceted > 8.0, "the comparison must tell smooth from faceted shading: block z = {faceted:.2}");
 }
 
 #[test]

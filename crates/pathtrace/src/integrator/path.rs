@@ -801,6 +801,20 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
             }
         }
         s.n_shading = s.n_geometric;
+        // Triangles of smooth-shaded meshes interpolate their vertex normals, normalised
+        // together as the BVH's mesh hits are below.
+        if geometry.has_corner_normals() {
+            let mut smooth = 0u32;
+            for i in (active & s.hit).lanes() {
+                if let Some(n) = geometry.interpolated_normal(hits.polygon[i], s.p.lane(i)) {
+                    s.n_shading.set(i, n);
+                    smooth |= 1 << i;
+                }
+            }
+            if smooth != 0 {
+                s.normalise(Ms::from_fn(|i| smooth >> i & 1 != 0));
+            }
+        }
         return;
     }
     // Larger scenes: the BVH, walked by the group's rays together (`Bvh::intersect_lanes`).

@@ -8,6 +8,7 @@
 //! the texture (importance sampling the image) would lower the noise, not change the mean.
 
 use crate::math::{Rgb, Vec2, Vec3};
+use crate::shape::barycentric_mix;
 use crate::texture::Texture;
 use std::sync::Arc;
 
@@ -42,8 +43,7 @@ impl RadianceTexture {
 
     /// The texture's value at barycentrics (b1, b2) (weights of the second and third corner).
     pub fn at_barycentrics(&self, b1: f32, b2: f32) -> Rgb {
-        let [uv0, uv1, uv2] = self.corner_uv;
-        self.texture.eval(uv0 * (1.0 - b1 - b2) + uv1 * b1 + uv2 * b2)
+        self.texture.eval(barycentric_mix(b1, b2, self.corner_uv))
     }
 }
 

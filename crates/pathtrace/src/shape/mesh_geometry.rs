@@ -4,7 +4,7 @@
 //! full shape per triangle. Triangles are rebuilt from their corners when they are needed (for
 //! the BVH's packets, for shading a hit, for the brute-force reference).
 
-use super::triangle::with_unit_normals;
+use super::triangle::{barycentric_mix, with_unit_normals};
 use super::{MeshError, PrimHit, SurfacePoint, Triangle, TriangleMesh};
 use crate::math::{Aabb, Ray, Transform, Vec2, Vec3, Vec4};
 
@@ -94,6 +94,13 @@ impl MeshGeometry {
         Triangle { p0: a, e1: b - a, e2: c - a, shading: Triangle::FLAT }
     }
 
+    /// The vertex normals at triangle `i`'s corners, if the mesh has them.
+    #[inline(always)]
+    pub fn corner_normals(&self, i: u32) -> Option<[Vec3; 3]> {
+        let tri = self.indices[i as usize];
+        self.normals.as_ref().map(|ns| tri.map(|v| ns[v as usize]))
+    }
+
     /// Bounding box of triangle `i`.
     pub fn bounds(&self, i: u32) -> Aabb {
         Aabb::from_points(&self.indices[i as usize].map(|v| self.positions[v as usize]))
@@ -117,7 +124,7 @@ impl MeshGeometry {
     #[inline(always)]
     pub fn surface_before_normalising(&self, i: u32, hit: &PrimHit) -> SurfacePoint {
         let tri = self.indices[i as usize];
-        let normals = self.normals.as_ref().map(|ns| tri.map(|v| ns[v as usize]));
+        let normals = self.corner_normals(i);
         let uvs = self.uvs.as_ref().map(|uv| tri.map(|v| uv[v as usize]));
         let mut surface = self.triangle(i).surface_before_normalising(hit, normals, uvs);
         if let Some(ts) = &self.tangents {
@@ -169,7 +176,7 @@ impl MeshGeometry {
 #[inline(always)]
 fn interpolated_tangent([t0, t1, t2]: [Vec4; 3], hit: &PrimHit) -> Vec4 {
     let (b1, b2) = (hit.u.max(0.0), hit.v.max(0.0));
-    let t = (1.0 - b1 - b2) * t0.truncate() + b1 * t1.truncate() + b2 * t2.truncate();
+    let t = barycentric_mix(b1, b2, [t0, t1, t2].map(Vec4::truncate));
     if t.length_squared() > 0.0 && t.is_finite() {
         t.extend(t0.w)
     } else {

@@ -18,7 +18,7 @@ pub use quad::Quad;
 pub(crate) use sphere::sphere_hits;
 pub use sphere::{Ellipsoid, Sphere};
 pub use triangle::Triangle;
-pub(crate) use triangle::EDGE_SLACK;
+pub(crate) use triangle::{barycentric_mix, EDGE_SLACK};
 pub use triangle::{unit_normals, with_unit_normals};
 pub use vertex_normals::angle_weighted_normals;
 

@@ -4,6 +4,7 @@
 use super::{PrimHit, SurfacePoint};
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec4};
 use crate::wide::simd::{F32s, Vec3s};
+use std::ops::{Add, Mul};
 
 /// Barycentric slack: edges are tested against `-EDGE_SLACK` rather than 0 so that a ray through
 /// an edge shared by two triangles hits at least one of them despite rounding (both may
@@ -92,14 +93,8 @@ impl Triangle {
         let (b1, b2) = (hit.u.max(0.0), hit.v.max(0.0));
         let p = self.p0 + b1 * self.e1 + b2 * self.e2;
         let n = self.e1.cross(self.e2);
-        let n_shading = match normals {
-            Some([n0, n1, n2]) => (1.0 - b1 - b2) * n0 + b1 * n1 + b2 * n2,
-            None => n,
-        };
-        let uv = match uvs {
-            Some([t0, t1, t2]) => (1.0 - b1 - b2) * t0 + b1 * t1 + b2 * t2,
-            None => Vec2::new(b1, b2),
-        };
+        let n_shading = normals.map_or(n, |corners| barycentric_mix(b1, b2, corners));
+        let uv = uvs.map_or(Vec2::new(b1, b2), |corners| barycentric_mix(b1, b2, corners));
         let (dpdu, dpdv) = dp_duv(self.e1, self.e2, uvs);
         SurfacePoint { p, n_geometric: n, n_shading, uv, dpdu, dpdv, vertex_tangent: Vec4::ZERO }
     }
@@ -111,6 +106,16 @@ impl Triangle {
     pub fn area(&self) -> f32 {
         0.5 * self.e1.cross(self.e2).length()
     }
+}
+
+/// The value at barycentric coordinates (b1, b2) of what is `corners[k]` at corner k:
+/// (1 − b1 − b2)·c0 + b1·c1 + b2·c2 (vertex normals, texture coordinates).
+#[inline(always)]
+pub fn barycentric_mix<T>(b1: f32, b2: f32, [c0, c1, c2]: [T; 3]) -> T
+where
+    T: Mul<f32, Output = T> + Add<Output = T>,
+{
+    c0 * (1.0 - b1 - b2) + c1 * b1 + c2 * b2
 }
 
 /// A triangle hit's unit normals from [`Triangle::surface_before_normalising`]'s: the geometric

@@ -17,7 +17,8 @@ use super::boxes::Parallelepiped;
 use super::simd::{F32s, Ms, Vec3s};
 use crate::math::Vec3;
 use crate::primitive_store::{FlatPolygon, SmallSceneShapes};
-use crate::shape::{Sphere, EDGE_SLACK};
+use crate::scene::Primitive;
+use crate::shape::{barycentric_mix, Sphere, EDGE_SLACK};
 
 /// Largest scene tested by brute force; chosen by `pathtrace bench` on the Cornell box (19)
 /// against meshes of a few hundred triangles, where the BVH wins.
@@ -43,6 +44,9 @@ pub struct FlatGeometry {
     /// Per polygon (the boxes' faces first, six per box, then quads, then triangles): unit
     /// normal along e1 × e2.
     normals: Vec<Vec3>,
+    /// Per triangle (as `triangles`), the vertex normals its shading normal interpolates, if
+    /// any; empty when no triangle has them.
+    corner_normals: Vec<Option<[Vec3; 3]>>,
     /// Per primitive (the polygons in that order, then the spheres): material and light.
     materials: Vec<u32>,
     lights: Vec<u32>,
@@ -58,7 +62,7 @@ pub struct Hits<const N: usize> {
 impl FlatGeometry {
     /// `None` when some polygon is degenerate (the scene builder rejects those already).
     pub(crate) fn new(shapes: &SmallSceneShapes) -> Option<Self> {
-        let (polygons, spheres) = (&shapes.polygons, &shapes.spheres);
+        let (polygons, spheres) = (&join_parallelograms(&shapes.polygons), &shapes.spheres);
         let (quad_list, triangles): (Vec<&FlatPolygon>, Vec<&FlatPolygon>) = polygons.iter().partition(|p| !p.triangle);
         // Runs of six quads that bound a box (as `box` objects make them) become one box.
         let (mut boxes, mut box_faces, mut quads) = (Vec::new(), Vec::new(), Vec::new());
@@ -86,11 +90,17 @@ impl FlatGeometry {
             })
         };
         let ordered = || box_faces.iter().chain(&quads).chain(&triangles);
+        let corner_normals = if triangles.iter().any(|p| p.corner_normals.is_some()) {
+            triangles.iter().map(|p| p.corner_normals).collect()
+        } else {
+            Vec::new()
+        };
         Some(Self {
             boxes,
             quads: quads.iter().map(plane).collect::<Option<_>>()?,
             triangles: triangles.iter().map(plane).collect::<Option<_>>()?,
             normals: ordered().map(|p| p.e1.cross(p.e2).normalize()).collect(),
+            corner_normals,
             materials: ordered().map(|p| p.material).chain(spheres.iter().map(|s| s.material)).collect(),
             lights: ordered().map(|p| p.light).chain(spheres.iter().map(|s| s.light)).collect(),
             spheres: spheres.iter().map(|s| s.sphere).collect(),
@@ -103,6 +113,26 @@ impl FlatGeometry {
     pub fn polygon(&self, i: u32) -> (Vec3, u32, u32) {
         let i = i as usize;
         (self.normals.get(i).copied().unwrap_or(Vec3::Z), self.materials[i], self.lights[i])
+    }
+
+    /// True if some triangle shades with interpolated vertex normals
+    /// ([`FlatGeometry::interpolated_normal`]).
+    #[inline(always)]
+    pub fn has_corner_normals(&self) -> bool {
+        !self.corner_normals.is_empty()
+    }
+
+    /// The shading normal, not yet normalised, of polygon `i` at its point `p` if `i` is a
+    /// triangle with vertex normals: those interpolated at p's barycentric coordinates, which
+    /// are its edge coordinates (a, b) of the hit test (as [`Triangle::surface_before_normalising`](crate::shape::Triangle::surface_before_normalising)
+    /// interpolates them at a hit's).
+    #[inline(always)]
+    pub fn interpolated_normal(&self, i: u32, p: Vec3) -> Option<Vec3> {
+        let k = (i as usize).checked_sub(6 * self.boxes.len() + self.quads.len())?;
+        let corners = (*self.corner_normals.get(k)?)?;
+        let plane = &self.triangles[k];
+        let h = p - plane.q;
+        Some(barycentric_mix(h.dot(plane.e1_dual).max(0.0), h.dot(plane.e2_dual).max(0.0), corners))
     }
 
     /// True if the scene has spheres (whose hits [`FlatGeometry::sphere_hit`] completes).
@@ -190,6 +220,38 @@ impl FlatGeometry {
         }
         blocked & active
     }
+}
+
+/// Consecutive triangles (a, b, c), (a, c, d) that split a parallelogram along its diagonal,
+/// as meshes store a quad face, joined into that quad: one test instead of two (the walls and
+/// boxes of an OBJ Cornell box). Only where nothing tells the halves apart: the same material,
+/// face normals, and no light (a light's triangles are sampled one by one).
+fn join_parallelograms(polygons: &[FlatPolygon]) -> Vec<FlatPolygon> {
+    let mut out = Vec::with_capacity(polygons.len());
+    let mut i = 0;
+    while i < polygons.len() {
+        if let Some(quad) = polygons.get(i + 1).and_then(|next| parallelogram(&polygons[i], next)) {
+            out.push(quad);
+            i += 2;
+        } else {
+            out.push(polygons[i]);
+            i += 1;
+        }
+    }
+    out
+}
+
+/// The quad of triangles (a, b, c) and (a, c, d) if d − a + b − a is c − a (to 10⁻⁵ of the
+/// longer edge: the corners' rounding).
+fn parallelogram(first: &FlatPolygon, second: &FlatPolygon) -> Option<FlatPolygon> {
+    let plain = |p: &FlatPolygon| p.triangle && p.corner_normals.is_none() && p.light == Primitive::NO_LIGHT;
+    let shared_diagonal = first.origin == second.origin && first.e2 == second.e1;
+    if !(plain(first) && plain(second) && first.material == second.material && shared_diagonal) {
+        return None;
+    }
+    let (u, v) = (first.e1, second.e2);
+    let size = u.length().max(v.length());
+    ((u + v - first.e2).length() <= 1e-5 * size).then_some(FlatPolygon { e1: u, e2: v, triangle: false, ..*first })
 }
 
 #[inline(always)]
@@ -307,6 +369,7 @@ mod tests {
             e1: random_vec(rng, 2.0),
             e2: random_vec(rng, 2.0),
             triangle: k.is_multiple_of(3),
+            corner_normals: None,
             material: k,
             light: u32::MAX,
         }
@@ -329,6 +392,93 @@ mod tests {
         assert!(hits > 2000, "the test rays must hit often: {hits}");
     }
 
+    /// Triangles with vertex normals (among quads and triangles without): at a brute-force
+    /// hit the interpolated normal is the one the scalar triangle interpolates at its own hit
+    /// of the same ray (its Möller–Trumbore barycentrics); polygons without vertex normals
+    /// have none.
+    #[test]
+    fn interpolated_normals_agree_with_the_scalar_triangles() {
+        let mut rng = Pcg32::new(5, 8);
+        let polygons: Vec<FlatPolygon> = (0..40)
+            .map(|k| {
+                let mut p = random_polygon(&mut rng, k);
+                if p.triangle && k % 2 == 1 {
+                    let face = p.e1.cross(p.e2).normalize();
+                    p.corner_normals = Some([0; 3].map(|_| 2.0 * face + random_vec(&mut rng, 2.0)));
+                }
+                p
+            })
+            .collect();
+        let geometry =
+            FlatGeometry::new(&SmallSceneShapes { polygons: polygons.clone(), spheres: Vec::new() }).unwrap();
+        assert!(geometry.has_corner_normals());
+        let (mut compared, mut without) = (0, 0);
+        for _ in 0..8000 {
+            let rays: Vec<Ray> =
+                (0..N).map(|_| Ray::new(random_vec(&mut rng, 6.0), random_vec(&mut rng, 2.0).normalize())).collect();
+            let o = Vec3s::<N>::from_fn(|i| rays[i].origin);
+            let d = Vec3s::<N>::from_fn(|i| rays[i].dir);
+            let hits = geometry.intersect(&o, &d, Ms::from_fn(|_| true), F32s::splat(f32::INFINITY));
+            let p = o.add(&d.scale(hits.t));
+            for (i, ray) in rays.iter().enumerate().filter(|(i, _)| hits.polygon[*i] != u32::MAX) {
+                let polygon = &polygons[geometry.material(hits.polygon[i]) as usize];
+                let got = geometry.interpolated_normal(hits.polygon[i], p.lane(i));
+                let Some(corners) = polygon.corner_normals else {
+                    assert!(got.is_none());
+                    without += 1;
+                    continue;
+                };
+                let (a, e1, e2) = (polygon.origin, polygon.e1, polygon.e2);
+                let triangle = Triangle::new(a, a + e1, a + e2, Triangle::FLAT).unwrap();
+                // Grazing hits on an edge may fall either way by rounding.
+                let Some(hit) = triangle.intersect(ray, 0.0, f32::INFINITY) else { continue };
+                if (hit.t - hits.t.0[i]).abs() > 1e-4 * hit.t.max(1.0) {
+                    continue;
+                }
+                let want = triangle.surface_before_normalising(&hit, Some(corners), None).n_shading.normalize();
+                let got = got.expect("a triangle with vertex normals interpolates them").normalize();
+                assert!((got - want).length() < 1e-3, "{got} vs {want}");
+                compared += 1;
+            }
+        }
+        // About 200 and 1700 per 2000 groups of rays.
+        assert!(compared > 400 && without > 4000, "{compared} smooth hits, {without} others");
+        let flat = FlatGeometry::new(&SmallSceneShapes {
+            polygons: polygons.iter().map(|p| FlatPolygon { corner_normals: None, ..*p }).collect(),
+            spheres: Vec::new(),
+        });
+        assert!(!flat.unwrap().has_corner_normals());
+    }
+
+    /// Parallelograms stored as two triangles (a, b, c), (a, c, d) are tested as one quad where
+    /// nothing tells the halves apart, and hit where the triangles are; a trapezoid, halves of
+    /// different materials, a light's triangles and smooth-shaded ones stay triangles.
+    #[test]
+    fn parallelograms_split_into_triangles_are_joined() {
+        let mut rng = Pcg32::new(3, 11);
+        let mut polygons = Vec::new();
+        for k in 0..24u32 {
+            let p = random_polygon(&mut rng, 1);
+            // Every fourth a trapezoid (its fourth corner d pulled in along e2).
+            let d = if k % 4 == 3 { p.e2 * 0.7 } else { p.e2 };
+            let half = |e1: Vec3, e2: Vec3| FlatPolygon { e1, e2, triangle: true, material: k, ..p };
+            let (mut first, mut second) = (half(p.e1, p.e1 + p.e2), half(p.e1 + p.e2, d));
+            match k % 8 {
+                1 => second.material = 100 + k,
+                5 => (first.light, second.light) = (2 * k, 2 * k + 1),
+                6 => first.corner_normals = Some([p.e1.cross(p.e2); 3]),
+                _ => {}
+            }
+            polygons.extend([first, second]);
+        }
+        let shapes = SmallSceneShapes { polygons, spheres: Vec::new() };
+        let geometry = FlatGeometry::new(&shapes).unwrap();
+        // Of 24 pairs, 6 trapezoids and 3 for each other reason stay split.
+        assert_eq!((geometry.quads.len(), geometry.triangles.len()), (9, 30));
+        let hits = assert_agrees_with_scalar(&shapes, &mut rng);
+        assert!(hits > 1000, "the test rays must hit often: {hits}");
+    }
+
     /// Rotated, sheared boxes made by `Quad::box_faces` are recognised and hit where their six
     /// quads are, by rays from outside and inside them.
     #[test]
@@ -348,6 +498,7 @@ mod tests {
                     e1: face.u,
                     e2: face.v,
                     triangle: false,
+                    corner_normals: None,
                     material: k,
                     light: u32::MAX,
                 });
