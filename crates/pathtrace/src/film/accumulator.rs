@@ -76,8 +76,15 @@ pub(super) fn fixed(x: f64) -> i128 {
 /// Delight); `trunc` and the add are packed instructions.
 #[inline(always)]
 pub(super) fn fixed_small(x: f64) -> i64 {
+    integral_to_i64((x * SCALE).trunc())
+}
+
+/// An integral `f64` below 2⁵¹ in magnitude as an `i64`: the same integer as `t as i64`, by
+/// the bits of `t + 1.5·2⁵²` (exact for such `t`), without the saturating conversion's scalar
+/// range and NaN fix-ups, so it vectorises (see [`fixed_small`]).
+#[inline(always)]
+pub(super) fn integral_to_i64(t: f64) -> i64 {
     const MAGIC: f64 = (3u64 << 51) as f64;
-    let t = (x * SCALE).trunc();
     (t + MAGIC).to_bits() as i64 - MAGIC.to_bits() as i64
 }
 

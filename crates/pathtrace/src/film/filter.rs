@@ -16,6 +16,7 @@
 //!   for the σ = ½ gaussian at equal samples, and a different expected value at the image's
 //!   border, where Mitsuba normalises by the clipped weights.)
 
+use super::accumulator::integral_to_i64;
 use crate::math::Vec2;
 use crate::wide::simd::F32s;
 
@@ -151,9 +152,10 @@ impl PixelFilter {
     #[inline(always)]
     pub fn support_start(&self, p: f64) -> i64 {
         let a = p - 0.5 - self.radius() as f64;
+        // |a| is far below 2⁵¹ (film coordinates and radii are), so the conversion is exact.
         match self {
-            PixelFilter::Pixel | PixelFilter::Box { .. } => a.ceil() as i64,
-            PixelFilter::Tent { .. } | PixelFilter::Gaussian(_) => a.floor() as i64 + 1,
+            PixelFilter::Pixel | PixelFilter::Box { .. } => integral_to_i64(a.ceil()),
+            PixelFilter::Tent { .. } | PixelFilter::Gaussian(_) => integral_to_i64(a.floor()) + 1,
         }
     }
 

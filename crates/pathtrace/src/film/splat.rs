@@ -26,7 +26,7 @@
 //! splat only moves each sample's weight within the block (except at its edge), so the block's
 //! variance is close to the box estimate's — what the block z-tests use.
 
-use super::accumulator::{fixed, fixed_small, sum_to_f64, SMALL_LIMIT};
+use super::accumulator::{fixed, fixed_small, integral_to_i64, sum_to_f64, SMALL_LIMIT};
 use super::filter::PixelFilter;
 use super::grid::Mergeable;
 use crate::math::{Rgb, Vec2};
@@ -151,7 +151,9 @@ impl SplatBlock {
         let m = self.margin as i64;
         // Film-plane position in f64: exact from the f32 jitter, a pure function of the sample.
         let (px, py) = (x as f64 + jitter.x as f64, y as f64 + jitter.y as f64);
-        let (fx, fy) = (px.floor() as i64 - m, py.floor() as i64 - m);
+        // The floors are integers below 2³³, so `integral_to_i64` converts them exactly (Rust's
+        // saturating `as` compiled to scalar conversions with NaN and range fix-ups here).
+        let (fx, fy) = (integral_to_i64(px.floor()) - m, integral_to_i64(py.floor()) - m);
         // Offsets of the footprint's first pixel centres (exact: small integers, halves and the
         // position all fit f64's 53 bits); the row's others follow at +1, +2, ….
         filter.profile_row(fx as f64 + 0.5 - px, &mut self.wx);

@@ -242,16 +242,37 @@ fn join_parallelograms(polygons: &[FlatPolygon]) -> Vec<FlatPolygon> {
 }
 
 /// The quad of triangles (a, b, c) and (a, c, d) if d − a + b − a is c − a (to 10⁻⁵ of the
-/// longer edge: the corners' rounding).
+/// longer edge: the corners' rounding). The second may list its corners from any of the three
+/// (as (c, d, a) or (d, a, c): the same triangle, facing the same way), as exporters that
+/// triangulate quads themselves do (Veach's scene: (a, b, c), (c, d, a)); its corners are then
+/// matched to a and c to the same 10⁻⁵.
 fn parallelogram(first: &FlatPolygon, second: &FlatPolygon) -> Option<FlatPolygon> {
     let plain = |p: &FlatPolygon| p.triangle && p.corner_normals.is_none() && p.light == Primitive::NO_LIGHT;
-    let shared_diagonal = first.origin == second.origin && first.e2 == second.e1;
-    if !(plain(first) && plain(second) && first.material == second.material && shared_diagonal) {
+    if !(plain(first) && plain(second) && first.material == second.material) {
         return None;
     }
-    let (u, v) = (first.e1, second.e2);
-    let size = u.length().max(v.length());
-    ((u + v - first.e2).length() <= 1e-5 * size).then_some(FlatPolygon { e1: u, e2: v, triangle: false, ..*first })
+    let size = first.e1.length().max(first.e2.length()).max(second.e1.length()).max(second.e2.length());
+    let near = |p: Vec3, q: Vec3| (p - q).length() <= 1e-5 * size;
+    let (a, c) = (first.origin, first.origin + first.e2);
+    let corners = [second.origin, second.origin + second.e1, second.origin + second.e2];
+    // d − a by the second's own edges, one rounding from its corners: as stored when it starts
+    // at a (the loader's fan, bit for bit as before), else the difference of two edges.
+    let to_d = if first.origin == second.origin && first.e2 == second.e1 {
+        second.e2
+    } else if near(corners[1], a) && near(corners[2], c) {
+        -second.e1
+    } else if near(corners[2], a) && near(corners[0], c) {
+        second.e1 - second.e2
+    } else {
+        return None;
+    };
+    let (u, v) = (first.e1, to_d);
+    ((u + v - first.e2).length() <= 1e-5 * u.length().max(v.length())).then_some(FlatPolygon {
+        e1: u,
+        e2: v,
+        triangle: false,
+        ..*first
+    })
 }
 
 #[inline(always)]
@@ -450,19 +471,31 @@ mod tests {
         assert!(!flat.unwrap().has_corner_normals());
     }
 
-    /// Parallelograms stored as two triangles (a, b, c), (a, c, d) are tested as one quad where
+    /// Parallelograms stored as two triangles (a, b, c), (a, c, d) (the second also listed from
+    /// c or d) are tested as one quad where
     /// nothing tells the halves apart, and hit where the triangles are; a trapezoid, halves of
     /// different materials, a light's triangles and smooth-shaded ones stay triangles.
     #[test]
     fn parallelograms_split_into_triangles_are_joined() {
         let mut rng = Pcg32::new(3, 11);
         let mut polygons = Vec::new();
+        // Corners on a grid of 2⁻⁶, so that the sums and differences below, and the join's, are
+        // exact: which pairs join does not hang on rounding.
+        let snap = |v: Vec3| (v * 64.0).round() / 64.0;
         for k in 0..24u32 {
             let p = random_polygon(&mut rng, 1);
+            let p = FlatPolygon { origin: snap(p.origin), e1: snap(p.e1), e2: snap(p.e2), ..p };
             // Every fourth a trapezoid (its fourth corner d pulled in along e2).
             let d = if k % 4 == 3 { p.e2 * 0.7 } else { p.e2 };
             let half = |e1: Vec3, e2: Vec3| FlatPolygon { e1, e2, triangle: true, material: k, ..p };
             let (mut first, mut second) = (half(p.e1, p.e1 + p.e2), half(p.e1 + p.e2, d));
+            // The second listed from a, from c (c, d, a) or from d (d, a, c).
+            let (c, d) = (p.origin + p.e1 + p.e2, p.origin + d);
+            match k % 3 {
+                1 => (second.origin, second.e1, second.e2) = (c, d - c, p.origin - c),
+                2 => (second.origin, second.e1, second.e2) = (d, p.origin - d, c - d),
+                _ => {}
+            }
             match k % 8 {
                 1 => second.material = 100 + k,
                 5 => (first.light, second.light) = (2 * k, 2 * k + 1),
