@@ -55,10 +55,19 @@ impl<P: Mergeable> PixelGrid<P> {
     }
 
     /// Merges a block of pixels covering the rectangle at `(x0, y0)` of width `w`.
+    /// Row by row, each block row against its slice of the grid's row: a division and a bounds
+    /// check per pixel (`i % w`, `i / w`, the index) cost about as much as the merge itself,
+    /// and the merge runs under the film's lock once per tile and wave.
     pub fn merge_block(&mut self, x0: u32, y0: u32, w: u32, block: &[P]) {
-        for (i, p) in block.iter().enumerate() {
-            let (x, y) = (x0 + i as u32 % w, y0 + i as u32 / w);
-            self.pixel_mut(x, y).merge(p);
+        if w == 0 {
+            return;
+        }
+        let (x0, w, width) = (x0 as usize, w as usize, self.width as usize);
+        for (row, block_row) in block.chunks(w).enumerate() {
+            let start = (y0 as usize + row) * width + x0;
+            for (p, b) in self.pixels[start..start + block_row.len()].iter_mut().zip(block_row) {
+                p.merge(b);
+            }
         }
     }
 

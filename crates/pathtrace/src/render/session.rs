@@ -3,8 +3,8 @@
 //! finally [`RenderSession::wait`]s for the film. The engine never prints: the CLI's progress
 //! bar and a live window are both thin consumers of this.
 //!
-//! Work proceeds in waves of samples per pixel (1, then `max_wave_spp` at a time:
-//! `RenderSettings::waves`), each wave a parallel loop over tiles, so a first image is ready
+//! Work proceeds in waves of samples per pixel (1, then `max_wave_spp` or more at a time:
+//! `RenderSettings::next_wave`), each wave a parallel loop over tiles, so a first image is ready
 //! quickly. Each pixel merges its waves in order, so the
 //! result is bit-identical whatever the number of threads. With adaptive sampling, waves after
 //! the uniform start give each pixel its own number of samples (`adaptive.rs`), decided between
@@ -412,19 +412,26 @@ fn run_wave(
     );
 }
 
-/// Every pixel gets the same samples: waves of `settings.waves()`.
+/// Every pixel gets the same samples, in the waves [`RenderSettings::next_wave`] sizes from
+/// how long the last one took per sample per pixel (the film does not depend on the sizes).
 fn run_uniform(scene: &Scene, prep: &Prepared, settings: &RenderSettings, shared: &Shared) {
     let tile_list = tiles(settings.width, settings.height, settings.tile_size);
     let deadline = settings.time_limit.map(|t| shared.start + t);
     let start = settings.samples().start;
     let mut first = start;
     let mut estimated = false;
-    for count in settings.waves() {
+    let mut seconds_per_spp = None;
+    while let Some(count) = settings.next_wave(first - start, seconds_per_spp) {
         estimated = false;
         if shared.stop_requested(deadline) {
             break;
         }
+        let began = Instant::now();
         run_wave(scene, prep, settings, shared, &tile_list, WaveSamples::Uniform { first, count });
+        if std::env::var_os("PT_WAVE_FIXED").is_none() {
+            // TEMPORARY A/B switch
+            seconds_per_spp = Some(began.elapsed().as_secs_f64() / f64::from(count));
+        }
         if shared.stop_requested(deadline) {
             break;
         }
