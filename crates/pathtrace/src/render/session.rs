@@ -428,10 +428,7 @@ fn run_uniform(scene: &Scene, prep: &Prepared, settings: &RenderSettings, shared
         }
         let began = Instant::now();
         run_wave(scene, prep, settings, shared, &tile_list, WaveSamples::Uniform { first, count });
-        if std::env::var_os("PT_WAVE_FIXED").is_none() {
-            // TEMPORARY A/B switch
-            seconds_per_spp = Some(began.elapsed().as_secs_f64() / f64::from(count));
-        }
+        seconds_per_spp = Some(began.elapsed().as_secs_f64() / f64::from(count));
         if shared.stop_requested(deadline) {
             break;
         }
