@@ -59,10 +59,19 @@ impl PixelFilter {
         }
     }
 
-    /// A box or tent of the given radius in pixels, which must be positive and finite.
+    /// The widest support a filter may have, in pixels from the sample: a splat keeps a row of
+    /// weights across the support (`splat.rs`), so a radius of 10⁹ would ask for gigabytes
+    /// before the first sample. 40 000 pixels is wider than any film.
+    pub const MAX_RADIUS: f32 = 4.0e4;
+
+    /// A box or tent of the given radius in pixels, which must be positive and at most
+    /// [`PixelFilter::MAX_RADIUS`].
     pub fn with_radius(name: &str, radius: f32) -> Result<PixelFilter, String> {
-        if !(radius > 0.0 && radius.is_finite()) {
-            return Err(format!("filter radius {radius} must be a positive number of pixels"));
+        if !(radius > 0.0 && radius <= Self::MAX_RADIUS) {
+            return Err(format!(
+                "filter radius {radius} must be a positive number of pixels, at most {}",
+                Self::MAX_RADIUS
+            ));
         }
         match name {
             "box" if radius == 0.5 => Ok(PixelFilter::Pixel),
@@ -199,10 +208,11 @@ pub struct GaussianFilter {
 }
 
 impl GaussianFilter {
-    /// `stddev` in pixels; must be positive and finite.
+    /// `stddev` in pixels; must be positive, its radius (4σ) at most [`PixelFilter::MAX_RADIUS`].
     pub fn new(stddev: f32) -> Result<Self, String> {
-        if !(stddev > 0.0 && stddev.is_finite() && stddev < 1e4) {
-            return Err(format!("gaussian stddev {stddev} must be a positive number of pixels"));
+        let widest = PixelFilter::MAX_RADIUS / 4.0;
+        if !(stddev > 0.0 && stddev <= widest) {
+            return Err(format!("gaussian stddev {stddev} must be a positive number of pixels, at most {widest}"));
         }
         let r = 4.0 * stddev as f64;
         let alpha = -1.0 / (2.0 * stddev as f64 * stddev as f64);
@@ -376,5 +386,23 @@ mod tests {
         assert_eq!((b.profile(1.5), b.profile(-1.51)), (1.0, 0.0));
         assert!(GaussianFilter::new(0.0).is_err());
         assert!(GaussianFilter::new(f32::NAN).is_err());
+    }
+
+    /// Radii are positive and at most `MAX_RADIUS` (a huge one would allocate its splat row of
+    /// weights before failing); the bound itself is accepted, for every kind.
+    #[test]
+    fn radii_are_bounded() {
+        for name in ["box", "tent"] {
+            for bad in [0.0, -1.0, f32::NAN, f32::INFINITY, 1e9, PixelFilter::MAX_RADIUS * 1.001] {
+                let e = PixelFilter::with_radius(name, bad).unwrap_err();
+                assert!(e.contains("at most 40000"), "{e}");
+            }
+            assert_eq!(
+                PixelFilter::with_radius(name, PixelFilter::MAX_RADIUS).unwrap().radius(),
+                PixelFilter::MAX_RADIUS
+            );
+        }
+        assert!(GaussianFilter::new(1e6).unwrap_err().contains("at most 10000"));
+        assert_eq!(GaussianFilter::new(1e4).unwrap().radius(), PixelFilter::MAX_RADIUS);
     }
 }
