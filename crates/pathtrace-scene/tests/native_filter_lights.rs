@@ -96,6 +96,12 @@ fn mistakes_are_located() {
         ),
         (
             r#"filter = { type = "gaussian", stddev = 0.3 }"#,
+            r#"filter = { type = "tent", radius = 1e9 }"#,
+            2..=2,
+            "at most 40000",
+        ),
+        (
+            r#"filter = { type = "gaussian", stddev = 0.3 }"#,
             r#"filter = { type = "mitchell" }"#,
             2..=2,
             "unknown variant",
