@@ -316,7 +316,7 @@ pub(crate) struct Surfaces<const N: usize> {
     pub p: Vec3s<N>,
     pub n_geometric: Vec3s<N>,
     pub n_shading: Vec3s<N>,
-    /// Texture coordinates and ∂p/∂u, for textures and anisotropic frames (zero where the
+    /// Texture coordinates and ∂p/∂u, for textures and anisotropic frames (not set where the
     /// brute-force intersector found the hit: it serves only scenes that need neither).
     pub uv: [Vec2; N],
     pub dpdu: [Vec3; N],
@@ -343,6 +343,18 @@ impl<const N: usize> Surfaces<N> {
             material: [0; N],
             light: [Primitive::NO_LIGHT; N],
         }
+    }
+
+    /// No lane has hit anything, for the group's next vertex. Only what is read of lanes
+    /// without a hit is reset: the hit mask and the lights (the emission step reads every live
+    /// lane's). The rest keeps the last hit's values, which are read only where a lane hits
+    /// again, or computed on in lanes whose results are then dropped. Zeroing all of it at every
+    /// vertex (3 KB with 32 lanes) was most of the 2.5% `memset` in the zoomed teapot's
+    /// profile (docs/benchmarks.md, "Surfaces kept from vertex to vertex").
+    #[inline(always)]
+    pub fn clear(&mut self) {
+        self.hit = Ms::NONE;
+        self.light = [Primitive::NO_LIGHT; N];
     }
 
     /// Records lane `i`'s hit: the surface, material and light of `it`.

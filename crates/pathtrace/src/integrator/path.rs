@@ -142,12 +142,14 @@ impl<const N: usize> Scattered<N> {
     }
 }
 
-/// One path vertex for every active lane.
+/// One path vertex for every active lane. `s` holds the group's closest hits; it is kept from
+/// vertex to vertex (see [`Surfaces::clear`]).
 #[inline(always)]
 pub(crate) fn vertex<const N: usize>(
     job: &LaneJob,
     paths: &mut Paths<N>,
     samplers: &mut LaneSamplers<N>,
+    s: &mut Surfaces<N>,
     out: &mut Output,
 ) {
     let LaneJob { scene, lanes, .. } = *job;
@@ -157,22 +159,22 @@ pub(crate) fn vertex<const N: usize>(
     let materials = scene.materials();
 
     // ---- Closest hits ----------------------------------------------------------------
-    let mut s = Surfaces::none();
-    intersect(job, paths, &mut s);
+    s.clear();
+    intersect(job, paths, s);
     let wo = paths.dir.neg();
 
     // ---- Media and null surfaces (volumetric scenes only) ------------------------------
     // Lanes in a medium may scatter before their hit (`scatter`: medium vertices at `s.p`);
     // null surfaces are crossed. Scenes without media never enter this branch.
     let volumetric = scene.is_volumetric();
-    let scatter = if volumetric { travel(job, paths, samplers, &mut s) } else { Ms::NONE };
+    let scatter = if volumetric { travel(job, paths, samplers, s) } else { Ms::NONE };
 
     // ---- Feature samples (AOVs), only for renders that record them -----------------------
     if paths.feature_pending.any() {
         // A medium interaction is not a surface: its lanes keep waiting for one.
         let waiting = paths.feature_pending & scatter;
         paths.feature_pending = paths.feature_pending & !scatter;
-        record_features(job, paths, &s, &wo);
+        record_features(job, paths, s, &wo);
         paths.feature_pending = paths.feature_pending | waiting;
     }
 
@@ -257,7 +259,7 @@ pub(crate) fn vertex<const N: usize>(
         for i in (alive & !scatter).lanes() {
             let class = &lanes.classes[s.material[i] as usize];
             if class.textured && class.lane_form.is_some() {
-                made(&mut textured, || [None; N])[i] = Some(textured_material(scene, &s, i));
+                made(&mut textured, || [None; N])[i] = Some(textured_material(scene, s, i));
             }
         }
     }
@@ -279,7 +281,7 @@ pub(crate) fn vertex<const N: usize>(
         }
         if class.simd {
             simd.0[i] = u32::MAX;
-            let a = if class.textured { textured_albedo(scene, &s, i) } else { class.albedo };
+            let a = if class.textured { textured_albedo(scene, s, i) } else { class.albedo };
             [albedo[0].0[i], albedo[1].0[i], albedo[2].0[i]] = a.to_array();
         } else if let Some(form) = class.lane_form {
             let material = textured.as_ref().and_then(|t| t[i].as_ref()).unwrap_or(&materials[s.material[i] as usize]);
@@ -291,7 +293,7 @@ pub(crate) fn vertex<const N: usize>(
             }
             if let Some(p) = class.perturbed.then(|| scene.normal_perturbation(s.material[i])).flatten() {
                 perturbed.0[i] = u32::MAX;
-                let frame = perturbed_frame(scene, &s, i, material, p, wo.lane(i));
+                let frame = perturbed_frame(scene, s, i, material, p, wo.lane(i));
                 made(&mut frames, || std::array::from_fn(|_| None))[i] = Some(frame);
             }
             match (form, material) {
@@ -387,7 +389,7 @@ pub(crate) fn vertex<const N: usize>(
     };
     let mut sc = Scattered::none();
     let lambert_light = if simd.any() {
-        lambertian_lanes(job, &s, &wo, simd, one_sided, nee, ending_here, &light_samples, [&ud1, &ud2], &mut sc)
+        lambertian_lanes(job, s, &wo, simd, one_sided, nee, ending_here, &light_samples, [&ud1, &ud2], &mut sc)
     } else {
         LambertLight::none()
     };
@@ -501,7 +503,7 @@ pub(crate) fn vertex<const N: usize>(
                 t_max: sc.shadow_t_max,
                 contribution: sc.contribution,
             };
-            add_transmitted_light(job, paths, &s, scatter, queued, LambertLight { ..lambert_light }, albedo);
+            add_transmitted_light(job, paths, s, scatter, queued, LambertLight { ..lambert_light }, albedo);
         } else {
             // Shadow rays go through the BVH together: from first hits (neighbouring points),
             // rays to one light share most node visits, and rays to several share the upper
@@ -566,7 +568,7 @@ pub(crate) fn vertex<const N: usize>(
     // ---- Next segment ------------------------------------------------------------------
     // A surface that bounds media puts the path in the medium on the side it leaves by.
     if volumetric {
-        enter_media(scene, paths, &s, alive & !scatter, sc.dir);
+        enter_media(scene, paths, s, alive & !scatter, sc.dir);
     }
     paths.prev_p = Vec3s::select(alive, &s.p, &paths.prev_p);
     paths.prev_pdf = F32s::select(alive, sc.pdf, paths.prev_pdf);

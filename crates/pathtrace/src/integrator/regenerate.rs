@@ -4,7 +4,7 @@
 //! variants do), yet a group's paths stay together long enough to keep their rays coherent
 //! ([`refill_due`]).
 
-use super::lanes::{Output, Paths, TileSplat};
+use super::lanes::{Output, Paths, Surfaces, TileSplat};
 use super::path::vertex;
 use crate::camera::Camera;
 use crate::film::{FeaturePixel, PixelFilter, PixelStats, SplatBlock};
@@ -193,6 +193,8 @@ pub(crate) fn render_tile_lanes<const N: usize>(
     };
     let mut queue = Queue::new(tile, samples);
     let mut paths = Paths::<N>::new();
+    // The group's closest hits, kept from vertex to vertex (see `Surfaces::clear`).
+    let mut surfaces = Surfaces::<N>::none();
     let max_depth = job.lanes.settings.max_depth;
     let aperture = job.camera.needs_aperture_sample();
     loop {
@@ -239,7 +241,7 @@ pub(crate) fn render_tile_lanes<const N: usize>(
         if !paths.active.any() {
             break;
         }
-        vertex(job, &mut paths, &mut samplers, &mut out);
+        vertex(job, &mut paths, &mut samplers, &mut surfaces, &mut out);
     }
     TileResult {
         tile,
