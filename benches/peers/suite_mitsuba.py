@@ -238,6 +238,10 @@ def main(argv=None):
                         "table's last column compares each renderer's best")
     p.add_argument("--samplers", default="", metavar="LIST",
                    help="comma-separated samplers of ours also timed to the target error (e.g. sobol)")
+    p.add_argument("--adaptive", type=int, default=None, metavar="MIN_SPP",
+                   help="also time ours with adaptive sampling (--adaptive --min-spp MIN_SPP) at the same "
+                        "average spp, with the scene's sampler and with each of --samplers; it counts as one "
+                        "of our samplers in the best-sampler column")
     p.add_argument("--pathtrace-arg", action="append", default=[], metavar="ARG",
                    help="an extra argument for our renders (repeat for several), e.g. "
                         "--pathtrace-arg=--light-selection --pathtrace-arg=power")
@@ -285,6 +289,10 @@ def main(argv=None):
             others = [("mitsuba", name, Mitsuba(mi, dr, args.variant, path, defines, name).render)
                       for name in split(args.mitsuba_samplers)]
             others += [("ours", name, ours_with(["--sampler", name])) for name in split(args.samplers)]
+            if args.adaptive is not None:
+                adaptive = ["--adaptive", "--min-spp", str(args.adaptive)]
+                others += [("ours", f"{name}+adaptive" if name else "adaptive", ours_with((["--sampler", name] if name else []) + adaptive))
+                           for name in [""] + split(args.samplers)]
             for _, _, render in others:
                 render(np, spp, 0)  # warm-up
             r = {"scene": label, "size": f"{w}x{h}", "spp": spp, "mitsuba": [], "ours": [],
