@@ -52,19 +52,19 @@ def main(argv=None):
     mi.set_variant("llvm_ad_rgb")
     mi.set_log_level(mi.LogLevel.Error)
     dr.set_thread_count(args.threads)
-    tmp = tempfile.mkdtemp(prefix="spread-")
-    for depth in sm.split(args.max_depth) or [None]:
-        defines = {} if depth is None else {"max_depth": depth}
-        theirs = [(f"mitsuba {n}", sm.Mitsuba(mi, dr, "llvm_ad_rgb", args.scene, defines, n))
-                  for n in sm.split(args.mitsuba_samplers)]
-        for spp in (int(x) for x in sm.split(args.spp)):
-            row = [(name, spread(np, [m.render(np, spp, s)[1] for s in range(args.seeds)])) for name, m in theirs]
-            for name in sm.split(args.samplers):
-                images = [sm.ours(np, args.pathtrace, args.scene, defines, spp, s, args.threads, tmp,
-                                  ["--sampler", name])[1] for s in range(args.seeds)]
-                row.append((f"ours {name}", spread(np, images)))
-            print(f"max_depth {depth or 'of the file'}, {spp} spp: "
-                  + "  ".join(f"{n} {e:.4f}" for n, e in row), flush=True)
+    with tempfile.TemporaryDirectory(prefix="spread-") as tmp:
+        for depth in sm.split(args.max_depth) or [None]:
+            defines = {} if depth is None else {"max_depth": depth}
+            theirs = [(f"mitsuba {n}", sm.Mitsuba(mi, dr, "llvm_ad_rgb", args.scene, defines, n))
+                      for n in sm.split(args.mitsuba_samplers)]
+            for spp in (int(x) for x in sm.split(args.spp)):
+                row = [(name, spread(np, [m.render(np, spp, s)[1] for s in range(args.seeds)])) for name, m in theirs]
+                for name in sm.split(args.samplers):
+                    images = [sm.ours(np, args.pathtrace, args.scene, defines, spp, s, args.threads, tmp,
+                                      ["--sampler", name])[1] for s in range(args.seeds)]
+                    row.append((f"ours {name}", spread(np, images)))
+                print(f"max_depth {depth or 'of the file'}, {spp} spp: "
+                      + "  ".join(f"{n} {e:.4f}" for n, e in row), flush=True)
     return 0
 
 
