@@ -5,6 +5,7 @@ use crate::film::{FeaturePixel, PixelFilter, PixelStats, SplatBlock};
 use crate::integrator::{render_tile_lanes, LaneJob, PathStats};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+#[cfg(not(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions))))]
 use crate::wide::simd::LANES_256;
 #[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
 use crate::wide::simd::LANES_512;
@@ -99,9 +100,10 @@ pub(crate) struct TileResult {
 /// copy of the wide loop is one very large function, and LLVM's loop passes take time quadratic in
 /// its size (`ScalarEvolution::forgetLoop` dominated a profile of the compiler): the test build
 /// of this crate took over 40 minutes with three copies. Every copy computes the same image, so
-/// tests of the portable copy hold for the others; release builds keep all three.
+/// tests of the portable copy hold for the others; release builds keep all three (all but the
+/// AVX-512 one are left out of experiment builds, `avx512_only`).
 pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
-    #[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
+    #[cfg(all(target_arch = "x86_64", not(debug_assertions), not(feature = "avx512-only")))]
     {
         // Every AVX2 CPU made (Intel since Haswell, AMD since Excavator) also has the bit
         // instructions, but they are separate CPUID bits, so they are checked too.
@@ -130,7 +132,39 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
             return unsafe { render_tile_avx2(job, sampler, tile, samples) };
         }
     }
-    render_tile_body::<LANES_256>(job, sampler, tile, samples)
+    #[cfg(not(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions))))]
+    return render_tile_body::<LANES_256>(job, sampler, tile, samples);
+    #[cfg(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions)))]
+    avx512_only(job, sampler, tile, samples)
+}
+
+/// Experiment builds (`--features pathtrace/avx512-only`, release profile) compile only the
+/// AVX-512 loop: each copy of the loop is one very large function and most of the build's time
+/// (see [`render_tile`]). Such a build takes 27 CPU minutes against a release build's 68, and
+/// renders at the same speed (docs/benchmarks.md, "Experiment builds"), for speed A/Bs of two
+/// such builds on an AVX-512 machine. Not for shipping: it renders nothing else (no `--kernel
+/// scalar` or `wide8`, no CPU without AVX-512). Builds with debug assertions ignore the feature.
+#[cfg(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions)))]
+fn avx512_only(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
+    assert!(
+        std::arch::is_x86_feature_detected!("avx2")
+            && std::arch::is_x86_feature_detected!("avx512f")
+            && std::arch::is_x86_feature_detected!("avx512vl")
+            && std::arch::is_x86_feature_detected!("avx512dq")
+            && std::arch::is_x86_feature_detected!("avx512bw")
+            && std::arch::is_x86_feature_detected!("popcnt")
+            && std::arch::is_x86_feature_detected!("bmi1")
+            && std::arch::is_x86_feature_detected!("bmi2")
+            && std::arch::is_x86_feature_detected!("lzcnt")
+            && !job.one_lane
+            && !job.at_most_8_lanes,
+        "this experiment build (feature avx512-only) renders only with the AVX-512 group loop"
+    );
+    // SAFETY: the CPU was just checked to have every feature `render_tile_avx512` enables.
+    #[allow(unsafe_code)]
+    unsafe {
+        render_tile_avx512(job, sampler, tile, samples)
+    }
 }
 
 /// The bit instructions (`popcnt`, BMI1/2, `lzcnt`) come with the vector ones. Without them
@@ -139,7 +173,7 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
 /// `blsr`. Measured on two threads against the build without them (docs/benchmarks.md, "The bit
 /// instructions enabled beside the vector ones"): mesh-1m 0.90×, copper 0.89×, glass 0.93×,
 /// bunny 0.94× the time. They are integer instructions: no value of the render changes.
-#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
+#[cfg(all(target_arch = "x86_64", not(debug_assertions), not(feature = "avx512-only")))]
 #[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
 fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     render_tile_body::<LANES_256>(job, sampler, tile, samples)
@@ -170,14 +204,18 @@ fn render_tile_body<const N: usize>(
 ) -> TileResult {
     let TileJob { scene, camera, lanes, one_lane, filter, features, .. } = *job;
     let job = LaneJob { scene, lanes, camera, filter, features };
+    #[cfg(not(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions))))]
     if one_lane {
         return render_tile_one_lane(&job, sampler, tile, samples);
     }
+    #[cfg(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions)))]
+    let _ = one_lane;
     render_tile_lanes::<N>(&job, sampler, tile, samples)
 }
 
 /// The one-lane instance, compiled on its own: inlined beside the wide loop it doubled that
 /// function's size, and the wide loop's code got slower.
+#[cfg(not(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions))))]
 #[inline(never)]
 fn render_tile_one_lane(job: &LaneJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     render_tile_lanes::<1>(job, sampler, tile, samples)
