@@ -6,7 +6,7 @@
 use crate::accel::{Packable, PrimitiveSet};
 use crate::math::{Aabb, Ray, Vec3};
 use crate::scene::Primitive;
-use crate::shape::{with_unit_normals, MeshGeometry, PrimHit, Shape, Sphere, SurfacePoint, Triangle};
+use crate::shape::{with_unit_normals, MeshGeometry, PrimHit, Shape, Sphere, SurfacePoint, Triangle, TriangleCorners};
 
 /// A mesh in a scene.
 #[derive(Clone, Debug)]
@@ -54,6 +54,15 @@ impl SmallSceneShapes {
     pub fn len(&self) -> usize {
         self.polygons.len() + self.spheres.len()
     }
+}
+
+/// The mesh triangle a hit record last gathered ([`PrimitiveStore::surface_unless_mesh_normals_reusing`]).
+#[derive(Clone, Copy, Debug)]
+pub struct LastTriangle {
+    index: u32,
+    corners: TriangleCorners,
+    material: u32,
+    light: u32,
 }
 
 /// Which stored item a primitive index names.
@@ -151,6 +160,26 @@ impl PrimitiveStore {
     /// the last value is false then.
     #[inline(always)]
     pub fn surface_unless_mesh_normals(&self, index: u32, ray: &Ray, hit: &PrimHit) -> (SurfacePoint, u32, u32, bool) {
+        self.surface_unless_mesh_normals_reusing(index, ray, hit, &mut None)
+    }
+
+    /// [`PrimitiveStore::surface_unless_mesh_normals`], reusing the mesh triangle `last` of the
+    /// previous hit when it is this one, and keeping this one's there otherwise: the gather of
+    /// a triangle's corners through the index buffer was most of a mesh hit's record, and a
+    /// group's camera rays hit the same few triangles.
+    #[inline(always)]
+    pub fn surface_unless_mesh_normals_reusing(
+        &self,
+        index: u32,
+        ray: &Ray,
+        hit: &PrimHit,
+        last: &mut Option<LastTriangle>,
+    ) -> (SurfacePoint, u32, u32, bool) {
+        if let Some(l) = last {
+            if l.index == index {
+                return (l.corners.surface_before_normalising(hit), l.material, l.light, false);
+            }
+        }
         match self.item(index) {
             Item::Shape(i) => {
                 let p = &self.shapes[i as usize];
@@ -159,7 +188,9 @@ impl PrimitiveStore {
             Item::MeshTriangle { mesh, triangle } => {
                 let m = &self.meshes[mesh as usize];
                 let light = if m.first_light == Primitive::NO_LIGHT { m.first_light } else { m.first_light + triangle };
-                (m.geometry.surface_before_normalising(triangle, hit), m.material, light, false)
+                let corners = m.geometry.corners(triangle);
+                *last = Some(LastTriangle { index, corners, material: m.material, light });
+                (corners.surface_before_normalising(hit), m.material, light, false)
             }
         }
     }

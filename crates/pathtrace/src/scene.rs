@@ -11,7 +11,7 @@ use crate::light::{
 use crate::material::{Blend, Material, Mixture, RoughPlasticAlphaTable};
 use crate::math::{Aabb, Ray, Rgb, Transform, Vec3};
 use crate::medium::{HomogeneousMedium, MediumBoundary, MediumId};
-use crate::primitive_store::{PrimitiveStore, SceneMesh};
+use crate::primitive_store::{LastTriangle, PrimitiveStore, SceneMesh};
 use crate::shape::{with_unit_normals, MeshError, MeshGeometry, PrimHit, Quad, Shape, SurfacePoint, TriangleMesh};
 use crate::texture::{ColourSlot, NormalPerturbation, Opacity, PerturbationKind, Texture, TextureBindings, TextureId};
 use crate::wide::simd::{F32s, Ms, Vec3s};
@@ -243,8 +243,21 @@ impl Scene {
     /// estimator normalises a group's together.
     #[inline(always)]
     pub fn interaction_unless_mesh_normals(&self, ray: &Ray, hit: &Hit) -> (Interaction<'_>, bool) {
+        self.interaction_unless_mesh_normals_reusing(ray, hit, &mut None)
+    }
+
+    /// [`Scene::interaction_unless_mesh_normals`] that reuses the mesh triangle `last` of the
+    /// previous hit if this hit is on it (and keeps this hit's there otherwise): for the hits of
+    /// a group, in lane order.
+    #[inline(always)]
+    pub(crate) fn interaction_unless_mesh_normals_reusing(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        last: &mut Option<LastTriangle>,
+    ) -> (Interaction<'_>, bool) {
         let (surface, material, light, normalised) = match hit.prim {
-            PrimRef::Bounded(i) => self.prims.surface_unless_mesh_normals(i, ray, &hit.hit),
+            PrimRef::Bounded(i) => self.prims.surface_unless_mesh_normals_reusing(i, ray, &hit.hit, last),
             PrimRef::Unbounded(i) => {
                 let p = &self.unbounded[i as usize];
                 (p.shape.surface(ray, &hit.hit, &[]), p.material, p.light, true)

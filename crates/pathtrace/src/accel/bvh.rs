@@ -7,6 +7,7 @@ use arrayvec::ArrayVec;
 use rayon::prelude::*;
 
 use super::build::{BuildItem, BuildOptions};
+use super::group_hits::GroupHits;
 use super::lanes::{lane_of, RayX4};
 use super::leaf::{Leaves, Packable};
 use super::subtree::build_tree;
@@ -207,13 +208,12 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
     ) -> [Option<(PrimHit, u32)>; N] {
-        let mut best = [None; N];
         if self.wide.is_empty() || !active.any() {
-            return best;
+            return [None; N];
         }
         let ray = |i: usize| Ray::new(origin.lane(i), dir.lane(i));
         let rays = RayBoxes::new(origin, dir);
-        let mut t_far = F32s::<N>::splat(t_max);
+        let mut best = GroupHits::<N>::new(t_max);
         let lo = F32s::<N>::splat(t_min);
         // Rays that miss the box around the whole tree stop here: one slab test for the group
         // where the root's visit makes four, for camera rays that pass beside the scene's
@@ -221,10 +221,10 @@ impl Bvh {
         // its padded box (`Aabb::padded`), so inside this box, and a ray that meets a
         // primitive within `[t_min, t_max]` passes the slab test of every box around it, as
         // the walk below already relies on for each node on the way to a leaf.
-        let (inside, _) = self.outer.child_hit_lanes(0, &rays, lo, t_far);
+        let (inside, _) = self.outer.child_hit_lanes(0, &rays, lo, best.t);
         let entering = active.bitmask() & inside;
         if entering == 0 {
-            return best;
+            return [None; N];
         }
         // A group whose rays go one way on every axis is bounded once (`RayInterval`), and each
         // node's four boxes are first tested against the bounds: the children no ray can hit
@@ -242,13 +242,10 @@ impl Bvh {
                 while lanes != 0 {
                     let i = lanes.trailing_zeros() as usize;
                     lanes &= lanes - 1;
-                    best[i] = self.closest_from(node, prims, &ray(i), t_min, t_far.0[i], best[i]);
-                    if let Some((hit, _)) = best[i] {
-                        t_far.0[i] = hit.t;
-                    }
+                    best.put(i, self.closest_from(node, prims, &ray(i), t_min, best.t.0[i], best.get(i)));
                 }
                 if interval.is_some() {
-                    far = (t_far.min_over(walk), t_far.max_over(walk));
+                    far = best.t_range(walk);
                 }
                 continue;
             }
@@ -274,7 +271,7 @@ impl Bvh {
                 let (hit, entry) = if all_hit >> lane & 1 != 0 {
                     (mask, lane_of(&entries, lane))
                 } else {
-                    let (hit, near) = n.child_hit_lanes(lane, &rays, lo, t_far);
+                    let (hit, near) = n.child_hit_lanes(lane, &rays, lo, best.t);
                     let hit = hit & mask;
                     if hit == 0 {
                         continue;
@@ -291,7 +288,7 @@ impl Bvh {
                     k += 1;
                 } else if hit.count_ones() >= RAY_LANES_FROM {
                     leaf_tested = true;
-                    t_far = self.leaves.intersect_rays(child & !LEAF, prims, origin, dir, hit, t_min, t_far, &mut best);
+                    self.leaves.intersect_rays(child & !LEAF, prims, origin, dir, hit, t_min, &mut best);
                 } else {
                     leaf_tested = true;
                     let mut lanes = hit;
@@ -299,27 +296,21 @@ impl Bvh {
                         let i = lanes.trailing_zeros() as usize;
                         lanes &= lanes - 1;
                         let r = ray(i);
-                        self.leaves.intersect(
-                            child & !LEAF,
-                            prims,
-                            &r,
-                            &RayX4::new(&r),
-                            t_min,
-                            &mut t_far.0[i],
-                            &mut best[i],
-                        );
+                        let (mut t_far, mut hit) = (best.t.0[i], best.get(i));
+                        self.leaves.intersect(child & !LEAF, prims, &r, &RayX4::new(&r), t_min, &mut t_far, &mut hit);
+                        best.put(i, hit);
                     }
                 }
             }
             if leaf_tested && interval.is_some() {
-                far = (t_far.min_over(walk), t_far.max_over(walk));
+                far = best.t_range(walk);
             }
             for &(child, hit, _) in &kids[..k] {
                 prefetch(&self.wide, child);
                 stack.push((child, hit));
             }
         }
-        best
+        best.into_array()
     }
 
     /// Closest hit in the subtree of wide node `start`, nearer than `t_max` or as near and on

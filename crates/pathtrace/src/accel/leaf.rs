@@ -1,6 +1,7 @@
 //! BVH leaves: their quads and triangles packed four to a SIMD packet (lanes = primitives, as
 //! in Embree's "quad4"/"triangle4" leaves), other shapes kept as indices tested one by one.
 
+use super::group_hits::GroupHits;
 use super::lanes::{lane_of, HitL, HitX4, RayX4, Rays};
 use super::quad4::Quad4;
 use super::tri4::Tri4;
@@ -63,7 +64,7 @@ impl Packet for Tri4 {
 /// and both must name the same primitive when two are hit at one distance (a shared edge).
 /// `hit.t ≤ *t_max` (the tests' bound).
 #[inline(always)]
-fn offer(hit: PrimHit, id: u32, t_max: &mut f32, best: &mut Option<(PrimHit, u32)>) {
+pub(super) fn offer(hit: PrimHit, id: u32, t_max: &mut f32, best: &mut Option<(PrimHit, u32)>) {
     if hit.t < *t_max || (hit.t == *t_max && best.is_none_or(|(_, b)| id < b)) {
         *t_max = hit.t;
         *best = Some((hit, id));
@@ -92,34 +93,27 @@ fn closest_in<G: Packet>(
 }
 
 /// [`closest_in`] for the rays of `lanes` (a bitmask) of a group, testing each primitive
-/// against all of them at once; ray `i` updates `best[i]`, and the rays' `t_max` shrunk to
-/// their hits is returned. Per ray the same hit as [`closest_in`]: the same bits per test, and
-/// [`offer`]'s order does not depend on the order the hits come in.
+/// against all of them at once and offering its hits to all of them ([`GroupHits::offer`]).
+/// Per ray the same hit as [`closest_in`]: the same bits per test, and [`offer`]'s order does
+/// not depend on the order the hits come in.
 #[inline(always)]
 fn closest_in_rays<G: Packet, const N: usize>(
     packets: &[Packed<G>],
     rays: &Rays<N>,
     lanes: u32,
     t_min: f32,
-    mut t_max: F32s<N>,
-    best: &mut [Option<(PrimHit, u32)>; N],
-) -> F32s<N> {
+    best: &mut GroupHits<N>,
+) {
     for p in packets {
         for k in 0..4 {
             // Padding lanes repeat the previous primitive (and never hit).
             if k > 0 && p.ids[k] == p.ids[k - 1] {
                 break;
             }
-            let h = p.geom.hits_rays(k, rays, t_min, t_max);
-            let mut hit = h.mask.bitmask() & lanes;
-            while hit != 0 {
-                let i = hit.trailing_zeros() as usize;
-                hit &= hit - 1;
-                offer(PrimHit { t: h.t.0[i], u: h.u.0[i], v: h.v.0[i] }, p.ids[k], &mut t_max.0[i], &mut best[i]);
-            }
+            let h = p.geom.hits_rays(k, rays, t_min, best.t);
+            best.offer(&h, p.ids[k], lanes);
         }
     }
-    t_max
 }
 
 /// The rays of `lanes` (a bitmask) that hit any primitive of `packets` within their `t_max`.
@@ -330,7 +324,7 @@ impl Leaves {
 
     /// [`Leaves::intersect`] for the rays of `lanes` (a bitmask) of a group (ray `i`:
     /// `origin[i] + t·dir[i]`), each packed primitive tested against all of them at once;
-    /// returns the rays' `t_max` shrunk to their hits.
+    /// updates the rays' closest hits `best`.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub fn intersect_rays<P: PrimitiveSet + ?Sized, const N: usize>(
@@ -341,28 +335,28 @@ impl Leaves {
         dir: &Vec3s<N>,
         lanes: u32,
         t_min: f32,
-        t_max: F32s<N>,
-        best: &mut [Option<(PrimHit, u32)>; N],
-    ) -> F32s<N> {
+        best: &mut GroupHits<N>,
+    ) {
         let rays = Rays::from_lanes(origin, dir);
         let leaf = match self.resolve(index) {
-            LeafRef::Triangles(tris) => return closest_in_rays(tris, &rays, lanes, t_min, t_max, best),
+            LeafRef::Triangles(tris) => return closest_in_rays(tris, &rays, lanes, t_min, best),
             LeafRef::Record(leaf) => leaf,
         };
-        let t_max = closest_in_rays(part(&self.quads, leaf.quads, leaf.n_quads), &rays, lanes, t_min, t_max, best);
-        let mut t_max = closest_in_rays(part(&self.tris, leaf.tris, leaf.n_tris), &rays, lanes, t_min, t_max, best);
+        closest_in_rays(part(&self.quads, leaf.quads, leaf.n_quads), &rays, lanes, t_min, best);
+        closest_in_rays(part(&self.tris, leaf.tris, leaf.n_tris), &rays, lanes, t_min, best);
         for &p in part(&self.scalar, leaf.scalar, leaf.n_scalar) {
             let mut todo = lanes;
             while todo != 0 {
                 let i = todo.trailing_zeros() as usize;
                 todo &= todo - 1;
                 let ray = Ray::new(origin.lane(i), dir.lane(i));
-                if let Some(hit) = prims.intersect_one(p, &ray, t_min, t_max.0[i]) {
-                    offer(hit, p, &mut t_max.0[i], &mut best[i]);
+                let (mut t_max, mut hit) = (best.t.0[i], best.get(i));
+                if let Some(h) = prims.intersect_one(p, &ray, t_min, t_max) {
+                    offer(h, p, &mut t_max, &mut hit);
+                    best.put(i, hit);
                 }
             }
         }
-        t_max
     }
 
     /// [`Leaves::occluded`] for the rays of `lanes` (a bitmask) of a group: the bitmask of the

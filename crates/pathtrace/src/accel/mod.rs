@@ -3,6 +3,7 @@
 mod brute;
 mod build;
 mod bvh;
+mod group_hits;
 mod lanes;
 mod leaf;
 mod quad4;

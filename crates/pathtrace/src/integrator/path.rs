@@ -838,6 +838,7 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
     // divisions were a chain the loop waited on (zoomed teapot 0.925× the time, bunny 0.977×;
     // docs/benchmarks.md, "A group's mesh normals normalised together").
     let mut unnormalised = 0u32;
+    let mut last = None;
     job.scene.intersect_lanes(
         &paths.origin,
         &paths.dir,
@@ -846,7 +847,7 @@ fn intersect<const N: usize>(job: &LaneJob, paths: &Paths<N>, s: &mut Surfaces<N
         #[inline(always)]
         |i, hit| {
             let ray = Ray::new(paths.origin.lane(i), paths.dir.lane(i));
-            let (it, normalised) = job.scene.interaction_unless_mesh_normals(&ray, &hit);
+            let (it, normalised) = job.scene.interaction_unless_mesh_normals_reusing(&ray, &hit, &mut last);
             s.set_hit(i, &it);
             unnormalised |= u32::from(!normalised) << i;
         },

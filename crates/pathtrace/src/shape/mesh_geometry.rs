@@ -123,14 +123,19 @@ impl MeshGeometry {
     /// leaves them, for [`unit_normals`](super::triangle::unit_normals) to finish.
     #[inline(always)]
     pub fn surface_before_normalising(&self, i: u32, hit: &PrimHit) -> SurfacePoint {
+        self.corners(i).surface_before_normalising(hit)
+    }
+
+    /// What a hit record reads of triangle `i`: its edges and its corners' vertex data.
+    #[inline(always)]
+    pub fn corners(&self, i: u32) -> TriangleCorners {
         let tri = self.indices[i as usize];
-        let normals = self.corner_normals(i);
-        let uvs = self.uvs.as_ref().map(|uv| tri.map(|v| uv[v as usize]));
-        let mut surface = self.triangle(i).surface_before_normalising(hit, normals, uvs);
-        if let Some(ts) = &self.tangents {
-            surface.vertex_tangent = interpolated_tangent(tri.map(|v| ts[v as usize]), hit);
+        TriangleCorners {
+            triangle: self.triangle(i),
+            normals: self.corner_normals(i),
+            uvs: self.uvs.as_ref().map(|uv| tri.map(|v| uv[v as usize])),
+            tangents: self.tangents.as_ref().map(|ts| tri.map(|v| ts[v as usize])),
         }
-        surface
     }
 
     /// The texture coordinates at triangle `i`'s corners; without them on the mesh, those that
@@ -166,6 +171,28 @@ impl MeshGeometry {
             + self.uvs.as_ref().map_or(0, |n| n.capacity() * size_of::<Vec2>())
             + self.tangents.as_ref().map_or(0, |n| n.capacity() * size_of::<Vec4>())
             + self.indices.capacity() * size_of::<[u32; 3]>()
+    }
+}
+
+/// A mesh triangle as a hit record reads it ([`MeshGeometry::corners`]): gathered once, it serves
+/// every hit on the triangle (a group's camera rays often hit one triangle together).
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleCorners {
+    triangle: Triangle,
+    normals: Option<[Vec3; 3]>,
+    uvs: Option<[Vec2; 3]>,
+    tangents: Option<[Vec4; 3]>,
+}
+
+impl TriangleCorners {
+    /// [`MeshGeometry::surface_before_normalising`] of this triangle.
+    #[inline(always)]
+    pub fn surface_before_normalising(&self, hit: &PrimHit) -> SurfacePoint {
+        let mut surface = self.triangle.surface_before_normalising(hit, self.normals, self.uvs);
+        if let Some(ts) = self.tangents {
+            surface.vertex_tangent = interpolated_tangent(ts, hit);
+        }
+        surface
     }
 }
 

@@ -12,7 +12,7 @@ mod vertex_normals;
 
 pub use disk::Disk;
 pub use mesh::{MeshError, TriangleMesh};
-pub use mesh_geometry::MeshGeometry;
+pub use mesh_geometry::{MeshGeometry, TriangleCorners};
 pub use plane::Plane;
 pub use quad::Quad;
 pub(crate) use sphere::sphere_hits;
