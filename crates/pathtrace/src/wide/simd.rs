@@ -309,9 +309,11 @@ impl<const N: usize> Ms<N> {
     /// the mask into pieces and ORs shifted lanes together (about 30 instructions in the BVH's
     /// box test, which takes four masks per node); `vmovmskps` reads 8 sign bits at once, and
     /// in AVX-512 code LLVM turns two of them into one `vpmovd2m`. Lanes are all bits set or
-    /// clear, so the sign bit is the lane. ([`Ms::any`] stays an OR of the lanes: this one keeps
-    /// the mask in memory for its fallback, which made the Cornell box's brute-force loop, asking
-    /// per primitive, 7% slower.)
+    /// clear, so the sign bit is the lane.
+    ///
+    /// Both ways take the lanes by value: a reference to them passed to the out-of-line
+    /// fallback made the mask's memory escape, so LLVM wrote every mask out to the stack and
+    /// read it back for its bits (11% of the zoomed teapot's profile sat on those reads).
     #[inline(always)]
     pub fn bitmask(self) -> u32 {
         #[cfg(target_arch = "x86_64")]
@@ -319,10 +321,10 @@ impl<const N: usize> Ms<N> {
             if std::arch::is_x86_feature_detected!("avx") {
                 // SAFETY: the CPU was just checked to have AVX.
                 #[allow(unsafe_code)]
-                return unsafe { x86::sign_bits(&self.0) };
+                return unsafe { x86::sign_bits(self.0) };
             }
             // Out of line, so that the compare feeding the mask stays whole above.
-            return bitmask_out_of_line(&self.0);
+            return bitmask_out_of_line(self.0);
         }
         bitmask_loop(&self.0)
     }
@@ -342,8 +344,8 @@ fn bitmask_loop<const N: usize>(lanes: &[u32; N]) -> u32 {
 #[cfg(target_arch = "x86_64")]
 #[cold]
 #[inline(never)]
-fn bitmask_out_of_line<const N: usize>(lanes: &[u32; N]) -> u32 {
-    bitmask_loop(lanes)
+fn bitmask_out_of_line<const N: usize>(lanes: [u32; N]) -> u32 {
+    bitmask_loop(&lanes)
 }
 
 /// The sign bits of the lanes, 8 at a time (`vmovmskps`), for 8, 16 or 32 lanes (chunks that cover
@@ -357,7 +359,7 @@ mod x86 {
     /// The CPU must have AVX.
     #[inline]
     #[target_feature(enable = "avx")]
-    pub(super) unsafe fn sign_bits<const N: usize>(lanes: &[u32; N]) -> u32 {
+    pub(super) unsafe fn sign_bits<const N: usize>(lanes: [u32; N]) -> u32 {
         let mut bits = 0;
         for (k, eight) in lanes.chunks_exact(8).enumerate() {
             // SAFETY: the 32 bytes read are the chunk's 8 lanes.
