@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::build::{BuildItem, BuildOptions};
 use super::group_hits::GroupHits;
 use super::lanes::{lane_of, RayX4};
-use super::leaf::{Leaves, Packable};
+use super::leaf::{GroupBounds, Leaves, Packable};
 use super::subtree::build_tree;
 use super::wide::{collapse, prefetch, wide_depth, Node4, RayBox4, RayBoxes, RayInterval, EMPTY, LEAF};
 use crate::math::{Aabb, Ray};
@@ -288,7 +288,17 @@ impl Bvh {
                     k += 1;
                 } else if hit.count_ones() >= RAY_LANES_FROM {
                     leaf_tested = true;
-                    self.leaves.intersect_rays(child & !LEAF, prims, origin, dir, hit, t_min, &mut best);
+                    let group = interval.as_ref().map(|rays| GroupBounds { rays, t_min, far });
+                    self.leaves.intersect_rays(
+                        child & !LEAF,
+                        prims,
+                        origin,
+                        dir,
+                        hit,
+                        t_min,
+                        group.as_ref(),
+                        &mut best,
+                    );
                 } else {
                     leaf_tested = true;
                     let mut lanes = hit;
@@ -453,7 +463,9 @@ impl Bvh {
                     prefetch(&self.wide, child);
                     stack.push((child, hit));
                 } else if hit.count_ones() >= RAY_LANES_FROM {
-                    blocked |= self.leaves.occluded_rays(child & !LEAF, prims, origin, dir, hit, t_min, t_max);
+                    let group = interval.as_ref().map(|rays| GroupBounds { rays, t_min, far });
+                    blocked |=
+                        self.leaves.occluded_rays(child & !LEAF, prims, origin, dir, hit, t_min, t_max, group.as_ref());
                 } else {
                     let mut lanes = hit;
                     while lanes != 0 {

@@ -27,6 +27,34 @@ impl Tri4 {
         Self { p0: field(|t| t.p0), e1: field(|t| t.e1), e2: field(|t| t.e2) }
     }
 
+    /// Each lane's triangle's box, padded as the tree pads a primitive's box (`Aabb::padded`,
+    /// in its operation order), over the corners `p0`, `p0 + e1`, `p0 + e2`: min x, y, z, max
+    /// x, y, z, one triangle per lane. A ray that hits the triangle passes this box's slab test,
+    /// as it passes the box of every node above the triangle (the padding holds the tests'
+    /// rounding and the edge slack; the corners here differ from the mesh's own by at most the
+    /// rounding of `p0 + e1`, far inside the padding).
+    #[inline(always)]
+    pub fn padded_bounds(&self) -> [Vec4; 6] {
+        let axes = |v: &Vec3x4| [v.x, v.y, v.z];
+        let (p0, e1, e2) = (axes(&self.p0), axes(&self.e1), axes(&self.e2));
+        let mut lo = [Vec4::ZERO; 3];
+        let mut hi = [Vec4::ZERO; 3];
+        for a in 0..3 {
+            let (p1, p2) = (p0[a] + e1[a], p0[a] + e2[a]);
+            lo[a] = p0[a].min(p1).min(p2);
+            hi[a] = p0[a].max(p1).max(p2);
+        }
+        let largest = (0..3).map(|a| hi[a].abs().max(lo[a].abs())).fold(Vec4::ZERO, Vec4::max);
+        let floor = Vec4::splat(1e-6) * (Vec4::ONE + largest);
+        let mut out = [Vec4::ZERO; 6];
+        for a in 0..3 {
+            let pad = ((hi[a] - lo[a]).max(Vec4::ZERO) * Vec4::splat(1e-5)).max(floor);
+            out[a] = lo[a] - pad;
+            out[a + 3] = hi[a] + pad;
+        }
+        out
+    }
+
     /// Per-lane hits with `t ∈ [t_min, t_max]`.
     #[inline(always)]
     pub fn intersect(&self, ray: &RayX4, t_min: f32, t_max: f32) -> HitX4 {

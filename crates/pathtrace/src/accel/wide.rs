@@ -145,6 +145,28 @@ impl RayInterval {
         }
         Some(iv)
     }
+
+    /// Four boxes (`bounds`: min x, y, z, max x, y, z, one box per lane) against the rays
+    /// bounded by `self`, as [`Node4::interval_hits`] (which see) tests a node's children: the
+    /// boxes some ray may hit, those every ray hits, and lower bounds of the entry distances.
+    #[inline(always)]
+    pub fn boxes_hit(&self, bounds: &[Vec4; 6], t_min: f32, far_lo: f32, far_hi: f32) -> (u32, u32, Vec4) {
+        let (mut near_lo, mut near_hi) = (Vec4::splat(t_min), Vec4::splat(t_min));
+        let (mut exit_lo, mut exit_hi) = (Vec4::splat(far_lo), Vec4::splat(far_hi));
+        for axis in 0..3 {
+            let (entry, exit) = (bounds[self.entry_plane[axis]], bounds[self.exit_plane[axis]]);
+            let (lo, hi) = (self.inv_lo[axis], self.inv_hi[axis]);
+            // The least entry and greatest exit: the origin bounds that make them extreme.
+            let (d_in, d_out) = (entry - self.entry_origin[axis], exit - self.exit_origin[axis]);
+            near_lo = near_lo.max((d_in * lo).min(d_in * hi));
+            exit_hi = exit_hi.min((d_out * lo).max(d_out * hi));
+            // The greatest entry and least exit: the other origin bounds.
+            let (d_in, d_out) = (entry - self.exit_origin[axis], exit - self.entry_origin[axis]);
+            near_hi = near_hi.max((d_in * lo).max(d_in * hi));
+            exit_lo = exit_lo.min((d_out * lo).min(d_out * hi));
+        }
+        (near_lo.cmple(exit_hi).bitmask(), near_hi.cmple(exit_lo).bitmask(), near_lo)
+    }
 }
 
 impl Default for Node4 {
@@ -205,21 +227,7 @@ impl Node4 {
     /// (and `far_lo`), it passes for all.
     #[inline(always)]
     pub fn interval_hits(&self, iv: &RayInterval, t_min: f32, far_lo: f32, far_hi: f32) -> (u32, u32, Vec4) {
-        let (mut near_lo, mut near_hi) = (Vec4::splat(t_min), Vec4::splat(t_min));
-        let (mut exit_lo, mut exit_hi) = (Vec4::splat(far_lo), Vec4::splat(far_hi));
-        for axis in 0..3 {
-            let (entry, exit) = (self.bounds[iv.entry_plane[axis]], self.bounds[iv.exit_plane[axis]]);
-            let (lo, hi) = (iv.inv_lo[axis], iv.inv_hi[axis]);
-            // The least entry and greatest exit: the origin bounds that make them extreme.
-            let (d_in, d_out) = (entry - iv.entry_origin[axis], exit - iv.exit_origin[axis]);
-            near_lo = near_lo.max((d_in * lo).min(d_in * hi));
-            exit_hi = exit_hi.min((d_out * lo).max(d_out * hi));
-            // The greatest entry and least exit: the other origin bounds.
-            let (d_in, d_out) = (entry - iv.exit_origin[axis], exit - iv.entry_origin[axis]);
-            near_hi = near_hi.max((d_in * lo).max(d_in * hi));
-            exit_lo = exit_lo.min((d_out * lo).min(d_out * hi));
-        }
-        (near_lo.cmple(exit_hi).bitmask(), near_hi.cmple(exit_lo).bitmask(), near_lo)
+        iv.boxes_hit(&self.bounds, t_min, far_lo, far_hi)
     }
 
     /// Same boxes (bit for bit) and children.
