@@ -475,17 +475,9 @@ mod tests {
     use super::*;
     use crate::sampling::Pcg32;
     use crate::wide::simd::Ms;
-    use glam::Vec3;
 
+    use super::super::test_draws::{point, uniform};
     use super::super::wide::RayBoxes;
-
-    fn uniform(rng: &mut Pcg32, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32
-    }
-
-    fn point(rng: &mut Pcg32, extent: f32) -> Vec3 {
-        Vec3::new(uniform(rng, -extent, extent), uniform(rng, -extent, extent), uniform(rng, -extent, extent))
-    }
 
     /// A packet's boxes are the tree's padded boxes of its triangles, bit for bit.
     #[test]

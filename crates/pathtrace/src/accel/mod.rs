@@ -8,6 +8,8 @@ mod lanes;
 mod leaf;
 mod quad4;
 mod subtree;
+#[cfg(test)]
+mod test_draws;
 mod tri4;
 mod wide;
 

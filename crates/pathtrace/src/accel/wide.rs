@@ -336,13 +336,7 @@ mod tests {
     use crate::sampling::Pcg32;
     use glam::Vec3;
 
-    fn uniform(rng: &mut Pcg32, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * (rng.next_u32() >> 8) as f32 / (1u32 << 24) as f32
-    }
-
-    fn point(rng: &mut Pcg32, extent: f32) -> Vec3 {
-        Vec3::new(uniform(rng, -extent, extent), uniform(rng, -extent, extent), uniform(rng, -extent, extent))
-    }
+    use super::super::test_draws::{point, uniform};
 
     /// A child the interval test drops is missed by every ray of the group in the per-ray test,
     /// and a child it says every ray hits is hit by all (the walks' results depend on that
