@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every copy of the SIMD render loop in one release binary gives the same film, byte for byte:
-# `--kernel wide` (16 lanes with AVX-512, else 8), `--kernel wide8` (8 lanes, AVX2 or portable),
+# `--kernel wide` (32 lanes with AVX-512, else 16), `--kernel wide8` (the AVX2 kernel: 16 lanes),
 # and with PATHTRACE_NO_AVX2=1 the portable 8-lane copy, each against `--kernel scalar` (one lane).
 # `cargo test` cannot check this: builds with debug assertions compile only the portable copy
 # (crates/pathtrace/src/render/tile.rs). Usage: benches/kernels_agree.sh BIN [SCENES_DIR]

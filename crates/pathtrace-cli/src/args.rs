@@ -262,9 +262,10 @@ pub struct QualityArgs {
     /// (every light equally) [default: the scene's, else power]
     #[arg(long, value_name = "MODE", value_parser = parse_from_str::<LightSelection>)]
     pub light_selection: Option<LightSelection>,
-    /// Paths traced at once: auto and wide (groups of 8 in SIMD lanes, 32 with AVX-512: every
-    /// scene), wide8 (groups of 8 even with AVX-512) or scalar (one at a time: the same estimator
-    /// in one lane, for debugging). All give the same image to the bit
+    /// Paths traced at once: auto and wide (groups of 16 in SIMD lanes with AVX2, 32 with
+    /// AVX-512: every scene), wide8 (the AVX2 kernel, 8-lane vectors, even with AVX-512) or scalar
+    /// (one at a time: the same estimator in one lane, for debugging). All give the same image to
+    /// the bit
     #[arg(long, value_parser = parse_from_str::<Kernel>, default_value = "auto")]
     pub kernel: Kernel,
     /// Random seed: the same seed, scene and settings give the same image [default: the scene's, else 0]

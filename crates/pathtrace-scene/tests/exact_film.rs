@@ -74,8 +74,9 @@ fn random_split(rng: &mut Lcg, parts: u32) -> Vec<SampleRange> {
     cuts.windows(2).map(|w| SampleRange::new(w[0], w[1])).collect()
 }
 
-/// Whether AVX-512 runs here (then `Kernel::Wide` runs groups of 32 lanes and `Wide8` of 8). Builds with
-/// debug assertions, as this test's, compile only the portable 8-lane loop (`render/tile.rs`).
+/// Whether AVX-512 runs here (then `Kernel::Wide` runs groups of 32 lanes and `Wide8` the AVX2
+/// kernel's 16). Builds with debug assertions, as this test's, compile only the portable 8-lane
+/// loop (`render/tile.rs`).
 fn has_avx512() -> bool {
     if cfg!(debug_assertions) {
         return false;
@@ -100,7 +101,7 @@ fn assert_same_film(a: &Film, b: &Film, what: &str) {
 #[test]
 fn split_renders_merged_in_any_order_equal_the_whole_render() {
     if !has_avx512() {
-        eprintln!("note: no AVX-512 here (or a build with debug assertions): Wide and Wide8 are both 8 lanes");
+        eprintln!("note: no AVX-512 here (or a build with debug assertions): Wide and Wide8 are the same loop");
     }
     let scenes = [
         "scenes/cornell-box.toml",

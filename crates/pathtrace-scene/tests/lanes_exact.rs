@@ -1,4 +1,4 @@
-//! The estimator runs in groups of SIMD lanes (8 with AVX2, 32 with AVX-512) or one path at a time (`Kernel::Scalar`,
+//! The estimator runs in groups of SIMD lanes (16 with AVX2, 32 with AVX-512, 8 in the portable build) or one path at a time (`Kernel::Scalar`,
 //! its one-lane instance). Both are the same code on the same random numbers, so every camera
 //! sample gets the same value to the last bit: at one sample per pixel (where a pixel's film
 //! entry is its one sample, whatever the order samples finish in) the images are identical.

@@ -1,7 +1,7 @@
 //! The state of a group of `N` paths, one per SIMD lane (structure of arrays), and where their
 //! finished estimates go.
 //!
-//! `N` is 8 with AVX2 (and in the portable build), 32 with AVX-512, and 1 for the one-lane
+//! `N` is 16 with AVX2, 8 in the portable build, 32 with AVX-512, and 1 for the one-lane
 //! instance of the same estimator (`Kernel::Scalar`, kept for debugging and tests).
 
 use crate::film::{small_terms, FeaturePixel, FeatureSample, PixelFilter, PixelStats, SplatBlock, SMALL_SAMPLE};

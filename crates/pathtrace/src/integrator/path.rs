@@ -1,7 +1,7 @@
 //! The path tracer's one estimator: each vertex of a group of paths, in banner-marked phases —
 //! escape, emission hit, light sampling, direction sampling, Russian roulette.
 //!
-//! Paths run in groups of `N` SIMD lanes (8 with AVX2, 32 with AVX-512, 1 for the one-lane
+//! Paths run in groups of `N` SIMD lanes (16 with AVX2, 32 with AVX-512, 8 in the portable build, 1 for the one-lane
 //! instance of `Kernel::Scalar`); `integrator::regenerate` refills a lane with the tile's next
 //! camera sample as soon as its path ends. Each phase runs for all live lanes: lanes whose
 //! material has a lane form (Lambertian surfaces, and the models `wide::LaneForm` lists) are

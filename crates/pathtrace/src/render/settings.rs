@@ -32,7 +32,7 @@ pub struct RenderSettings {
     pub max_wave_spp: u32,
     /// Adaptive sampling (`None`, the default: every pixel gets `spp` samples).
     pub adaptive: Option<AdaptiveSettings>,
-    /// How many paths run at once (default: groups of 8 or 32 SIMD lanes; `Scalar`: one).
+    /// How many paths run at once (default: groups of 16 or 32 SIMD lanes; `Scalar`: one).
     pub kernel: Kernel,
     /// Accumulate feature buffers (albedo, normal, depth) beside the image, over the same
     /// samples (`RenderOutcome::features`); off by default, costing nothing then.

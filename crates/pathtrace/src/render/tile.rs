@@ -7,7 +7,7 @@ use crate::sampling::Sampler;
 use crate::scene::Scene;
 #[cfg(not(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions))))]
 use crate::wide::simd::LANES_256;
-#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
+#[cfg(all(target_arch = "x86_64", not(debug_assertions), not(feature = "avx2-only")))]
 use crate::wide::simd::LANES_512;
 use crate::wide::WideScene;
 
@@ -40,9 +40,9 @@ pub(super) struct TileJob<'a> {
     pub lanes: &'a WideScene,
     /// Trace one path at a time (`Kernel::Scalar`) instead of a SIMD group.
     pub one_lane: bool,
-    /// Groups of 8 lanes even with AVX-512 (`Kernel::Wide8`). Unread in builds with debug
-    /// assertions, which have only the 8-lane loop (`render_tile`).
-    #[cfg_attr(debug_assertions, allow(dead_code))]
+    /// The AVX2 kernel even with AVX-512 (`Kernel::Wide8`). Unread in builds with debug
+    /// assertions, which have only the portable 8-lane loop (`render_tile`).
+    #[cfg_attr(any(debug_assertions, feature = "avx2-only"), allow(dead_code))]
     pub at_most_8_lanes: bool,
     pub filter: &'a PixelFilter,
     /// Record feature buffers (`RenderSettings::features`).
@@ -90,11 +90,12 @@ pub(crate) struct TileResult {
 /// on the thread.
 ///
 /// The same code runs compiled for the widest SIMD the CPU has, chosen at run time so the
-/// binary stays portable: groups of 32 lanes (two vectors) with AVX-512, of 8 with AVX2 (and in
-/// the portable build). Rust never fuses multiply-adds on its own, so every build computes the same values
-/// per sample, and the film sums them exactly, so every build gives the same image (to check it,
-/// `Kernel::Wide8` forces groups of 8 where AVX-512 would give 32). Setting `PATHTRACE_NO_AVX512` or `PATHTRACE_NO_AVX2` forces the narrower
-/// builds, to measure them (docs/benchmarks.md).
+/// binary stays portable: groups of 32 lanes (two vectors) with AVX-512, of 16 (two vectors) with
+/// AVX2, of 8 in the portable build. Rust never fuses multiply-adds on its own, so every build
+/// computes the same values per sample, and the film sums them exactly, so every build gives the
+/// same image (to check it, `Kernel::Wide8` forces the AVX2 kernel where AVX-512 would run).
+/// Setting `PATHTRACE_NO_AVX512` or `PATHTRACE_NO_AVX2` forces the narrower builds, to measure
+/// them (docs/benchmarks.md).
 ///
 /// Builds with debug assertions (the dev and test profiles) compile only the portable copy. Each
 /// copy of the wide loop is one very large function, and LLVM's loop passes take time quadratic in
@@ -103,7 +104,12 @@ pub(crate) struct TileResult {
 /// tests of the portable copy hold for the others; release builds keep all three (all but the
 /// AVX-512 one are left out of experiment builds, `avx512_only`).
 pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
-    #[cfg(all(target_arch = "x86_64", not(debug_assertions), not(feature = "avx512-only")))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        not(debug_assertions),
+        not(feature = "avx512-only"),
+        not(feature = "avx2-only")
+    ))]
     {
         // Every AVX2 CPU made (Intel since Haswell, AMD since Excavator) also has the bit
         // instructions, but they are separate CPUID bits, so they are checked too.
@@ -132,10 +138,16 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
             return unsafe { render_tile_avx2(job, sampler, tile, samples) };
         }
     }
-    #[cfg(not(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions))))]
+    #[cfg(not(all(
+        any(feature = "avx512-only", feature = "avx2-only"),
+        target_arch = "x86_64",
+        not(debug_assertions)
+    )))]
     return render_tile_body::<LANES_256>(job, sampler, tile, samples);
     #[cfg(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions)))]
-    avx512_only(job, sampler, tile, samples)
+    return avx512_only(job, sampler, tile, samples);
+    #[cfg(all(feature = "avx2-only", target_arch = "x86_64", not(debug_assertions)))]
+    return avx2_only(job, sampler, tile, samples);
 }
 
 /// Experiment builds (`--features pathtrace/avx512-only`, release profile) compile only the
@@ -167,6 +179,29 @@ fn avx512_only(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSa
     }
 }
 
+#[cfg(all(feature = "avx512-only", feature = "avx2-only"))]
+compile_error!("the experiment features avx512-only and avx2-only exclude each other");
+
+/// Experiment builds for AVX2 machines (`--features pathtrace/avx2-only`, release profile):
+/// only the AVX2 loop is compiled, as [`avx512_only`] does for AVX-512. Not for shipping.
+#[cfg(all(feature = "avx2-only", target_arch = "x86_64", not(debug_assertions)))]
+fn avx2_only(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
+    assert!(
+        std::arch::is_x86_feature_detected!("avx2")
+            && std::arch::is_x86_feature_detected!("popcnt")
+            && std::arch::is_x86_feature_detected!("bmi1")
+            && std::arch::is_x86_feature_detected!("bmi2")
+            && std::arch::is_x86_feature_detected!("lzcnt")
+            && !job.one_lane,
+        "this experiment build (feature avx2-only) renders only with the AVX2 group loop"
+    );
+    // SAFETY: the CPU was just checked to have every feature `render_tile_avx2` enables.
+    #[allow(unsafe_code)]
+    unsafe {
+        render_tile_avx2(job, sampler, tile, samples)
+    }
+}
+
 /// The bit instructions (`popcnt`, BMI1/2, `lzcnt`) come with the vector ones. Without them
 /// each `count_ones` of a lane mask compiled to a dozen shifts and masks, and each
 /// `mask & (mask - 1)` of the loops over a mask's lanes to two instructions where BMI1 has
@@ -176,10 +211,18 @@ fn avx512_only(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSa
 #[cfg(all(target_arch = "x86_64", not(debug_assertions), not(feature = "avx512-only")))]
 #[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
 fn render_tile_avx2(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
-    render_tile_body::<LANES_256>(job, sampler, tile, samples)
+    render_tile_body::<AVX2_GROUP>(job, sampler, tile, samples)
 }
 
-#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
+/// Lanes per group in the AVX2 kernel: two 8-lane vectors, as the AVX-512 kernel runs two
+/// 16-lane ones, for the same reason (see `AVX512_GROUP`). Measured against groups of 8 on an
+/// AVX2 machine, two threads (docs/benchmarks.md, "Groups of 16 lanes with AVX2"): copper 0.83,
+/// bunny 0.83, glass 0.85, teapot-zoomed 0.88 the time; groups of 32 (four vectors) were slower
+/// than 16 on cornell-box-bitterli (1.29) and veach-mis (1.13).
+#[cfg(all(target_arch = "x86_64", not(debug_assertions), not(feature = "avx512-only")))]
+const AVX2_GROUP: usize = 2 * LANES_256;
+
+#[cfg(all(target_arch = "x86_64", not(debug_assertions), not(feature = "avx2-only")))]
 #[target_feature(enable = "avx2,avx512f,avx512vl,avx512dq,avx512bw,popcnt,bmi1,bmi2,lzcnt")]
 fn render_tile_avx512(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     render_tile_body::<AVX512_GROUP>(job, sampler, tile, samples)
@@ -191,7 +234,7 @@ fn render_tile_avx512(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples:
 /// Measured against 16-lane groups on two threads (docs/benchmarks.md, "Groups of 32 lanes with
 /// AVX-512"): mesh-1m 0.967, bunny 0.935, copper 0.957, cornell-box-bitterli 0.963, teapot
 /// 0.978, veach-mis 0.976, cbox 1.009 the time; films byte-identical.
-#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
+#[cfg(all(target_arch = "x86_64", not(debug_assertions), not(feature = "avx2-only")))]
 const AVX512_GROUP: usize = 2 * LANES_512;
 
 /// `N`: lanes per group (the one-lane instance when the job asks for it).
@@ -204,18 +247,22 @@ fn render_tile_body<const N: usize>(
 ) -> TileResult {
     let TileJob { scene, camera, lanes, one_lane, filter, features, .. } = *job;
     let job = LaneJob { scene, lanes, camera, filter, features };
-    #[cfg(not(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions))))]
+    #[cfg(not(all(
+        any(feature = "avx512-only", feature = "avx2-only"),
+        target_arch = "x86_64",
+        not(debug_assertions)
+    )))]
     if one_lane {
         return render_tile_one_lane(&job, sampler, tile, samples);
     }
-    #[cfg(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions)))]
+    #[cfg(all(any(feature = "avx512-only", feature = "avx2-only"), target_arch = "x86_64", not(debug_assertions)))]
     let _ = one_lane;
     render_tile_lanes::<N>(&job, sampler, tile, samples)
 }
 
 /// The one-lane instance, compiled on its own: inlined beside the wide loop it doubled that
 /// function's size, and the wide loop's code got slower.
-#[cfg(not(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions))))]
+#[cfg(not(all(any(feature = "avx512-only", feature = "avx2-only"), target_arch = "x86_64", not(debug_assertions))))]
 #[inline(never)]
 fn render_tile_one_lane(job: &LaneJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     render_tile_lanes::<1>(job, sampler, tile, samples)

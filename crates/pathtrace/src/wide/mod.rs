@@ -37,16 +37,17 @@ use crate::scene::Scene;
 /// How many paths the estimator traces at once.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Kernel {
-    /// Groups of 8 paths in SIMD lanes (32 with AVX-512): the default. `auto` and `wide` are
+    /// Groups of 16 paths in SIMD lanes (32 with AVX-512): the default. `auto` and `wide` are
     /// the same since every scene runs in lanes; both names are kept for scripts.
     #[default]
     Auto,
     /// One path at a time: the one-lane instance of the same estimator, for debugging and tests.
     Scalar,
-    /// Groups of 8 (32 with AVX-512) paths, as `auto`.
+    /// Groups of 16 (32 with AVX-512) paths, as `auto`.
     Wide,
-    /// Groups of 8 paths even where AVX-512 offers 32: to check that 8- and 32-lane machines
-    /// give the same film (docs/distributed.md), and to measure the narrower build.
+    /// The AVX2 kernel (8-lane vectors, groups of 16) even where AVX-512 offers 32: to check
+    /// that AVX2 and AVX-512 machines give the same film (docs/distributed.md), and to measure
+    /// the narrower build. Named when that kernel ran groups of 8.
     Wide8,
 }
 

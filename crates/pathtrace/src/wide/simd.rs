@@ -1,4 +1,4 @@
-//! Lane groups (one path per lane; 8 lanes for AVX2, 16 for AVX-512) as plain arrays with
+//! Lane groups (one path per lane; 8 lanes per AVX2 vector, 16 per AVX-512 vector) as plain arrays with
 //! lane-wise loops.
 //!
 //! Why arrays and not `std::arch`: every operation is a fixed N-iteration loop over
