@@ -76,25 +76,6 @@ impl<const N: usize> GroupHits<N> {
             }
             return;
         }
-        #[cfg(target_arch = "x86_64")]
-        if N.is_multiple_of(8) && std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU was just checked to have AVX2; N is a multiple of 8.
-            #[allow(unsafe_code)]
-            unsafe {
-                x86::offer_by_8(
-                    &mut self.t.0,
-                    &mut self.u.0,
-                    &mut self.v.0,
-                    &mut self.id,
-                    &mut self.found,
-                    [&h.t.0, &h.u.0, &h.v.0],
-                    &h.mask.0,
-                    id,
-                    lanes,
-                );
-            }
-            return;
-        }
         let mut hit = h.mask.bitmask() & lanes;
         while hit != 0 {
             let i = hit.trailing_zeros() as usize;
@@ -180,83 +161,15 @@ mod x86 {
             *found |= u32::from(take) << o;
         }
     }
-
-    /// Lanes whose bit is set in `bits`, 8 lanes from lane `o`, as an AVX2 mask (all bits
-    /// set or clear per lane).
-    #[inline]
-    #[target_feature(enable = "avx2")]
-    fn lanes_of(bits: u32, o: usize) -> __m256i {
-        let each = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-        let spread = _mm256_and_si256(_mm256_set1_epi32((bits >> o) as i32), each);
-        _mm256_cmpeq_epi32(spread, each)
-    }
-
-    /// [`offer_32`] with AVX2, 8 rays per step, for any multiple of 8 rays. AVX2 has no
-    /// unsigned compare: `id < best id` is compared with both sides' top bits flipped, which
-    /// maps unsigned order onto signed order.
-    ///
-    /// # Safety
-    /// The CPU must have AVX2, and `N` must be a multiple of 8.
-    #[inline]
-    #[target_feature(enable = "avx2")]
-    #[allow(clippy::too_many_arguments)]
-    pub(super) unsafe fn offer_by_8<const N: usize>(
-        t: &mut [f32; N],
-        u: &mut [f32; N],
-        v: &mut [f32; N],
-        ids: &mut [u32; N],
-        found: &mut u32,
-        [ht, hu, hv]: [&[f32; N]; 3],
-        hmask: &[u32; N],
-        id: u32,
-        lanes: u32,
-    ) {
-        let top = _mm256_set1_epi32(i32::MIN);
-        let idv = _mm256_set1_epi32(id as i32);
-        let id_flipped = _mm256_xor_si256(idv, top);
-        for o in (0..N).step_by(8) {
-            // SAFETY (all loads and stores): lanes o..o + 8 of N-lane arrays, N a multiple of 8.
-            let hit = _mm256_and_si256(unsafe { _mm256_loadu_si256(hmask.as_ptr().add(o).cast()) }, lanes_of(lanes, o));
-            if _mm256_testz_si256(hit, hit) != 0 {
-                continue;
-            }
-            let new_t = unsafe { _mm256_loadu_ps(ht.as_ptr().add(o)) };
-            let old_t = unsafe { _mm256_loadu_ps(t.as_ptr().add(o)) };
-            let old_id = unsafe { _mm256_loadu_si256(ids.as_ptr().add(o).cast()) };
-            let nearer = _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LT_OQ>(new_t, old_t));
-            let as_near = _mm256_castps_si256(_mm256_cmp_ps::<_CMP_EQ_OQ>(new_t, old_t));
-            let lower = _mm256_cmpgt_epi32(_mm256_xor_si256(old_id, top), id_flipped);
-            let none = _mm256_xor_si256(lanes_of(*found, o), _mm256_set1_epi32(-1));
-            let take =
-                _mm256_and_si256(hit, _mm256_or_si256(nearer, _mm256_and_si256(as_near, _mm256_or_si256(none, lower))));
-            let take_bits = _mm256_movemask_ps(_mm256_castsi256_ps(take)) as u32;
-            if take_bits == 0 {
-                continue;
-            }
-            let take = _mm256_castsi256_ps(take);
-            unsafe {
-                _mm256_storeu_ps(t.as_mut_ptr().add(o), _mm256_blendv_ps(old_t, new_t, take));
-                let new_u = _mm256_loadu_ps(hu.as_ptr().add(o));
-                let old_u = _mm256_loadu_ps(u.as_ptr().add(o));
-                _mm256_storeu_ps(u.as_mut_ptr().add(o), _mm256_blendv_ps(old_u, new_u, take));
-                let new_v = _mm256_loadu_ps(hv.as_ptr().add(o));
-                let old_v = _mm256_loadu_ps(v.as_ptr().add(o));
-                _mm256_storeu_ps(v.as_mut_ptr().add(o), _mm256_blendv_ps(old_v, new_v, take));
-                let ids_taken = _mm256_blendv_ps(_mm256_castsi256_ps(old_id), _mm256_castsi256_ps(idv), take);
-                _mm256_storeu_si256(ids.as_mut_ptr().add(o).cast(), _mm256_castps_si256(ids_taken));
-            }
-            *found |= take_bits << o;
-        }
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// Hits offered to a group's rays at once (AVX-512's `offer_32` or AVX2's `offer_by_8` where
-    /// the CPU has them) agree with `leaf::offer` ray by ray: distances drawn from a few values
-    /// so that ties between primitives, and hits exactly at `t_max`, are common.
+    /// Hits offered to a group's rays at once (AVX-512's `offer_32` at 32 lanes where the CPU has
+    /// it, the loop otherwise) agree with `leaf::offer` ray by ray: distances drawn from a few
+    /// values so that ties between primitives, and hits exactly at `t_max`, are common.
     #[test]
     fn lanes_keep_what_one_ray_at_a_time_keeps() {
         offers_agree::<8>();
