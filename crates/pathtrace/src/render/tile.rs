@@ -101,8 +101,8 @@ pub(crate) struct TileResult {
 /// copy of the wide loop is one very large function, and LLVM's loop passes take time quadratic in
 /// its size (`ScalarEvolution::forgetLoop` dominated a profile of the compiler): the test build
 /// of this crate took over 40 minutes with three copies. Every copy computes the same image, so
-/// tests of the portable copy hold for the others; release builds keep all three (all but the
-/// AVX-512 one are left out of experiment builds, `avx512_only`).
+/// tests of the portable copy hold for the others; release builds keep all three (experiment
+/// builds keep one: `avx512_only`, `avx2_only`).
 pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     #[cfg(all(
         target_arch = "x86_64",
@@ -111,20 +111,8 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
         not(feature = "avx2-only")
     ))]
     {
-        // Every AVX2 CPU made (Intel since Haswell, AMD since Excavator) also has the bit
-        // instructions, but they are separate CPUID bits, so they are checked too.
-        let bits = std::arch::is_x86_feature_detected!("popcnt")
-            && std::arch::is_x86_feature_detected!("bmi1")
-            && std::arch::is_x86_feature_detected!("bmi2")
-            && std::arch::is_x86_feature_detected!("lzcnt");
-        let avx2 =
-            bits && std::arch::is_x86_feature_detected!("avx2") && std::env::var_os("PATHTRACE_NO_AVX2").is_none();
-        let avx512 = avx2
-            && std::arch::is_x86_feature_detected!("avx512f")
-            && std::arch::is_x86_feature_detected!("avx512vl")
-            && std::arch::is_x86_feature_detected!("avx512dq")
-            && std::arch::is_x86_feature_detected!("avx512bw")
-            && std::env::var_os("PATHTRACE_NO_AVX512").is_none();
+        let avx2 = has_avx2_loop_features() && std::env::var_os("PATHTRACE_NO_AVX2").is_none();
+        let avx512 = avx2 && has_avx512_loop_features() && std::env::var_os("PATHTRACE_NO_AVX512").is_none();
         if avx512 && !job.one_lane && !job.at_most_8_lanes {
             // SAFETY: `render_tile_avx512` only requires AVX-512 F/VL/DQ/BW, AVX2 and the bit
             // instructions, which the CPU was just checked to have.
@@ -159,17 +147,7 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
 #[cfg(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions)))]
 fn avx512_only(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     assert!(
-        std::arch::is_x86_feature_detected!("avx2")
-            && std::arch::is_x86_feature_detected!("avx512f")
-            && std::arch::is_x86_feature_detected!("avx512vl")
-            && std::arch::is_x86_feature_detected!("avx512dq")
-            && std::arch::is_x86_feature_detected!("avx512bw")
-            && std::arch::is_x86_feature_detected!("popcnt")
-            && std::arch::is_x86_feature_detected!("bmi1")
-            && std::arch::is_x86_feature_detected!("bmi2")
-            && std::arch::is_x86_feature_detected!("lzcnt")
-            && !job.one_lane
-            && !job.at_most_8_lanes,
+        has_avx2_loop_features() && has_avx512_loop_features() && !job.one_lane && !job.at_most_8_lanes,
         "this experiment build (feature avx512-only) renders only with the AVX-512 group loop"
     );
     // SAFETY: the CPU was just checked to have every feature `render_tile_avx512` enables.
@@ -183,16 +161,11 @@ fn avx512_only(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSa
 compile_error!("the experiment features avx512-only and avx2-only exclude each other");
 
 /// Experiment builds for AVX2 machines (`--features pathtrace/avx2-only`, release profile):
-/// only the AVX2 loop is compiled, as [`avx512_only`] does for AVX-512. Not for shipping.
+/// only the AVX2 loop is compiled, as `avx512_only` does for AVX-512. Not for shipping.
 #[cfg(all(feature = "avx2-only", target_arch = "x86_64", not(debug_assertions)))]
 fn avx2_only(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     assert!(
-        std::arch::is_x86_feature_detected!("avx2")
-            && std::arch::is_x86_feature_detected!("popcnt")
-            && std::arch::is_x86_feature_detected!("bmi1")
-            && std::arch::is_x86_feature_detected!("bmi2")
-            && std::arch::is_x86_feature_detected!("lzcnt")
-            && !job.one_lane,
+        has_avx2_loop_features() && !job.one_lane,
         "this experiment build (feature avx2-only) renders only with the AVX2 group loop"
     );
     // SAFETY: the CPU was just checked to have every feature `render_tile_avx2` enables.
@@ -200,6 +173,28 @@ fn avx2_only(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamp
     unsafe {
         render_tile_avx2(job, sampler, tile, samples)
     }
+}
+
+/// Whether the CPU has what [`render_tile_avx2`] enables. Every AVX2 CPU made (Intel since
+/// Haswell, AMD since Excavator) also has the bit instructions, but they are separate CPUID bits,
+/// so they are checked too.
+#[cfg(all(target_arch = "x86_64", not(debug_assertions)))]
+fn has_avx2_loop_features() -> bool {
+    std::arch::is_x86_feature_detected!("avx2")
+        && std::arch::is_x86_feature_detected!("popcnt")
+        && std::arch::is_x86_feature_detected!("bmi1")
+        && std::arch::is_x86_feature_detected!("bmi2")
+        && std::arch::is_x86_feature_detected!("lzcnt")
+}
+
+/// Whether the CPU has the AVX-512 parts of what `render_tile_avx512` enables (the rest is
+/// [`has_avx2_loop_features`]).
+#[cfg(all(target_arch = "x86_64", not(debug_assertions), not(feature = "avx2-only")))]
+fn has_avx512_loop_features() -> bool {
+    std::arch::is_x86_feature_detected!("avx512f")
+        && std::arch::is_x86_feature_detected!("avx512vl")
+        && std::arch::is_x86_feature_detected!("avx512dq")
+        && std::arch::is_x86_feature_detected!("avx512bw")
 }
 
 /// The bit instructions (`popcnt`, BMI1/2, `lzcnt`) come with the vector ones. Without them
