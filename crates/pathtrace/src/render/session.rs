@@ -396,7 +396,7 @@ fn run_wave(
         camera: &prep.camera,
         lanes: &prep.lanes,
         one_lane: settings.kernel == Kernel::Scalar,
-        at_most_8_lanes: settings.kernel == Kernel::Wide8,
+        avx2_kernel: settings.kernel == Kernel::Wide8,
         filter: &settings.filter,
         features: settings.features,
     };

@@ -40,10 +40,11 @@ pub(super) struct TileJob<'a> {
     pub lanes: &'a WideScene,
     /// Trace one path at a time (`Kernel::Scalar`) instead of a SIMD group.
     pub one_lane: bool,
-    /// The AVX2 kernel even with AVX-512 (`Kernel::Wide8`). Unread in builds with debug
-    /// assertions, which have only the portable 8-lane loop (`render_tile`).
+    /// Run the AVX2 kernel (groups of 16 lanes) even where AVX-512 runs (`Kernel::Wide8`).
+    /// Unread in builds with debug assertions, which have only the portable 8-lane loop
+    /// (`render_tile`).
     #[cfg_attr(any(debug_assertions, feature = "avx2-only"), allow(dead_code))]
-    pub at_most_8_lanes: bool,
+    pub avx2_kernel: bool,
     pub filter: &'a PixelFilter,
     /// Record feature buffers (`RenderSettings::features`).
     pub features: bool,
@@ -113,7 +114,7 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
     {
         let avx2 = has_avx2_loop_features() && std::env::var_os("PATHTRACE_NO_AVX2").is_none();
         let avx512 = avx2 && has_avx512_loop_features() && std::env::var_os("PATHTRACE_NO_AVX512").is_none();
-        if avx512 && !job.one_lane && !job.at_most_8_lanes {
+        if avx512 && !job.one_lane && !job.avx2_kernel {
             // SAFETY: `render_tile_avx512` only requires AVX-512 F/VL/DQ/BW, AVX2 and the bit
             // instructions, which the CPU was just checked to have.
             #[allow(unsafe_code)]
@@ -147,7 +148,7 @@ pub(super) fn render_tile(job: &TileJob, sampler: &mut Sampler, tile: Tile, samp
 #[cfg(all(feature = "avx512-only", target_arch = "x86_64", not(debug_assertions)))]
 fn avx512_only(job: &TileJob, sampler: &mut Sampler, tile: Tile, samples: WaveSamples) -> TileResult {
     assert!(
-        has_avx2_loop_features() && has_avx512_loop_features() && !job.one_lane && !job.at_most_8_lanes,
+        has_avx2_loop_features() && has_avx512_loop_features() && !job.one_lane && !job.avx2_kernel,
         "this experiment build (feature avx512-only) renders only with the AVX-512 group loop"
     );
     // SAFETY: the CPU was just checked to have every feature `render_tile_avx512` enables.
