@@ -107,7 +107,10 @@ type WalkStack<T> = ArrayVec<T, STACK_SIZE>;
 /// [`Bvh::intersect_lanes`]). A group visit tests every lane of the group (32 with AVX-512), so
 /// with few rays left a single-ray walk is cheaper: 6 against 3 took 0.947 of mesh-1m's time,
 /// 0.975 of the bunny's and 0.969 of copper's, within 1% elsewhere (docs/benchmarks.md,
-/// "The switch to single rays at 6"); 9 and 12 gained nothing more.
+/// "The switch to single rays at 6"); 9 and 12 gained nothing more. With the AVX2 kernel's
+/// 16-lane groups, 3 and 8 (with `RAY_LANES_FROM` 4 and 8) gained nothing either, and walking
+/// incoherent groups ray by ray from the root was 12–35% slower ("The group walks' thresholds
+/// and prefetches with 16-lane AVX2 groups").
 const SINGLE_RAY_BELOW: u32 = 6;
 /// A leaf reached by at least this many rays of a group tests each of its primitives against
 /// those rays at once (lanes = rays); fewer rays test it one at a time (lanes = primitives). A
