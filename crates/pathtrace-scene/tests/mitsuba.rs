@@ -54,6 +54,36 @@ fn defaults_and_overrides_substitute_into_attributes() {
     assert!(w.iter().any(|w| w.contains("nothing")), "{w:?}");
 }
 
+/// Two `<default>`s of one name: the first in document order wins (Mitsuba 3 keeps a parameter
+/// it already has), here one in the scene file before the include that sets it again; a define
+/// still beats both.
+#[test]
+fn the_first_default_of_a_name_wins() {
+    let dir = std::env::temp_dir().join(format!("pathtrace-mitsuba-defaults-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("inc")).unwrap();
+    let main = dir.join("main.xml");
+    std::fs::write(
+        &main,
+        format!(
+            r#"<scene version="3.0.0"><default name="d" value="64"/><include filename="inc/part.xml"/>{SENSOR}{LIGHT}</scene>"#
+        ),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("inc/part.xml"),
+        r#"<scene version="3.0.0"><default name="d" value="-1"/>
+        <integrator type="path"><integer name="max_depth" value="$d"/></integrator></scene>"#,
+    )
+    .unwrap();
+    let text = std::fs::read_to_string(&main).unwrap();
+    let (f, w) = convert_str(&text, &main, &[]).unwrap();
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!(f.render.max_depth, Some(64));
+    let (f, _) = convert_str(&text, &main, &[("d", "3")]).unwrap();
+    assert_eq!(f.render.max_depth, Some(3));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn refs_share_a_material_and_twosided_unwraps() {
     let xml = scene(&format!(

@@ -169,7 +169,11 @@ fn expand_includes(src: &mut XmlSource, scene: &mut Element, level: usize) -> R<
 }
 
 /// Parses the text into the root `<scene>` element, substituting parameters: `<default>` values,
-/// overridden by `defines` (a define without a matching `<default>` gives a warning).
+/// overridden by `defines` (a define without a matching `<default>` gives a warning). When two
+/// `<default>`s name one parameter (a scene file and a file it includes, as mitsuba-data's
+/// `medium_homogeneous_sss.xml` sets `max_depth` 64 and its included `shape_scene.xml` −1),
+/// the first in document order wins, as in Mitsuba 3's parser (`src/core/parser.cpp`, the
+/// `Default` tag: a parameter already known is kept).
 pub fn parse(src: &mut XmlSource, defines: &[(&str, &str)], warnings: &mut Vec<String>) -> R<Element> {
     let text = src.text.clone();
     let mut root = parse_text(src, &text, 0, None)?;
@@ -185,7 +189,7 @@ pub fn parse(src: &mut XmlSource, defines: &[(&str, &str)], warnings: &mut Vec<S
         let (Some(name), Some(value)) = (d.attr("name"), d.attr("value")) else {
             return Err(src.error(d.offset, "<default> needs `name` and `value`"));
         };
-        params.insert(name.to_string(), value.to_string());
+        params.entry(name.to_string()).or_insert_with(|| value.to_string());
     }
     for (name, value) in defines {
         if !params.contains_key(*name) {
