@@ -4,10 +4,11 @@
 use pathtrace::film::{Film, RegionEstimate};
 use pathtrace::light::{Light, LightSelection};
 use pathtrace::math::Vec3;
+use pathtrace::sampling::SamplerKind;
 use pathtrace::{render, RenderSettings, Scene};
 use pathtrace_scene::mitsuba::{convert_str, load_mitsuba, load_str};
 use pathtrace_scene::native::model::{
-    Colour, FilterName, LightDef, MaterialKind, MetalDef, ShapeDef, TransformStep, Triple,
+    Colour, FilterName, LightDef, MaterialKind, MetalDef, SamplerName, ShapeDef, TransformStep, Triple,
 };
 use pathtrace_scene::native::{Format, SceneFile};
 use std::path::{Path, PathBuf};
@@ -82,6 +83,27 @@ fn the_first_default_of_a_name_wins() {
     let (f, _) = convert_str(&text, &main, &[("d", "3")]).unwrap();
     assert_eq!(f.render.max_depth, Some(3));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A sensor's sampler, film and reconstruction filter may be top-level elements it names with
+/// `<ref id>` (mitsuba-data's sampler scenes do this), read as if written in place.
+#[test]
+fn a_sensor_reads_its_sampler_film_and_filter_through_refs() {
+    let xml = format!(
+        r#"<scene version="3.0.0">
+        <sampler type="stratified" id="s"><integer name="sample_count" value="25"/></sampler>
+        <rfilter type="box" id="r"/>
+        <film type="hdrfilm" id="f"><integer name="width" value="40"/><integer name="height" value="30"/><ref id="r"/></film>
+        <sensor type="perspective"><float name="fov" value="40"/><ref id="s"/><ref id="f"/></sensor>{LIGHT}</scene>"#
+    );
+    let (f, w) = conv(&xml, &[]);
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!((f.render.spp, f.render.width, f.render.height), (Some(25), Some(40), Some(30)));
+    assert_eq!(f.render.sampler, Some(SamplerName(SamplerKind::Stratified)));
+    assert_eq!(f.render.filter.map(|f| f.kind), Some(FilterName::Box));
+    // A top-level sampler nobody names is still reported, as before.
+    let (_, w) = conv(&scene(&format!(r#"<sampler type="independent"/>{LIGHT}"#)), &[]);
+    assert!(w.iter().any(|w| w.contains("<sampler> is not supported")), "{w:?}");
 }
 
 #[test]

@@ -86,6 +86,8 @@ pub fn convert_located(src: &XmlSource, root: &Element, warnings: &mut Vec<Strin
                 }
             }
             "bsdf" | "texture" | "spectrum" | "rgb" | "medium" => {} // used through <ref>
+            // A sensor's parts, used through <ref> (unreferenced, Mitsuba ignores them too).
+            "sampler" | "film" | "rfilter" if e.attr("id").is_some() => {}
             "shape" => c.shape(e)?,
             "emitter" => c.top_emitter(e)?,
             other => c.warn(e, &format!("<{other}> is not supported and is skipped")),
@@ -229,6 +231,23 @@ impl<'a> Conv<'a, '_> {
         }
         let id = self.req_attr(e, "id")?;
         self.ids.get(id).copied().ok_or_else(|| self.src.error(e.offset_of("id"), format!("unknown ref id `{id}`")))
+    }
+
+    /// The first child of kind `tag` (`film`, `sampler`, `rfilter`), written in place or as a
+    /// `<ref id>` to a top-level element of that kind (Mitsuba 3 accepts both).
+    fn child_of_kind(&self, e: &'a Element, tag: &str) -> R<Option<&'a Element>> {
+        for c in &e.children {
+            if c.tag == tag {
+                return Ok(Some(c));
+            }
+            if c.tag == "ref" {
+                let target = self.deref(c)?;
+                if target.tag == tag {
+                    return Ok(Some(target));
+                }
+            }
+        }
+        Ok(None)
     }
 
     /// The child property named `name` (any tag).
@@ -491,8 +510,7 @@ impl<'a> Conv<'a, '_> {
             }
         };
         let (mut width, mut height) = (768u32, 576u32);
-        if let Some(film) = e.children.iter().find(|c| c.tag == "film") {
-            let film = self.deref(film)?;
+        if let Some(film) = self.child_of_kind(e, "film")? {
             for (name, slot) in [("width", &mut width), ("height", &mut height)] {
                 if let Some(v) = self.integer(film, name)? {
                     *slot = u32::try_from(v)
@@ -502,14 +520,13 @@ impl<'a> Conv<'a, '_> {
                 }
             }
             render.filter = Some(self.rfilter(film)?);
-            let at = film.children.iter().find(|c| c.tag == "rfilter").unwrap_or(film);
+            let at = self.child_of_kind(film, "rfilter")?.unwrap_or(film);
             self.origins.push((ItemPath::root().field("render").field("filter"), at.offset));
         }
         render.width = Some(width);
         render.height = Some(height);
         let mut spp = 4u32;
-        if let Some(s) = e.children.iter().find(|c| c.tag == "sampler") {
-            let s = self.deref(s)?;
+        if let Some(s) = self.child_of_kind(e, "sampler")? {
             match s.attr("type").unwrap_or("independent") {
                 "independent" => {}
                 "stratified" => render.sampler = Some(SamplerName(SamplerKind::Stratified)),
@@ -612,8 +629,7 @@ impl<'a> Conv<'a, '_> {
     /// The film's `<rfilter>`; without one, Mitsuba's default: a gaussian of stddev 0.5.
     fn rfilter(&mut self, film: &'a Element) -> R<FilterDef> {
         let default = FilterDef { kind: FilterName::Gaussian, radius: None, stddev: None };
-        let Some(f) = film.children.iter().find(|c| c.tag == "rfilter") else { return Ok(default) };
-        let f = self.deref(f)?;
+        let Some(f) = self.child_of_kind(film, "rfilter")? else { return Ok(default) };
         let positive = |this: &Self, name: &str, v: Option<f64>| match v {
             Some(x) if x <= 0.0 => Err(this.src.error(f.offset, format!("rfilter `{name}` must be positive"))),
             v => Ok(v.map(num)),
