@@ -11,7 +11,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::path::Scattered;
-use super::shade::{same_side_lanes, SHADOW_EPSILON};
+use super::shade::{sides_agree_lanes, SHADOW_EPSILON};
 use super::shading_frame::ShadingFrame;
 use super::Strategy;
 use crate::material::{rgb_lane, LaneDeltaScattering, LaneSamples, LaneScattering};
@@ -88,7 +88,10 @@ pub(super) fn material_lanes<const N: usize, M: LaneScattering<N>>(
         }
         // A point light cannot be found by material sampling: its sample counts in full.
         let pdf_material = F32s::select(ls.delta, zero, pdf_material);
-        let lit = lit & !rgb_black(&ls.radiance) & !rgb_black(&f) & same_side_lanes(n_g, v.wo, &ls.wi);
+        let lit = lit
+            & !rgb_black(&ls.radiance)
+            & !rgb_black(&f)
+            & sides_agree_lanes(n_g, v.wo, &ls.wi, (wi.z * wo.z).gt(zero));
         if lit.any() {
             let origin = offset_ray_origin_lanes(v.p, n_g, &ls.wi);
             let to_light = ls.point.sub(&origin);
@@ -194,9 +197,7 @@ fn continue_lanes<const N: usize>(
     // Reflection must stay on the viewer's side of the true surface (shading normals can
     // disagree with it), transmission must cross it, as in shade.rs.
     let reflects = (wi_world.dot(n_s) * wo.z).gt(F32s::ZERO);
-    let stays = same_side_lanes(n_g, v.wo, &wi_world);
-    let agree = (reflects & stays) | (!reflects & !stays);
-    let goes_on = valid & agree & !rgb_black(&weight);
+    let goes_on = valid & sides_agree_lanes(n_g, v.wo, &wi_world, reflects) & !rgb_black(&weight);
     let origin = offset_ray_origin_lanes(v.p, n_g, &wi_world);
     sc.goes_on = (sc.goes_on & !lanes) | goes_on;
     sc.origin = Vec3s::select(lanes, &origin, &sc.origin);

@@ -143,8 +143,7 @@ fn shade_with<M: Scattering>(
     // Reject directions on the wrong geometric side (shading normals can disagree with the
     // true surface): reflection must stay on wo's side, transmission must cross.
     let next = next.filter(|s| {
-        let reflects = frame.to_local(s.wi_world).z * wo.z > 0.0;
-        reflects == same_side(n_g, wo_world, s.wi_world) && !s.weight.is_black()
+        sides_agree(n_g, wo_world, s.wi_world, frame.to_local(s.wi_world).z * wo.z > 0.0) && !s.weight.is_black()
     });
     let next = next.map(|s| Continuation {
         origin: offset_ray_origin(p, n_g, s.wi_world),
@@ -175,7 +174,13 @@ fn shadow_ray<M: Scattering>(
     // light's direction, in one evaluation.
     let (f, pdf_material) =
         if ls.delta { (frame.eval(material, wo, ls.wi), 0.0) } else { frame.eval_pdf(material, wo, ls.wi) };
-    if ls.radiance.is_black() || f.is_black() || !same_side(n_g, wo_world, ls.wi) {
+    // The light's direction obeys the rule the material's sampled directions obey (see
+    // `sides_agree_lanes`): a transmitting surface is lit through itself, or MIS would weigh
+    // down the sampled paths that cross it with no light sample making up for it.
+    if ls.radiance.is_black()
+        || f.is_black()
+        || !sides_agree(n_g, wo_world, ls.wi, frame.to_local(ls.wi).z * wo.z > 0.0)
+    {
         return None;
     }
     let origin = offset_ray_origin(p, n_g, ls.wi);
@@ -201,18 +206,27 @@ struct Scatter {
     eta: f32,
 }
 
-/// True if `a` and `b` lie on one side of the surface of true normal `n`: the one-lane instance
-/// of [`same_side_lanes`].
-fn same_side(n: Vec3, a: Vec3, b: Vec3) -> bool {
-    same_side_lanes(&Vec3s::<1>::splat(n), &Vec3s::splat(a), &Vec3s::splat(b)).lane(0)
+/// [`sides_agree_lanes`] for one direction: its one-lane instance.
+fn sides_agree(n_g: Vec3, wo_world: Vec3, wi_world: Vec3, reflects: bool) -> bool {
+    let one = Vec3s::<1>::splat;
+    sides_agree_lanes(&one(n_g), &one(wo_world), &one(wi_world), Ms::from_fn(|_| reflects)).lane(0)
 }
 
-/// Lanes whose `a` and `b` lie on one side of the surface of true normal `n_g` (a function, not a
-/// closure in `material_lanes`: as a closure it was compiled out of line, without the SIMD
-/// kernels' target features, and called from them).
+/// Lanes where `wi_world` is on `wo_world`'s side of the true surface (normal `n_g`) exactly
+/// where it `reflects` by the shading frame: a reflection must not pass through the surface, a
+/// transmission must cross it (shading normals can disagree with the true surface). One rule
+/// for the sampled direction and the light's, so that MIS weighs both strategies over the same
+/// directions. (A function, not a closure in `material_lanes`: as a closure it was compiled out
+/// of line, without the SIMD kernels' target features, and called from them.)
 #[inline(always)]
-pub(super) fn same_side_lanes<const N: usize>(n_g: &Vec3s<N>, a: &Vec3s<N>, b: &Vec3s<N>) -> Ms<N> {
-    (n_g.dot(a) * n_g.dot(b)).gt(F32s::ZERO)
+pub(super) fn sides_agree_lanes<const N: usize>(
+    n_g: &Vec3s<N>,
+    wo_world: &Vec3s<N>,
+    wi_world: &Vec3s<N>,
+    reflects: Ms<N>,
+) -> Ms<N> {
+    let stays = (n_g.dot(wo_world) * n_g.dot(wi_world)).gt(F32s::ZERO);
+    (reflects & stays) | (!reflects & !stays)
 }
 
 /// The `light` strategy: continue towards a light point; pdf of the direction summed over all
