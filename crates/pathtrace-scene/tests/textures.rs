@@ -169,6 +169,32 @@ fn textured_scenes_round_trip_through_toml_and_json() {
 
 const LIGHT: &str = r#"<emitter type="constant"/><sensor type="perspective"/>"#;
 
+/// Mitsuba 3's checkerboard puts `color0` on the other squares when read as a number (`eval_1`:
+/// roughness, blend weight, mask opacity) than as a colour (`eval`); the import keeps its
+/// pictures by exchanging the two for number parameters only.
+#[test]
+fn a_mitsuba_checkerboard_read_as_a_number_exchanges_its_squares() {
+    let checks = r#"<texture type="checkerboard" name="NAME"><float name="color0" value="0.1"/><float name="color1" value="0.4"/></texture>"#;
+    let xml = format!(
+        r#"<scene version="3.0.0">
+        <bsdf type="roughdielectric" id="glass">{}</bsdf>
+        <bsdf type="diffuse" id="floor">{}</bsdf>
+        <shape type="sphere"><ref id="glass"/></shape><shape type="sphere"><ref id="floor"/></shape>
+        {LIGHT}</scene>"#,
+        checks.replace("NAME", "alpha"),
+        checks.replace("NAME", "reflectance")
+    );
+    let (file, warnings) = convert_str(&xml, Path::new("t.xml"), &[]).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let squares = |c: &Option<Colour>| match c {
+        Some(Colour::Texture(TextureDef::Checkerboard { color0, color1, .. })) => (color0.vec3().x, color1.vec3().x),
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(squares(&file.materials["glass"].roughness), (0.4, 0.1));
+    let MaterialKind::Lambertian { albedo } = file.materials["floor"].kind.sides().0 else { panic!() };
+    assert_eq!(squares(&Some(albedo.clone())), (0.1, 0.4));
+}
+
 #[test]
 fn mitsuba_textures_nested_and_by_reference() {
     let dir = scratch("mitsuba");

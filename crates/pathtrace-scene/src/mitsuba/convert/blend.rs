@@ -13,7 +13,7 @@ use super::wrappers::Wrappers;
 
 impl<'a> Conv<'a, '_> {
     pub(super) fn blend_bsdf(&mut self, e: &'a Element, depth: usize) -> R<MaterialKind> {
-        let weight = self.colour(e, "weight")?.unwrap_or(Colour::grey(0.5));
+        let weight = self.scalar_colour(e, "weight")?.unwrap_or(Colour::grey(0.5));
         if let Colour::Constant(w) = &weight {
             let w = w.vec3();
             if !(w.min_element() >= 0.0 && w.max_element() <= 1.0) {

@@ -118,7 +118,7 @@ impl<'a> Conv<'a, '_> {
         if ty != "roughconductor" && ty != "roughdielectric" && ty != "roughplastic" {
             return Ok(None);
         }
-        Ok(self.colour(e, "alpha")?.filter(|c| matches!(c, Colour::Texture(_))))
+        Ok(self.scalar_colour(e, "alpha")?.filter(|c| matches!(c, Colour::Texture(_))))
     }
 
     /// `int_ior / ext_ior` (each a number or a name; exterior air by default).

@@ -43,6 +43,19 @@ impl<'a> Conv<'a, '_> {
         }
     }
 
+    /// A parameter Mitsuba reads as one number per hit (`eval_1`: roughness, blend weight,
+    /// mask opacity): as [`Self::colour`], with a checkerboard's squares exchanged. Mitsuba 3's
+    /// checkerboard (`src/textures/checkerboard.cpp`) puts `color0` where the two half-period
+    /// tests agree in `eval` but where they differ in `eval_1`; its scenes are drawn that way.
+    pub(super) fn scalar_colour(&mut self, e: &'a Element, name: &str) -> R<Option<Colour>> {
+        Ok(self.colour(e, name)?.map(|c| match c {
+            Colour::Texture(TextureDef::Checkerboard { color0, color1, to_uv }) => {
+                Colour::Texture(TextureDef::Checkerboard { color0: color1, color1: color0, to_uv })
+            }
+            other => other,
+        }))
+    }
+
     pub(super) fn texture(&mut self, t: &'a Element) -> R<TextureDef> {
         let ty = self.req_attr(t, "type")?;
         let known = match ty {

@@ -53,7 +53,7 @@ impl<'a> Conv<'a, '_> {
     /// The opacity of a `mask` element and its nested BSDF element.
     pub(super) fn mask_wrapper(&mut self, e: &'a Element) -> R<(OpacityDef, &'a Element)> {
         let nested = self.nested_bsdf(e, "mask")?;
-        let texture = self.colour(e, "opacity")?.unwrap_or(Colour::Constant(Triple::Splat(num(0.5))));
+        let texture = self.scalar_colour(e, "opacity")?.unwrap_or(Colour::Constant(Triple::Splat(num(0.5))));
         Ok((OpacityDef { texture, cutoff: None }, nested))
     }
 
