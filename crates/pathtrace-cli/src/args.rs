@@ -246,6 +246,10 @@ pub struct QualityArgs {
     /// -1 = unlimited (Russian roulette ends paths) [default: the scene's]
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_depth)]
     pub max_depth: Option<i32>,
+    /// Path segments after which Russian roulette may end a path, at least 1 (a large value
+    /// turns it off) [default: the scene's, else 5]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub rr_depth: Option<u32>,
     /// Direction sampling: mis (unbiased, least noise), mis-balance, bsdf, mixture, or light (biased
     /// teaching mode: loses indirect light) [default: the scene's, else mis]
     #[arg(long, value_parser = parse_from_str::<Strategy>)]

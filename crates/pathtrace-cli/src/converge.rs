@@ -95,6 +95,9 @@ pub fn run(a: ConvergeArgs) -> Result<ExitCode, CliError> {
     crate::memory::check_render_fits(width, height, Default::default())?;
     let mut base = RenderSettings { width, height, threads: a.threads.unwrap_or(0), ..RenderSettings::default() };
     base.path.max_depth = a.max_depth.unwrap_or(d.max_depth);
+    if let Some(rr_depth) = d.rr_depth {
+        base.path.rr_depth = rr_depth;
+    }
     let out_dir = a.out.clone().unwrap_or_else(|| PathBuf::from(format!("converge-{}", scene_arg::stem(&a.scene))));
     std::fs::create_dir_all(&out_dir)
         .map_err(|e| CliError::usage(format!("cannot create {}: {e}", out_dir.display())))?;

@@ -27,6 +27,7 @@ pub fn settings_from(q: &QualityArgs, spp: Option<u32>, time: Option<f64>, d: &R
         spp,
         time: time.map(Duration::from_secs_f64),
         max_depth: q.max_depth,
+        rr_depth: q.rr_depth,
         strategy: q.strategy,
         sampler: q.sampler,
         filter: q.filter.clone(),

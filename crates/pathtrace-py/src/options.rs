@@ -1,5 +1,5 @@
-//! The keyword arguments of `render` and `start` (spp, seed, width, height, max_depth, strategy,
-//! sampler, threads, aov), turned into render settings by the same rule as the CLI's options
+//! The keyword arguments of `render` and `start` (spp, seed, width, height, max_depth, rr_depth,
+//! strategy, sampler, threads, aov), turned into render settings by the same rule as the CLI's options
 //! (`RenderDefaults::settings` in the scene crate). Both functions take them as `**options`
 //! and parse them here, so the option list lives in one place (and in the type stubs).
 
@@ -45,6 +45,7 @@ pub fn settings(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<
             "width" => width = value(&key, &v)?,
             "height" => height = value(&key, &v)?,
             "max_depth" => o.max_depth = value(&key, &v)?,
+            "rr_depth" => o.rr_depth = value(&key, &v)?,
             "strategy" => o.strategy = parse("strategy", value(&key, &v)?)?,
             "sampler" => o.sampler = parse("sampler", value(&key, &v)?)?,
             "threads" => o.threads = Some(value(&key, &v)?),
@@ -55,6 +56,9 @@ pub fn settings(scene: &Scene, options: Option<&Bound<'_, PyDict>>) -> PyResult<
     }
     if o.spp == Some(0) {
         return Err(PyValueError::new_err("spp must be at least 1"));
+    }
+    if o.rr_depth == Some(0) {
+        return Err(PyValueError::new_err("rr_depth must be at least 1"));
     }
     if width == Some(0) || height == Some(0) {
         return Err(PyValueError::new_err("width and height must be at least 1"));

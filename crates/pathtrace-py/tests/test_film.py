@@ -75,6 +75,8 @@ def test_write_png_exr_pfm(film: pathtrace.Film, tmp_path: Path) -> None:
         (dict(spp=5, seed=7, width=70, height=40, max_depth=3, strategy="bsdf", sampler="sobol"),
          ["--spp", "5", "--seed", "7", "--size", "70x40", "--max-depth", "3", "--strategy", "bsdf",
           "--sampler", "sobol"]),
+        (dict(spp=6, seed=2, width=40, height=30, max_depth=12, rr_depth=2),
+         ["--spp", "6", "--seed", "2", "--size", "40x30", "--max-depth", "12", "--rr-depth", "2"]),
     ],
 )
 def test_bit_identical_to_the_cli(options: dict, flags: list, cli: Path, tmp_path: Path) -> None:
@@ -88,7 +90,7 @@ def test_bit_identical_to_the_cli(options: dict, flags: list, cli: Path, tmp_pat
 
 def test_bad_options_raise_value_error() -> None:
     scene = pathtrace.builtin()
-    for options in (dict(strategy="best"), dict(sampler="magic"), dict(spp=0), dict(width=0)):
+    for options in (dict(strategy="best"), dict(sampler="magic"), dict(spp=0), dict(width=0), dict(rr_depth=0)):
         with pytest.raises(ValueError):
             pathtrace.render(scene, **options)
         with pytest.raises(ValueError):

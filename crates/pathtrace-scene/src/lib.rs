@@ -28,6 +28,8 @@ pub struct RenderDefaults {
     pub spp: u32,
     /// Maximum path segments; -1 is unlimited.
     pub max_depth: i32,
+    /// Path segments after which Russian roulette may end a path, if the scene says.
+    pub rr_depth: Option<u32>,
     /// Direction sampling strategy, if the scene names one.
     pub strategy: Option<Strategy>,
     /// Pixel sampler, if the scene names one.

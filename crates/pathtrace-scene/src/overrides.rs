@@ -21,6 +21,8 @@ pub struct RenderOverrides {
     pub time: Option<Duration>,
     /// Maximum path segments; -1 is unlimited.
     pub max_depth: Option<i32>,
+    /// Path segments after which Russian roulette may end a path (at least 1).
+    pub rr_depth: Option<u32>,
     pub strategy: Option<Strategy>,
     pub sampler: Option<SamplerKind>,
     pub filter: Option<PixelFilter>,
@@ -50,6 +52,9 @@ impl RenderDefaults {
         };
         s.path.strategy = o.strategy.or(self.strategy).unwrap_or_default();
         s.path.max_depth = o.max_depth.unwrap_or(self.max_depth);
+        if let Some(rr_depth) = o.rr_depth.or(self.rr_depth) {
+            s.path.rr_depth = rr_depth;
+        }
         s
     }
 }
@@ -64,6 +69,7 @@ mod tests {
             height: 32,
             spp: 128,
             max_depth: 5,
+            rr_depth: Some(3),
             strategy: Some(Strategy::Bsdf),
             sampler: Some(SamplerKind::Stratified),
             seed: Some(9),
@@ -77,18 +83,22 @@ mod tests {
         let d = scene_defaults();
         let s = d.settings(&RenderOverrides::default());
         assert_eq!((s.width, s.height, s.spp, s.seed, s.path.max_depth), (64, 32, 128, 9, 5));
-        assert_eq!((s.path.strategy, s.sampler), (Strategy::Bsdf, SamplerKind::Stratified));
+        assert_eq!((s.path.strategy, s.sampler, s.path.rr_depth), (Strategy::Bsdf, SamplerKind::Stratified, 3));
         let o = RenderOverrides {
             size: Some((8, 4)),
             spp: Some(3),
             seed: Some(1),
             max_depth: Some(-1),
+            rr_depth: Some(7),
             strategy: Some(Strategy::Mis),
             ..Default::default()
         };
         let s = d.settings(&o);
         assert_eq!((s.width, s.height, s.spp, s.seed, s.path.max_depth), (8, 4, 3, 1, -1));
-        assert_eq!(s.path.strategy, Strategy::Mis);
+        assert_eq!((s.path.strategy, s.path.rr_depth), (Strategy::Mis, 7));
+        // Neither the scene nor the caller: the engine's default.
+        let d = RenderDefaults { rr_depth: None, ..scene_defaults() };
+        assert_eq!(d.settings(&RenderOverrides::default()).path.rr_depth, RenderSettings::default().path.rr_depth);
     }
 
     #[test]

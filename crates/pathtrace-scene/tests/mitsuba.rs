@@ -106,6 +106,21 @@ fn a_sensor_reads_its_sampler_film_and_filter_through_refs() {
     assert!(w.iter().any(|w| w.contains("<sampler> is not supported")), "{w:?}");
 }
 
+/// A path tracer's `rr_depth` is where Russian roulette starts (mitsuba-data's scenes pass it
+/// through a `<default>`); Mitsuba requires it to be positive.
+#[test]
+fn the_path_tracers_rr_depth_is_read() {
+    let integrator = |body: &str| scene(&format!(r#"<integrator type="path">{body}</integrator>{LIGHT}"#));
+    let (f, w) = conv(&integrator(r#"<integer name="rr_depth" value="12"/>"#), &[]);
+    assert!(w.is_empty(), "{w:?}");
+    assert_eq!(f.render.rr_depth, Some(12));
+    let (f, _) = conv(&integrator(""), &[]);
+    assert_eq!(f.render.rr_depth, None, "unset: the engine's default (5, Mitsuba's too)");
+    let text = integrator(r#"<integer name="rr_depth" value="0"/>"#);
+    let err = convert_str(&text, Path::new("rr.xml"), &[]).unwrap_err().to_string();
+    assert!(err.contains("rr_depth") && err.contains("from 1"), "{err}");
+}
+
 #[test]
 fn refs_share_a_material_and_twosided_unwraps() {
     let xml = scene(&format!(

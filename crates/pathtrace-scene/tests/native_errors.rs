@@ -75,6 +75,7 @@ fn schema_errors_point_at_the_value() {
     expect(&toml_error("look_at = [0, 1, 0]", "look_at = [0, 1]"), "s.toml:3:", &["length"]);
     expect(&toml_error("[camera]", "[render]\nwidth = -4\n[camera]"), "s.toml:2:9:", &["width"]);
     expect(&toml_error("[camera]", "[render]\nstrategy = \"fast\"\n[camera]"), "s.toml:2:12:", &["fast", "mis"]);
+    expect(&toml_error("[camera]", "[render]\nrr_depth = 0\n[camera]"), "s.toml:2:", &["rr_depth", "at least 1"]);
 }
 
 #[test]

@@ -270,6 +270,7 @@ fn mesh_scene(triangles: usize) -> Result<LoadedScene, CliError> {
         height: SIZE,
         spp: 256,
         max_depth: -1,
+        rr_depth: None,
         strategy: None,
         sampler: None,
         seed: None,

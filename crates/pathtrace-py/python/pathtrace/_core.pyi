@@ -122,6 +122,7 @@ class RenderOptions(TypedDict, total=False):
     width: Optional[int]
     height: Optional[int]
     max_depth: Optional[int]
+    rr_depth: Optional[int]
     strategy: Optional[str]
     sampler: Optional[str]
     threads: int

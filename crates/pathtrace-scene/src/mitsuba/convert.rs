@@ -495,6 +495,12 @@ impl<'a> Conv<'a, '_> {
                 depth.unwrap_or(-1)
             }
         });
+        // Mitsuba's path tracers start Russian roulette at `rr_depth` (default 5, ours too);
+        // it must be positive there. The direct integrator has none, nor does our render of it
+        // (two segments end every path first).
+        if let Some(rr) = self.integer_in(e, "rr_depth", 1..=i64::from(u32::MAX))? {
+            render.rr_depth = Some(rr as u32);
+        }
         Ok(())
     }
 

@@ -160,6 +160,9 @@ fn render_defaults(r: &RenderSection, c: &CameraSection, src: &impl Locate) -> R
     if r.max_depth.is_some_and(|d| d < -1) {
         return Err(src.error_at(&at("max_depth"), "max_depth must be ≥ 0, or -1 for unlimited"));
     }
+    if r.rr_depth == Some(0) {
+        return Err(src.error_at(&at("rr_depth"), "rr_depth must be at least 1 (the segments before Russian roulette)"));
+    }
     let (dw, dh) = (RenderSection::DEFAULT_WIDTH, RenderSection::DEFAULT_HEIGHT);
     let (width, height) = match (r.width, r.height, c.aspect) {
         (w, h, None) => (w.unwrap_or(dw), h.unwrap_or(dh)),
@@ -183,6 +186,7 @@ fn render_defaults(r: &RenderSection, c: &CameraSection, src: &impl Locate) -> R
         height,
         spp: r.spp.unwrap_or(RenderSection::DEFAULT_SPP),
         max_depth: r.max_depth.unwrap_or(RenderSection::DEFAULT_MAX_DEPTH),
+        rr_depth: r.rr_depth,
         strategy: r.strategy.map(|s| s.0),
         sampler: r.sampler.map(|s| s.0),
         seed: r.seed,

@@ -78,6 +78,9 @@ pub struct RenderSection {
     /// Maximum path segments; -1 (the default) is unlimited.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_depth: Option<i32>,
+    /// Path segments after which Russian roulette may end a path (at least 1; default 5).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rr_depth: Option<u32>,
     /// Direction sampling strategy (default `mis`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub strategy: Option<StrategyName>,
