@@ -107,7 +107,8 @@ fn a_sensor_reads_its_sampler_film_and_filter_through_refs() {
 }
 
 /// A path tracer's `rr_depth` is where Russian roulette starts (mitsuba-data's scenes pass it
-/// through a `<default>`); Mitsuba requires it to be positive.
+/// through a `<default>`); Mitsuba requires it to be positive, and its `volpath` tests it one
+/// vertex later than `path` does.
 #[test]
 fn the_path_tracers_rr_depth_is_read() {
     let integrator = |body: &str| scene(&format!(r#"<integrator type="path">{body}</integrator>{LIGHT}"#));
@@ -116,6 +117,12 @@ fn the_path_tracers_rr_depth_is_read() {
     assert_eq!(f.render.rr_depth, Some(12));
     let (f, _) = conv(&integrator(""), &[]);
     assert_eq!(f.render.rr_depth, None, "unset: the engine's default (5, Mitsuba's too)");
+    // `volpath` and `volpathmis` roulette one vertex later than `path` for the same value.
+    for ty in ["volpath", "volpathmis"] {
+        let xml = |body: &str| scene(&format!(r#"<integrator type="{ty}">{body}</integrator>{LIGHT}"#));
+        assert_eq!(conv(&xml(r#"<integer name="rr_depth" value="12"/>"#), &[]).0.render.rr_depth, Some(13), "{ty}");
+        assert_eq!(conv(&xml(""), &[]).0.render.rr_depth, Some(6), "{ty}");
+    }
     let text = integrator(r#"<integer name="rr_depth" value="0"/>"#);
     let err = convert_str(&text, Path::new("rr.xml"), &[]).unwrap_err().to_string();
     assert!(err.contains("rr_depth") && err.contains("from 1"), "{err}");

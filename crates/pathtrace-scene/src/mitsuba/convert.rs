@@ -26,6 +26,9 @@ mod texture;
 
 type R<T> = Result<T, SceneError>;
 
+/// Mitsuba 3's default `rr_depth` for its path tracers (`MonteCarloIntegrator`).
+const MITSUBA_RR_DEPTH: u32 = 5;
+
 /// Where each item of the converted model came from: (item, byte offset in the XML), so errors
 /// found while building point at the element that caused them.
 pub type Origins = Vec<(ItemPath, usize)>;
@@ -495,12 +498,16 @@ impl<'a> Conv<'a, '_> {
                 depth.unwrap_or(-1)
             }
         });
-        // Mitsuba's path tracers start Russian roulette at `rr_depth` (default 5, ours too);
-        // it must be positive there. The direct integrator has none, nor does our render of it
-        // (two segments end every path first).
-        if let Some(rr) = self.integer_in(e, "rr_depth", 1..=i64::from(u32::MAX))? {
-            render.rr_depth = Some(rr as u32);
-        }
+        // Where Russian roulette starts (positive in Mitsuba, default 5). `path` tests it right
+        // after the vertex that made its depth (segment count) k, as ours does: k ≥ rr_depth.
+        // `volpath` and `volpathmis` test it at the top of the next iteration with k > rr_depth
+        // (src/integrators/volpath.cpp), one vertex later: our rr_depth + 1. The direct
+        // integrator has none, nor does our render of it (two segments end every path first).
+        let rr = self.integer_in(e, "rr_depth", 1..=i64::from(u32::MAX - 1))?.map(|d| d as u32);
+        render.rr_depth = match ty {
+            "volpath" | "volpathmis" => Some(rr.unwrap_or(MITSUBA_RR_DEPTH) + 1),
+            _ => rr,
+        };
         Ok(())
     }
 
