@@ -106,6 +106,35 @@ fn a_sensor_reads_its_sampler_film_and_filter_through_refs() {
     assert!(w.iter().any(|w| w.contains("<sampler> is not supported")), "{w:?}");
 }
 
+/// Mitsuba 3's samplers map to ours of the same kind: `multijitter` to our jittered grid
+/// (stratified), `ldsampler` to our padded Sobol' (0, 2)-sequence; the others are named in a
+/// warning with the sampler used instead (not the independent one, which they all beat).
+#[test]
+fn mitsuba_samplers_map_to_ours_of_the_same_kind() {
+    for (kind, ours, warned) in [
+        ("independent", None, false),
+        ("stratified", Some(SamplerKind::Stratified), false),
+        ("multijitter", Some(SamplerKind::Stratified), false),
+        ("ldsampler", Some(SamplerKind::Sobol), false),
+        ("sobol", Some(SamplerKind::Sobol), false),
+        ("halton", Some(SamplerKind::Sobol), true),
+        ("orthogonal", Some(SamplerKind::Stratified), true),
+    ] {
+        let xml = format!(
+            r#"<scene version="3.0.0"><sensor type="perspective"><float name="fov" value="40"/>
+            <sampler type="{kind}"><integer name="sample_count" value="16"/></sampler></sensor>{LIGHT}</scene>"#
+        );
+        let (f, w) = conv(&xml, &[]);
+        assert_eq!(f.render.sampler.map(|s| s.0), ours, "{kind}");
+        assert_eq!(f.render.spp, Some(16), "{kind}");
+        assert_eq!(
+            w.iter().any(|w| w.contains(&format!("sampler `{kind}` is not supported"))),
+            warned,
+            "{kind}: {w:?}"
+        );
+    }
+}
+
 /// A path tracer's `rr_depth` is where Russian roulette starts (mitsuba-data's scenes pass it
 /// through a `<default>`); Mitsuba requires it to be positive, and its `volpath` tests it one
 /// vertex later than `path` does.

@@ -542,11 +542,23 @@ impl<'a> Conv<'a, '_> {
         if let Some(s) = self.child_of_kind(e, "sampler")? {
             match s.attr("type").unwrap_or("independent") {
                 "independent" => {}
-                "stratified" => render.sampler = Some(SamplerName(SamplerKind::Stratified)),
-                // Mitsuba 0.6's Sobol' sampler (the default of Bitterli's scenes): ours is an
-                // Owen-scrambled Sobol' sequence; the expected image is the same.
-                "sobol" => render.sampler = Some(SamplerName(SamplerKind::Sobol)),
-                other => self.warn(s, &format!("sampler `{other}` is not supported: using independent")),
+                // Mitsuba 3's `multijitter` is a jittered grid whose points are also stratified
+                // along each axis (Kensler's correlated multi-jittering); ours is the jittered
+                // grid, with the same expected image (making ours multi-jittered changed no
+                // measured error: docs/benchmarks.md, "Multi-jittered 2D points").
+                "stratified" | "multijitter" => render.sampler = Some(SamplerName(SamplerKind::Stratified)),
+                // Mitsuba 0.6's Sobol' sampler (the default of Bitterli's scenes) and Mitsuba 3's
+                // `ldsampler` (a scrambled, padded (0, 2)-sequence): ours is an Owen-scrambled,
+                // padded Sobol' (0, 2)-sequence; the expected image is the same.
+                "sobol" | "ldsampler" => render.sampler = Some(SamplerName(SamplerKind::Sobol)),
+                other @ ("halton" | "hammersley") => {
+                    self.warn(s, &format!("sampler `{other}` is not supported: using sobol"));
+                    render.sampler = Some(SamplerName(SamplerKind::Sobol));
+                }
+                other => {
+                    self.warn(s, &format!("sampler `{other}` is not supported: using stratified"));
+                    render.sampler = Some(SamplerName(SamplerKind::Stratified));
+                }
             }
             if let Some(n) = self.integer_in(s, "sample_count", 1..=i64::from(u32::MAX))? {
                 spp = n as u32;
