@@ -17,6 +17,7 @@
 //!   border, where Mitsuba normalises by the clipped weights.)
 
 use super::accumulator::integral_to_i64;
+use crate::math::exp_f64_lanes;
 use crate::math::Vec2;
 use crate::wide::simd::F32s;
 
@@ -194,6 +195,19 @@ impl PixelFilter {
             }
         }
     }
+
+    /// [`PixelFilter::profile_row`] for a splat's two axes at once: the gaussian's four
+    /// exponentials in one vector ([`GaussianFilter::eval_rows`]).
+    #[inline(always)]
+    pub fn profile_rows(&self, x0: f64, y0: f64, wx: &mut [f64], wy: &mut [f64]) {
+        match self {
+            PixelFilter::Gaussian(g) => g.eval_rows(x0, y0, wx, wy),
+            _ => {
+                self.profile_row(x0, wx);
+                self.profile_row(y0, wy);
+            }
+        }
+    }
 }
 
 /// Mitsuba 3's windowed gaussian.
@@ -243,8 +257,23 @@ impl GaussianFilter {
     /// more than one value.
     #[inline(always)]
     pub fn eval_row(&self, x0: f64, out: &mut [f64]) {
-        let mut g = (self.alpha * x0 * x0).exp();
-        let mut ratio = (self.alpha * (2.0 * x0 + 1.0)).exp();
+        let [g, ratio, _, _] = exp_f64_lanes([self.alpha * x0 * x0, self.alpha * (2.0 * x0 + 1.0), 0.0, 0.0]);
+        self.row_from(g, ratio, out);
+    }
+
+    /// [`GaussianFilter::eval_row`] at `x0` into `wx` and at `y0` into `wy`, the four
+    /// exponentials computed together.
+    #[inline(always)]
+    pub fn eval_rows(&self, x0: f64, y0: f64, wx: &mut [f64], wy: &mut [f64]) {
+        let a = self.alpha;
+        let [gx, rx, gy, ry] = exp_f64_lanes([a * x0 * x0, a * (2.0 * x0 + 1.0), a * y0 * y0, a * (2.0 * y0 + 1.0)]);
+        self.row_from(gx, rx, wx);
+        self.row_from(gy, ry, wy);
+    }
+
+    /// The row's values from g(x0) and the first ratio, by the recurrence above.
+    #[inline(always)]
+    fn row_from(&self, mut g: f64, mut ratio: f64, out: &mut [f64]) {
         for (i, w) in out.iter_mut().enumerate() {
             if i > 0 {
                 g *= ratio;

@@ -26,7 +26,7 @@
 //! splat only moves each sample's weight within the block (except at its edge), so the block's
 //! variance is close to the box estimate's — what the block z-tests use.
 
-use super::accumulator::{fixed, fixed_small, integral_to_i64, sum_to_f64, SMALL_LIMIT};
+use super::accumulator::{fixed, integral_to_i64, sum_to_f64, FIXED_SCALE, SMALL_LIMIT};
 use super::filter::PixelFilter;
 use super::grid::Mergeable;
 use crate::math::{Rgb, Vec2};
@@ -156,8 +156,7 @@ impl SplatBlock {
         let (fx, fy) = (integral_to_i64(px.floor()) - m, integral_to_i64(py.floor()) - m);
         // Offsets of the footprint's first pixel centres (exact: small integers, halves and the
         // position all fit f64's 53 bits); the row's others follow at +1, +2, ….
-        filter.profile_row(fx as f64 + 0.5 - px, &mut self.wx);
-        filter.profile_row(fy as f64 + 0.5 - py, &mut self.wy);
+        filter.profile_rows(fx as f64 + 0.5 - px, fy as f64 + 0.5 - py, &mut self.wx, &mut self.wy);
         // Only the pixels within the filter's support, a fixed count per axis (the rows above
         // hold zeros at the others), clipped to the block once rather than tested pixel by
         // pixel. (Trimming the zeros by testing the weights made cbb's splats about 10% slower:
@@ -179,7 +178,11 @@ impl SplatBlock {
         let l_max = c.to_array().iter().fold(0.0f32, |a, &x| a.max(x.abs())) as f64;
         // Small terms go to the `i64` partial sums, the others straight to the exact sums.
         let small = c.is_finite() && w_max < SMALL_LIMIT && w_max * l_max < SMALL_LIMIT;
+        // The terms w·L scaled to the grid, as w·(L·2⁴⁰): scaling by a power of two is exact, so
+        // this is the same product as (w·L)·2⁴⁰ (no term comes near f64's range limits), with
+        // the scaling hoisted out of the pixel loop.
         let l = c.to_array().map(f64::from);
+        let scaled = [FIXED_SCALE, l[0] * FIXED_SCALE, l[1] * FIXED_SCALE, l[2] * FIXED_SCALE];
         for j in j0..j1 {
             let wy = self.wy[j as usize];
             let row = (fy + j - by0) * bw - bx0 + fx;
@@ -189,9 +192,8 @@ impl SplatBlock {
                 if small {
                     // A zero weight adds zeros: no branch, so the four sums go as one vector.
                     let w = wx * wy;
-                    let terms = [w, w * l[0], w * l[1], w * l[2]];
-                    for (sum, term) in self.small[p].iter_mut().zip(terms) {
-                        *sum += fixed_small(term);
+                    for (sum, s) in self.small[p].iter_mut().zip(scaled) {
+                        *sum += integral_to_i64((w * s).trunc());
                     }
                 } else if wx != 0.0 && wy != 0.0 {
                     self.pixels[p].add(wx * wy, c);

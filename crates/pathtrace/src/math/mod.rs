@@ -9,7 +9,7 @@ pub mod special;
 mod transform;
 
 pub use aabb::Aabb;
-pub use exp_log::{exp_lanes, ln_lanes};
+pub use exp_log::{exp_f64_lanes, exp_lanes, ln_lanes};
 pub use frame::Frame;
 pub use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 pub use ray::{offset_ray_origin, offset_ray_origin_lanes, Ray};
