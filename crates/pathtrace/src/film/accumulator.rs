@@ -31,10 +31,7 @@ pub const FRACTION_BITS: i32 = 40;
 pub const SAMPLE_LIMIT: f64 = (1u64 << 52) as f64;
 
 /// 2^FRACTION_BITS, the fixed-point scale.
-const SCALE: f64 = (1u64 << FRACTION_BITS) as f64;
-
-/// [`SCALE`], for the splat's terms scaled before their product (`splat.rs`).
-pub(super) const FIXED_SCALE: f64 = SCALE;
+pub(super) const SCALE: f64 = (1u64 << FRACTION_BITS) as f64;
 
 /// The statistics of one pixel's samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -26,7 +26,7 @@
 //! splat only moves each sample's weight within the block (except at its edge), so the block's
 //! variance is close to the box estimate's — what the block z-tests use.
 
-use super::accumulator::{fixed, integral_to_i64, sum_to_f64, FIXED_SCALE, SMALL_LIMIT};
+use super::accumulator::{fixed, integral_to_i64, sum_to_f64, SCALE, SMALL_LIMIT};
 use super::filter::PixelFilter;
 use super::grid::Mergeable;
 use crate::math::{Rgb, Vec2};
@@ -182,7 +182,7 @@ impl SplatBlock {
         // this is the same product as (w·L)·2⁴⁰ (no term comes near f64's range limits), with
         // the scaling hoisted out of the pixel loop.
         let l = c.to_array().map(f64::from);
-        let scaled = [FIXED_SCALE, l[0] * FIXED_SCALE, l[1] * FIXED_SCALE, l[2] * FIXED_SCALE];
+        let scaled = [SCALE, l[0] * SCALE, l[1] * SCALE, l[2] * SCALE];
         for j in j0..j1 {
             let wy = self.wy[j as usize];
             let row = (fy + j - by0) * bw - bx0 + fx;

@@ -109,8 +109,8 @@ const ROUND_MAGIC_F64: f64 = 6_755_399_441_055_744.0;
 /// made four per sample, 7.7% of veach-mis's render). Cephes' `exp.c` (S. L. Moshier): x is
 /// n ln2 plus r with |r| ≤ ln2/2, eʳ = 1 + 2r·P(r²)/(Q(r²) − r·P(r²)) (a Padé form, relative
 /// error about 2·10⁻¹⁶), scaled by 2ⁿ through the exponent bits. The coefficients are Cephes'
-/// as the nearest f64 (Cephes' P₂ = 0.99999999999999999991 is 1.0 in f64). x is clamped to [−708, 709], where
-/// eˣ is a normal f64; NaN gives NaN.
+/// as the nearest f64 (Cephes' P₂ = 0.99999999999999999991 is 1.0 in f64). x is clamped to
+/// [−708, 709], where eˣ is a normal f64; NaN gives NaN.
 #[inline(always)]
 pub fn exp_f64_lanes<const N: usize>(x: [f64; N]) -> [f64; N] {
     // A plain loop: `array::map` was compiled out of line (`try_map`, baseline x86-64, 8% of
