@@ -1,6 +1,6 @@
 //! A bounding volume hierarchy built with the binned surface area heuristic (see `build.rs`),
 //! stored as a flat node array in depth-first order (the left child follows its parent), and
-//! traversed as a four-wide tree (see `wide.rs`). Leaves test their quads and triangles four
+//! traversed as an eight-wide tree (see `wide.rs`). Leaves test their quads and triangles four
 //! at a time (see `leaf.rs`).
 
 use arrayvec::ArrayVec;
@@ -8,10 +8,10 @@ use rayon::prelude::*;
 
 use super::build::{BuildItem, BuildOptions};
 use super::group_hits::GroupHits;
-use super::lanes::{lane_of, RayX4};
+use super::lanes::RayX4;
 use super::leaf::{GroupBounds, Leaves, Packable};
 use super::subtree::build_tree;
-use super::wide::{collapse, prefetch, wide_depth, Node4, RayBox4, RayBoxes, RayInterval, EMPTY, LEAF};
+use super::wide::{collapse, prefetch, wide_depth, RayBox4, RayBoxes, RayInterval, WideNode, EMPTY, LEAF, WIDTH};
 use crate::math::{Aabb, Ray};
 use crate::shape::PrimHit;
 use crate::wide::simd::{F32s, Ms, Vec3s};
@@ -43,7 +43,7 @@ impl<P: Intersectable> PrimitiveSet for Vec<P> {
     }
 }
 
-/// One node of the binary tree the build makes (and the collapse into [`Node4`]s consumes):
+/// One node of the binary tree the build makes (and the collapse into [`WideNode`]s consumes):
 /// 32 bytes. Leaves have `count > 0` primitives and `offset` indexes their leaf
 /// record; interior nodes have their left child at `index + 1` and their right child at
 /// `offset`.
@@ -67,7 +67,7 @@ pub struct BvhStats {
 /// Bytes held by a [`Bvh`], per structure.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BvhMemory {
-    /// The four-wide tree that rays traverse.
+    /// The wide tree that rays traverse.
     pub wide_nodes: usize,
     /// Leaf records, SIMD packets of quads and triangles, indices of other shapes.
     pub leaves: usize,
@@ -81,23 +81,23 @@ impl BvhMemory {
 
 /// The hierarchy. Leaves name primitives by their index in the arrays given to [`Bvh::build`]
 /// (the caller's primitives need not be reordered). The binary tree the build makes is
-/// dropped after the collapse into four-wide nodes (it cost 16 bytes per triangle); its
+/// dropped after the collapse into wide nodes (it cost 16 bytes per triangle); its
 /// bounds and statistics are kept.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
-    /// The tree, four children per node, for traversal.
-    wide: Vec<Node4>,
+    /// The tree, eight children per node, for traversal.
+    wide: Vec<WideNode>,
     bounds: Aabb,
     /// `bounds` as a node's only child, for the group walk's first test.
-    outer: Node4,
+    outer: WideNode,
     stats: BvhStats,
     leaves: Leaves,
 }
 
-/// Traversal stack slots: a four-wide node visit pushes at most four children and pops one,
-/// so 3 per level of the four-wide tree, plus 1; depth ≤ 32 + log2(n) < 64 for any n below 2³²,
-/// so 3 · 64 + 1 slots always suffice.
-const STACK_SIZE: usize = 3 * 64 + 1;
+/// Traversal stack slots: a node visit pushes at most `WIDTH` children and pops one, so
+/// `WIDTH - 1` per level of the wide tree, plus 1; depth ≤ 32 + log2(n) < 64 for any n below 2³²,
+/// so `(WIDTH - 1) · 64 + 1` slots always suffice.
+const STACK_SIZE: usize = (WIDTH - 1) * 64 + 1;
 /// A walk's stack: room for any tree, with nothing written before it is used. Zeroed arrays
 /// were a `memset` call per walk (1.5 KB for the group walks, 3.3% of the teapot's time; 512
 /// bytes for a single ray on trees of depth 6 to 21), and smaller arrays for shallower trees
@@ -147,13 +147,13 @@ impl Bvh {
         leaves.shrink_to_fit();
         let mut wide = collapse(&nodes);
         wide.shrink_to_fit();
-        debug_assert!(3 * wide_depth(&wide) < STACK_SIZE, "a tree deeper than the walks' stack");
+        debug_assert!((WIDTH - 1) * wide_depth(&wide) < STACK_SIZE, "a tree deeper than the walks' stack");
         let bounds = nodes.first().map_or(Aabb::EMPTY, |n| n.bounds);
         let stats = binary_stats(&nodes);
-        Bvh { wide, bounds, outer: Node4::single(bounds), stats, leaves }
+        Bvh { wide, bounds, outer: WideNode::single(bounds), stats, leaves }
     }
 
-    /// True if both trees have the same four-wide nodes (boxes and children) and the same
+    /// True if both trees have the same wide nodes (boxes and children) and the same
     /// leaves (the same primitives in the same packets). Packet contents are derived from the
     /// primitives deterministically, so the whole structure is then the same.
     pub fn same_structure(&self, other: &Bvh) -> bool {
@@ -170,7 +170,7 @@ impl Bvh {
     /// Bytes held by the tree, per structure, from the vectors' capacities.
     pub fn memory(&self) -> BvhMemory {
         BvhMemory {
-            wide_nodes: self.wide.capacity() * std::mem::size_of::<Node4>(),
+            wide_nodes: self.wide.capacity() * std::mem::size_of::<WideNode>(),
             leaves: self.leaves.memory_bytes() + std::mem::size_of_val(self),
         }
     }
@@ -219,7 +219,7 @@ impl Bvh {
         let mut best = GroupHits::<N>::new(t_max);
         let lo = F32s::<N>::splat(t_min);
         // Rays that miss the box around the whole tree stop here: one slab test for the group
-        // where the root's visit makes four, for camera rays that pass beside the scene's
+        // where the root's visit makes eight, for camera rays that pass beside the scene's
         // geometry (most of the teapot's frame). They hit nothing: every primitive lies inside
         // its padded box (`Aabb::padded`), so inside this box, and a ray that meets a
         // primitive within `[t_min, t_max]` passes the slab test of every box around it, as
@@ -230,7 +230,7 @@ impl Bvh {
             return [None; N];
         }
         // A group whose rays go one way on every axis is bounded once (`RayInterval`), and each
-        // node's four boxes are first tested against the bounds: the children no ray can hit
+        // node's boxes are first tested against the bounds: the children no ray can hit
         // are dropped, and those every ray hits taken by all, without their per-ray tests
         // (most of a coherent group's walk). `far` holds the least and greatest `t_far` of the
         // walk's rays, lowered as they find hits.
@@ -255,14 +255,16 @@ impl Bvh {
             let n = &self.wide[node as usize];
             let (may_hit, all_hit, entries) = match &interval {
                 Some(iv) => n.interval_hits(iv, t_min, far.0, far.1),
-                None => (0b1111, 0, glam::Vec4::ZERO),
+                None => ((1 << WIDTH) - 1, 0, [0.0; WIDTH]),
             };
-            let mut kids = [(0u32, 0u32, 0f32); 4];
+            let mut kids = [(0u32, 0u32, 0f32); WIDTH];
             let mut k = 0;
             let mut leaf_tested = false;
-            for lane in 0..4 {
-                let child = n.children[lane];
-                if child == EMPTY || may_hit >> lane & 1 == 0 {
+            for (lane, &child) in n.children.iter().enumerate() {
+                if child == EMPTY {
+                    break;
+                }
+                if may_hit >> lane & 1 == 0 {
                     continue;
                 }
                 // The entry of the first ray that hits orders the children (or, for a child
@@ -272,7 +274,7 @@ impl Bvh {
                 // coherent rays that reach here; the nearest over the hit lanes was a scalar
                 // loop, about 6% of the teapot's time.
                 let (hit, entry) = if all_hit >> lane & 1 != 0 {
-                    (mask, lane_of(&entries, lane))
+                    (mask, entries[lane])
                 } else {
                     let (hit, near) = n.child_hit_lanes(lane, &rays, lo, best.t);
                     let hit = hit & mask;
@@ -348,9 +350,7 @@ impl Bvh {
         let mut node = start;
         loop {
             let n = &self.wide[node as usize];
-            let (mask, near) = n.hit(&rb, t_min, t_max);
-            let mut lanes = mask.bitmask();
-            let near = near.to_array();
+            let (mut lanes, near) = n.hit(&rb, t_min, t_max);
             // The nearest interior child is visited next straight from registers: through the
             // stack, the next node's index would wait on a store and its reload on every
             // visit. The others go onto the stack, insertion-sorted farthest first among
@@ -449,11 +449,13 @@ impl Bvh {
             let n = &self.wide[node as usize];
             let (may_hit, all_hit, _) = match &interval {
                 Some(iv) => n.interval_hits(iv, t_min, far.0, far.1),
-                None => (0b1111, 0, glam::Vec4::ZERO),
+                None => ((1 << WIDTH) - 1, 0, [0.0; WIDTH]),
             };
-            for lane in 0..4 {
-                let child = n.children[lane];
-                if child == EMPTY || may_hit >> lane & 1 == 0 {
+            for (lane, &child) in n.children.iter().enumerate() {
+                if child == EMPTY {
+                    break;
+                }
+                if may_hit >> lane & 1 == 0 {
                     continue;
                 }
                 let hit =
@@ -502,7 +504,7 @@ impl Bvh {
         loop {
             let n = &self.wide[node as usize];
             // Any hit ends the search, so the order of children does not matter.
-            let mut lanes = n.hit(&rb, t_min, t_max).0.bitmask();
+            let mut lanes = n.hit(&rb, t_min, t_max).0;
             // The last interior child hit is visited next straight from a register (as in
             // `closest_from`); the others are pushed. The visiting order is the same as pushing them
             // all and popping the last.
@@ -534,7 +536,7 @@ impl Bvh {
         self.bounds
     }
 
-    /// One line per four-wide node or leaf, indented by depth (for debugging and the docs).
+    /// One line per wide node or leaf, indented by depth (for debugging and the docs).
     pub fn dump(&self) -> String {
         let mut out = String::new();
         if !self.wide.is_empty() {

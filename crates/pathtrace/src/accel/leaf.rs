@@ -251,7 +251,7 @@ fn part<T>(v: &[T], start: u32, n: u8) -> &[T] {
     }
 }
 
-/// A leaf is named by a 31-bit reference (the four-wide nodes store it under their leaf tag).
+/// A leaf is named by a 31-bit reference (the wide nodes store it under their leaf tag).
 /// A leaf of one to eight triangle packets and nothing else — nearly every leaf of a mesh — is
 /// named directly by its packet range: `DIRECT | (packets − 1) << COUNT_SHIFT | first packet`,
 /// so it needs no leaf record (16 bytes, about 4 bytes per triangle) and traversal skips one

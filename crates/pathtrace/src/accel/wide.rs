@@ -1,8 +1,11 @@
-//! A four-wide BVH collapsed from the binary SAH tree (Dammertz et al., "Shallow Bounding Volume
-//! Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays", EGSR 2008): each node holds four
-//! child boxes in SIMD lanes and tests them with one slab test (Kay & Kajiya 1986).
+//! An eight-wide BVH collapsed from the binary SAH tree (Dammertz et al., "Shallow Bounding
+//! Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays", EGSR 2008; eight children
+//! as Embree's BVH8 on AVX CPUs): each node holds eight child boxes in two halves of four SIMD
+//! lanes and tests each half with one slab test (Kay & Kajiya 1986). Eight children halve the
+//! tree's depth against four: a walk is a chain of dependent node loads, and on trees larger
+//! than the caches fewer, larger visits are faster (docs/bvh.md, "Eight-wide nodes").
 
-use glam::{BVec4A, Vec4};
+use glam::Vec4;
 
 use super::bvh::Node;
 use super::lanes::lane_of;
@@ -14,32 +17,37 @@ pub(super) const LEAF: u32 = 1 << 31;
 /// Child slot without a child.
 pub(super) const EMPTY: u32 = u32::MAX;
 
-/// Four children: their boxes (min x, y, z, max x, y, z; one child per lane) and indices (an
-/// interior node, `LEAF | leaf reference` (see `leaf.rs`), or `EMPTY`). Empty lanes have the box `[+∞, +∞]`,
-/// whose slab distances all have one sign, so it is never hit. 112 bytes, aligned to 64 so
-/// that a node spans exactly two cache lines (at 16-byte alignment half of them touch three).
+/// Children per node.
+pub(super) const WIDTH: usize = 8;
+/// Four-lane halves of a node: children `4h .. 4h + 4` are half `h`.
+const HALVES: usize = WIDTH / 4;
+
+/// Eight children: their boxes (per half of four children: min x, y, z, max x, y, z; one child
+/// per lane) and indices (an interior node, `LEAF | leaf reference` (see `leaf.rs`), or
+/// `EMPTY`; the children fill the first slots, so the first empty slot ends them). Empty lanes have the box `[+∞, +∞]`, whose slab distances all have one sign, so it
+/// is never hit. 224 bytes, aligned to 64 so that a node spans exactly four cache lines (the
+/// 32 bytes of padding are counted in the memory figures of docs/bvh.md).
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
-pub(super) struct Node4 {
-    bounds: [Vec4; 6],
-    pub children: [u32; 4],
+pub(super) struct WideNode {
+    halves: [[Vec4; 6]; HALVES],
+    pub children: [u32; WIDTH],
 }
 
-// Two cache lines exactly, as `prefetch` asks for.
-const _: () = assert!(std::mem::size_of::<Node4>() == 128);
+const _: () = assert!(std::mem::size_of::<WideNode>() == 256);
 
 /// Asks the caches for node `index`'s two lines when it is pushed, ahead of its visit: a
 /// traversal is a chain of dependent loads, and a far child waits on the stack while the near
 /// one's subtree is searched, time in which its miss can be served. A hint only (it changes no
 /// value); out of range, nothing is asked.
 #[inline(always)]
-pub(super) fn prefetch(nodes: &[Node4], index: u32) {
+pub(super) fn prefetch(nodes: &[WideNode], index: u32) {
     if let Some(node) = nodes.get(index as usize) {
         crate::wide::prefetch::prefetch(std::slice::from_ref(node));
     }
 }
 
-/// A ray prepared for slab tests on four boxes.
+/// A ray prepared for slab tests on four boxes at a time.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct RayBox4 {
     origin: [Vec4; 3],
@@ -72,7 +80,7 @@ impl<const N: usize> RayBoxes<N> {
     }
 }
 
-/// A group of rays bounded together, for testing a node's four boxes against the whole group at
+/// A group of rays bounded together, for testing four of a node's boxes at a time against the whole group at
 /// once (Boulos et al., "Geometric and Arithmetic Culling Methods for Entire Ray Packets", 2006):
 /// per axis, the extremes of the rays' origins and of their reciprocal directions, which all have
 /// one sign. Made only for such groups (a pixel's camera rays, the shadow rays of nearby points
@@ -147,7 +155,7 @@ impl RayInterval {
     }
 
     /// Four boxes (`bounds`: min x, y, z, max x, y, z, one box per lane) against the rays
-    /// bounded by `self`, as [`Node4::interval_hits`] (which see) tests a node's children: the
+    /// bounded by `self`, as [`WideNode::interval_hits`] (which see) tests a node's children: the
     /// boxes some ray may hit, those every ray hits, and lower bounds of the entry distances.
     #[inline(always)]
     pub fn boxes_hit(&self, bounds: &[Vec4; 6], t_min: f32, far_lo: f32, far_hi: f32) -> (u32, u32, Vec4) {
@@ -169,28 +177,28 @@ impl RayInterval {
     }
 }
 
-impl Default for Node4 {
+impl Default for WideNode {
     /// No children.
     fn default() -> Self {
-        Node4 { bounds: [Vec4::INFINITY; 6], children: [EMPTY; 4] }
+        WideNode { halves: [[Vec4::INFINITY; 6]; HALVES], children: [EMPTY; WIDTH] }
     }
 }
 
-impl Node4 {
+impl WideNode {
     /// A node whose only child (lane 0, no index) has the box `b`: for testing rays against
     /// one box with the same operations as a child box.
-    pub fn single(b: crate::math::Aabb) -> Node4 {
-        let mut n = Node4::default();
+    pub fn single(b: crate::math::Aabb) -> WideNode {
+        let mut n = WideNode::default();
         for axis in 0..3 {
-            n.bounds[axis][0] = b.min[axis];
-            n.bounds[axis + 3][0] = b.max[axis];
+            n.halves[0][axis][0] = b.min[axis];
+            n.halves[0][axis + 3][0] = b.max[axis];
         }
         n
     }
 
     /// Bitmask of the rays whose slab test against child `lane`'s box passes within
     /// `[t_min, t_far]` (per ray), and their entry distances: per ray, the same operations as
-    /// [`Node4::hit`] (the lane type's `min`/`max` have the SIMD instructions' NaN rule too).
+    /// [`WideNode::hit`] (the lane type's `min`/`max` have the SIMD instructions' NaN rule too).
     #[inline(always)]
     pub fn child_hit_lanes<const N: usize>(
         &self,
@@ -201,19 +209,20 @@ impl Node4 {
     ) -> (u32, F32s<N>) {
         let mut near = t_min;
         let mut far = t_far;
+        let (bounds, lane) = (&self.halves[lane / 4], lane % 4);
         for axis in 0..3 {
-            let t0 = (F32s::splat(lane_of(&self.bounds[axis], lane)) - r.origin[axis]) * r.inv_dir[axis];
-            let t1 = (F32s::splat(lane_of(&self.bounds[axis + 3], lane)) - r.origin[axis]) * r.inv_dir[axis];
+            let t0 = (F32s::splat(lane_of(&bounds[axis], lane)) - r.origin[axis]) * r.inv_dir[axis];
+            let t1 = (F32s::splat(lane_of(&bounds[axis + 3], lane)) - r.origin[axis]) * r.inv_dir[axis];
             near = near.max(t0.min(t1));
             far = far.min(t0.max(t1));
         }
         (near.le(far).bitmask(), near)
     }
 
-    /// The group bounded by `iv` against the four boxes, each ray's range `[t_min, t_far]`
+    /// The group bounded by `iv` against the node's boxes, each ray's range `[t_min, t_far]`
     /// with `t_far` within `[far_lo, far_hi]`: the children some ray may hit, the children
     /// every ray hits (bitmasks, lane 0 lowest), and per child a lower bound of the rays' entry
-    /// distances. Both masks agree with [`Node4::child_hit_lanes`]'s own test of each ray: a
+    /// distances. Both masks agree with [`WideNode::child_hit_lanes`]'s own test of each ray: a
     /// child outside the first is missed by all of them, a child in the second hit by all.
     ///
     /// Why: the per-ray test computes, per axis, fl(fl(plane − o) · inv). Rounding is
@@ -226,28 +235,37 @@ impl Node4 {
     /// one: the per-ray test fails for all. If the greatest entry is at most the least exit
     /// (and `far_lo`), it passes for all.
     #[inline(always)]
-    pub fn interval_hits(&self, iv: &RayInterval, t_min: f32, far_lo: f32, far_hi: f32) -> (u32, u32, Vec4) {
-        iv.boxes_hit(&self.bounds, t_min, far_lo, far_hi)
+    pub fn interval_hits(&self, iv: &RayInterval, t_min: f32, far_lo: f32, far_hi: f32) -> (u32, u32, [f32; WIDTH]) {
+        let (mut may, mut all, mut entries) = (0, 0, [0.0; WIDTH]);
+        for (h, bounds) in self.halves.iter().enumerate() {
+            // Children fill the first slots: a half without any is skipped.
+            if h > 0 && self.children[4 * h] == EMPTY {
+                break;
+            }
+            let (m, a, e) = iv.boxes_hit(bounds, t_min, far_lo, far_hi);
+            may |= m << (4 * h);
+            all |= a << (4 * h);
+            entries[4 * h..4 * h + 4].copy_from_slice(&e.to_array());
+        }
+        (may, all, entries)
     }
 
     /// Same boxes (bit for bit) and children.
-    pub fn same_as(&self, o: &Node4) -> bool {
+    pub fn same_as(&self, o: &WideNode) -> bool {
         self.children == o.children
             && self
-                .bounds
+                .halves
                 .iter()
-                .zip(&o.bounds)
+                .flatten()
+                .zip(o.halves.iter().flatten())
                 .all(|(a, b)| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits))
     }
 
     /// The box of child `lane`.
     pub fn child_bounds(&self, lane: usize) -> crate::math::Aabb {
+        let (bounds, lane) = (&self.halves[lane / 4], lane % 4);
         let axis = |k: usize| {
-            glam::Vec3::new(
-                lane_of(&self.bounds[k], lane),
-                lane_of(&self.bounds[k + 1], lane),
-                lane_of(&self.bounds[k + 2], lane),
-            )
+            glam::Vec3::new(lane_of(&bounds[k], lane), lane_of(&bounds[k + 1], lane), lane_of(&bounds[k + 2], lane))
         };
         crate::math::Aabb { min: axis(0), max: axis(3) }
     }
@@ -255,72 +273,140 @@ impl Node4 {
     /// Lanes whose box overlaps the ray within `[t_min, t_max]`, and each lane's entry
     /// distance (meaningful where the lane hits).
     #[inline(always)]
-    pub fn hit(&self, r: &RayBox4, t_min: f32, t_max: f32) -> (BVec4A, Vec4) {
-        let mut near = Vec4::splat(t_min);
-        let mut far = Vec4::splat(t_max);
-        for axis in 0..3 {
-            let t0 = (self.bounds[axis] - r.origin[axis]) * r.inv_dir[axis];
-            let t1 = (self.bounds[axis + 3] - r.origin[axis]) * r.inv_dir[axis];
-            near = near.max(t0.min(t1));
-            far = far.min(t0.max(t1));
+    pub fn hit(&self, r: &RayBox4, t_min: f32, t_max: f32) -> (u32, [f32; WIDTH]) {
+        let (mut mask, mut entries) = (0, [0.0; WIDTH]);
+        for (h, bounds) in self.halves.iter().enumerate() {
+            if h > 0 && self.children[4 * h] == EMPTY {
+                break;
+            }
+            let mut near = Vec4::splat(t_min);
+            let mut far = Vec4::splat(t_max);
+            for axis in 0..3 {
+                let t0 = (bounds[axis] - r.origin[axis]) * r.inv_dir[axis];
+                let t1 = (bounds[axis + 3] - r.origin[axis]) * r.inv_dir[axis];
+                near = near.max(t0.min(t1));
+                far = far.min(t0.max(t1));
+            }
+            mask |= near.cmple(far).bitmask() << (4 * h);
+            entries[4 * h..4 * h + 4].copy_from_slice(&near.to_array());
         }
-        (near.cmple(far), near)
+        (mask, entries)
     }
 }
 
-/// Collapses the binary tree `nodes` (root at 0) into four-wide nodes (root at 0).
-pub(super) fn collapse(nodes: &[Node]) -> Vec<Node4> {
+/// Collapses the binary tree `nodes` (root at 0) into wide nodes (root at 0).
+pub(super) fn collapse(nodes: &[Node]) -> Vec<WideNode> {
     let mut out = Vec::new();
     if let Some(root) = nodes.first() {
         if root.count > 0 {
-            out.push(node4(nodes, &[0], |_| LEAF | root.offset));
+            out.push(wide_node(nodes, &[0], |_| LEAF | root.offset));
         } else {
-            collapse_node(nodes, 0, &mut out);
+            collapse_node(nodes, &slot_plans(nodes), 0, &mut out);
         }
     }
     out
 }
 
-fn node4(nodes: &[Node], kids: &[usize], mut child: impl FnMut(usize) -> u32) -> Node4 {
-    let mut n = Node4 { bounds: [Vec4::INFINITY; 6], children: [EMPTY; 4] };
+fn wide_node(nodes: &[Node], kids: &[usize], mut child: impl FnMut(usize) -> u32) -> WideNode {
+    let mut n = WideNode { halves: [[Vec4::INFINITY; 6]; HALVES], children: [EMPTY; WIDTH] };
     for (lane, &k) in kids.iter().enumerate() {
         let b = nodes[k].bounds;
+        let half = &mut n.halves[lane / 4];
         for axis in 0..3 {
-            n.bounds[axis][lane] = b.min[axis];
-            n.bounds[axis + 3][lane] = b.max[axis];
+            half[axis][lane % 4] = b.min[axis];
+            half[axis + 3][lane % 4] = b.max[axis];
         }
         n.children[lane] = child(k);
     }
     n
 }
 
-/// Gathers up to four descendants of interior node `index` by repeatedly opening the interior
-/// child with the largest surface area (the most likely to be hit), then recurses.
-fn collapse_node(nodes: &[Node], index: usize, out: &mut Vec<Node4>) -> u32 {
-    let children = |i: usize| [i + 1, nodes[i].offset as usize];
-    let mut kids: Vec<usize> = children(index).to_vec();
-    while kids.len() < 4 {
-        let open = kids
-            .iter()
-            .enumerate()
-            .filter(|(_, &k)| nodes[k].count == 0)
-            .max_by(|(_, &a), (_, &b)| nodes[a].bounds.surface_area().total_cmp(&nodes[b].bounds.surface_area()))
-            .map(|(pos, _)| pos);
-        let Some(pos) = open else { break };
-        let k = kids.remove(pos);
-        kids.extend(children(k));
+/// How a binary node's subtree is best represented by at most `i` slots of a wide node
+/// (`i = 1 ..= WIDTH`, index `i - 1`): the least total surface area of the wide nodes it then
+/// needs, and the split that gives it (0: the subtree takes one slot, as a leaf or as its own
+/// wide node; `k > 0`: it is opened, its left child's subtree getting at most `k` slots and its
+/// right child's the rest).
+#[derive(Clone, Copy)]
+struct SlotPlan {
+    cost: [f64; WIDTH],
+    split: [u8; WIDTH],
+    /// For an interior node made into a wide node: the split of its children over `WIDTH` slots.
+    own: u8,
+}
+
+/// The collapse that minimises the surface area heuristic's cost of the wide nodes: a wide
+/// node is visited by a random ray in proportion to its surface area (the leaves are fixed by
+/// the binary build, so their cost is the same however the tree is collapsed), and the least
+/// sum of the wide nodes' areas is found by dynamic programming over the binary tree, bottom
+/// up (Ylitie, Karras & Laine, "Efficient Incoherent Ray Traversal on GPUs Through Compressed
+/// Wide BVHs", HPG 2017, §4.1). Greedily opening the largest child left many nodes half empty
+/// (a third more node bytes per triangle); an empty slot costs nothing here, but a node made
+/// for a small subtree costs its area.
+fn slot_plans(nodes: &[Node]) -> Vec<SlotPlan> {
+    let mut plans = vec![SlotPlan { cost: [0.0; WIDTH], split: [0; WIDTH], own: 0 }; nodes.len()];
+    // Children follow their parent in the array, so a reverse pass sees them first.
+    for index in (0..nodes.len()).rev() {
+        let node = &nodes[index];
+        if node.count > 0 {
+            continue;
+        }
+        let (left, right) = (&plans[index + 1], &plans[node.offset as usize]);
+        // Least cost of the two children's subtrees in at most `i` slots together, and how
+        // many of them the left one takes.
+        let mut spread = [(f64::INFINITY, 0u8); WIDTH];
+        for (i, best) in spread.iter_mut().enumerate().skip(1) {
+            for k in 1..=i {
+                let c = left.cost[k - 1] + right.cost[i - k];
+                if c < best.0 {
+                    *best = (c, k as u8);
+                }
+            }
+        }
+        let (opened, own) = spread[WIDTH - 1];
+        let alone = f64::from(node.bounds.surface_area()) + opened;
+        let plan = &mut plans[index];
+        plan.own = own;
+        plan.cost[0] = alone;
+        for (i, &(c, k)) in spread.iter().enumerate().skip(1) {
+            (plan.cost[i], plan.split[i]) = if c < alone { (c, k) } else { (alone, 0) };
+        }
     }
+    plans
+}
+
+/// The binary nodes that fill the slots of binary node `index` given `slots` slots by `plans`.
+fn slot_nodes(nodes: &[Node], plans: &[SlotPlan], index: usize, slots: usize, out: &mut Vec<usize>) {
+    match plans[index].split[slots - 1] {
+        0 => out.push(index),
+        k => {
+            slot_nodes(nodes, plans, index + 1, k as usize, out);
+            slot_nodes(nodes, plans, nodes[index].offset as usize, slots - k as usize, out);
+        }
+    }
+}
+
+/// Makes interior binary node `index` a wide node (and its interior slots, recursively).
+fn collapse_node(nodes: &[Node], plans: &[SlotPlan], index: usize, out: &mut Vec<WideNode>) -> u32 {
+    let own = plans[index].own as usize;
+    let mut kids = Vec::with_capacity(WIDTH);
+    slot_nodes(nodes, plans, index + 1, own, &mut kids);
+    slot_nodes(nodes, plans, nodes[index].offset as usize, WIDTH - own, &mut kids);
     let me = out.len();
-    out.push(Node4 { bounds: [Vec4::INFINITY; 6], children: [EMPTY; 4] });
-    let node =
-        node4(nodes, &kids, |k| if nodes[k].count > 0 { LEAF | nodes[k].offset } else { collapse_node(nodes, k, out) });
+    out.push(WideNode::default());
+    let node = wide_node(nodes, &kids, |k| {
+        if nodes[k].count > 0 {
+            LEAF | nodes[k].offset
+        } else {
+            collapse_node(nodes, plans, k, out)
+        }
+    });
     out[me] = node;
     me as u32
 }
 
-/// Levels of four-wide nodes on the longest root-to-leaf path (0 for an empty tree).
-pub(super) fn wide_depth(nodes: &[Node4]) -> usize {
-    fn depth(nodes: &[Node4], i: u32) -> usize {
+/// Levels of wide nodes on the longest root-to-leaf path (0 for an empty tree).
+pub(super) fn wide_depth(nodes: &[WideNode]) -> usize {
+    fn depth(nodes: &[WideNode], i: u32) -> usize {
         1 + nodes[i as usize].children.iter().filter(|&&c| c & LEAF == 0).map(|&c| depth(nodes, c)).max().unwrap_or(0)
     }
     if nodes.is_empty() {
@@ -367,16 +453,18 @@ mod tests {
             let t_min = F32s::<N>::splat(0.0);
             let (least, bound) = (t_far.min_over(lanes), t_far.max_over(lanes));
             for _ in 0..8 {
-                let mut node = Node4::default();
-                for lane in 0..4 {
+                let mut node = WideNode::default();
+                for lane in 0..WIDTH {
+                    // Any child index: a half without children is not tested.
+                    node.children[lane] = lane as u32;
                     let (c, h) = (point(&mut rng, 8.0), point(&mut rng, 1.5).abs());
                     for axis in 0..3 {
-                        node.bounds[axis][lane] = c[axis] - h[axis];
-                        node.bounds[axis + 3][lane] = c[axis] + h[axis];
+                        node.halves[lane / 4][axis][lane % 4] = c[axis] - h[axis];
+                        node.halves[lane / 4][axis + 3][lane % 4] = c[axis] + h[axis];
                     }
                 }
                 let (may, all, _) = node.interval_hits(&iv, 0.0, least, bound);
-                for lane in 0..4 {
+                for lane in 0..WIDTH {
                     let hits = node.child_hit_lanes(lane, &rays, t_min, t_far).0 & lanes.bitmask();
                     if may >> lane & 1 == 0 {
                         assert_eq!(hits, 0, "group {g}: a dropped box is hit by rays {hits:#x}");
@@ -394,5 +482,99 @@ mod tests {
         assert!(groups > 1500, "{groups} groups went one way");
         assert!(dropped * 10 > missed_by_all * 9, "dropped {dropped} of {missed_by_all} boxes all rays miss");
         assert!(kept_whole * 2 > hit_by_all, "{kept_whole} of {hit_by_all} boxes every ray hits said so");
+    }
+
+    /// A random binary tree of `leaves` leaves in the build's layout (depth first, the left
+    /// child next, the right child at `offset`), each node with a random box.
+    fn random_binary_tree(rng: &mut Pcg32, leaves: usize, out: &mut Vec<Node>) {
+        let c = point(rng, 4.0);
+        let h = point(rng, 2.0).abs();
+        let bounds = crate::math::Aabb { min: c - h, max: c + h };
+        let me = out.len();
+        out.push(Node { bounds, offset: me as u32, count: 1, axis: 0 });
+        if leaves > 1 {
+            let left = 1 + rng.next_u32() as usize % (leaves - 1);
+            random_binary_tree(rng, left, out);
+            out[me].offset = out.len() as u32;
+            out[me].count = 0;
+            random_binary_tree(rng, leaves - left, out);
+        }
+    }
+
+    /// Every way to cut the subtree of `index` into slots: the lists of its nodes that hold all
+    /// of its leaves exactly once (of at most `limit` nodes).
+    fn cuts(nodes: &[Node], index: usize, limit: usize) -> Vec<Vec<usize>> {
+        let mut all = vec![vec![index]];
+        if nodes[index].count == 0 {
+            for l in cuts(nodes, index + 1, limit) {
+                for r in cuts(nodes, nodes[index].offset as usize, limit) {
+                    if l.len() + r.len() <= limit {
+                        all.push([l.clone(), r].concat());
+                    }
+                }
+            }
+        }
+        all
+    }
+
+    /// The least total area of wide nodes for interior node `index` made a wide node, by trying
+    /// every cut of its children into at most `WIDTH` slots.
+    fn least_area_by_search(nodes: &[Node], index: usize) -> f64 {
+        let area = f64::from(nodes[index].bounds.surface_area());
+        let mut best = f64::INFINITY;
+        for l in cuts(nodes, index + 1, WIDTH) {
+            for r in cuts(nodes, nodes[index].offset as usize, WIDTH) {
+                if l.len() + r.len() > WIDTH {
+                    continue;
+                }
+                let below: f64 =
+                    l.iter().chain(&r).filter(|&&k| nodes[k].count == 0).map(|&k| least_area_by_search(nodes, k)).sum();
+                best = best.min(below);
+            }
+        }
+        area + best
+    }
+
+    /// The collapse's plan is the least total node area there is (checked against a search of
+    /// every collapse on small random trees), and the wide nodes it makes hold every leaf once,
+    /// with that total area.
+    #[test]
+    fn the_collapse_has_the_least_total_node_area() {
+        let mut rng = Pcg32::new(7, 3);
+        for trial in 0..200 {
+            let leaves = 2 + trial % 13;
+            let mut nodes = Vec::new();
+            random_binary_tree(&mut rng, leaves, &mut nodes);
+            let plan = slot_plans(&nodes)[0].cost[0];
+            let search = least_area_by_search(&nodes, 0);
+            assert!((plan - search).abs() <= 1e-9 * search, "trial {trial}: plan {plan}, search {search}");
+            let wide = collapse(&nodes);
+            let mut seen: Vec<u32> = wide
+                .iter()
+                .flat_map(|n| n.children.iter().filter(|&&c| c != EMPTY && c & LEAF != 0).map(|&c| c & !LEAF))
+                .collect();
+            seen.sort_unstable();
+            let mut expected: Vec<u32> = nodes.iter().filter(|n| n.count > 0).map(|n| n.offset).collect();
+            expected.sort_unstable();
+            assert_eq!(seen, expected, "trial {trial}: leaves");
+            // Children fill the first slots, as the walks assume.
+            for n in &wide {
+                let used = n.children.iter().take_while(|&&c| c != EMPTY).count();
+                assert!(used >= 2 && n.children[used..].iter().all(|&c| c == EMPTY), "trial {trial}");
+            }
+            // The root is the binary root, each other wide node the box of its binary node.
+            let area: f64 = (0..wide.len())
+                .map(|i| {
+                    if i == 0 {
+                        f64::from(nodes[0].bounds.surface_area())
+                    } else {
+                        let parent = wide.iter().find(|p| p.children.contains(&(i as u32))).unwrap();
+                        let lane = parent.children.iter().position(|&c| c == i as u32).unwrap();
+                        f64::from(parent.child_bounds(lane).surface_area())
+                    }
+                })
+                .sum();
+            assert!((area - plan).abs() <= 1e-4 * plan, "trial {trial}: nodes' area {area}, plan {plan}");
+        }
     }
 }
