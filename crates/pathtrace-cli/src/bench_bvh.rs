@@ -34,7 +34,7 @@ pub const METRICS: &[Metric] = &[
     m("bytes_per_tri", "mesh + BVH bytes per triangle"),
     m("mesh_bytes_per_tri", "compact mesh (shared vertices + indices) bytes per triangle"),
     m("bvh_bytes_per_tri", "BVH bytes per triangle"),
-    m("wide_node_bytes_per_tri", "BVH four-wide nodes bytes per triangle"),
+    m("wide_node_bytes_per_tri", "BVH eight-wide nodes bytes per triangle"),
     m("leaf_bytes_per_tri", "BVH leaves and packets bytes per triangle"),
     m("sah_incoherent_closest_1t", "SAH, incoherent closest hit, 1 thread (Mrays/s)"),
     m("sah_incoherent_closest_mt", "SAH, incoherent closest hit, all threads (Mrays/s)"),

@@ -1,7 +1,7 @@
 //! Brute-force intersection of a group of rays with every polygon and sphere of a small scene.
 //!
 //! Why no tree: for a few dozen primitives a BVH visit costs more than the tests it saves (the
-//! Cornell box's 19 quads sit under one or two four-wide nodes anyway), and testing one
+//! Cornell box's 19 quads sit under one or two wide nodes anyway), and testing one
 //! primitive against 8 or 16 rays at once keeps every SIMD lane busy on incoherent rays, which
 //! packet traversal of a tree cannot. Scenes above [`MAX_FLAT_POLYGONS`] primitives use the BVH
 //! one lane at a time instead.
