@@ -24,9 +24,10 @@ const HALVES: usize = WIDTH / 4;
 
 /// Eight children: their boxes (per half of four children: min x, y, z, max x, y, z; one child
 /// per lane) and indices (an interior node, `LEAF | leaf reference` (see `leaf.rs`), or
-/// `EMPTY`; the children fill the first slots, so the first empty slot ends them). Empty lanes have the box `[+∞, +∞]`, whose slab distances all have one sign, so it
-/// is never hit. 224 bytes, aligned to 64 so that a node spans exactly four cache lines (the
-/// 32 bytes of padding are counted in the memory figures of docs/bvh.md).
+/// `EMPTY`; the children fill the first slots, so the first empty slot ends them). Empty lanes
+/// have the box `[+∞, +∞]`, whose slab distances all have one sign, so it is never hit. 224
+/// bytes, aligned to 64 so that a node spans exactly four cache lines (the 32 bytes of padding
+/// are counted in the memory figures of docs/bvh.md).
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
 pub(super) struct WideNode {
@@ -36,7 +37,7 @@ pub(super) struct WideNode {
 
 const _: () = assert!(std::mem::size_of::<WideNode>() == 256);
 
-/// Asks the caches for node `index`'s two lines when it is pushed, ahead of its visit: a
+/// Asks the caches for node `index`'s four lines when it is pushed, ahead of its visit: a
 /// traversal is a chain of dependent loads, and a far child waits on the stack while the near
 /// one's subtree is searched, time in which its miss can be served. A hint only (it changes no
 /// value); out of range, nothing is asked.
@@ -80,11 +81,11 @@ impl<const N: usize> RayBoxes<N> {
     }
 }
 
-/// A group of rays bounded together, for testing four of a node's boxes at a time against the whole group at
-/// once (Boulos et al., "Geometric and Arithmetic Culling Methods for Entire Ray Packets", 2006):
-/// per axis, the extremes of the rays' origins and of their reciprocal directions, which all have
-/// one sign. Made only for such groups (a pixel's camera rays, the shadow rays of nearby points
-/// to one light); a group whose directions' signs differ on some axis gets none.
+/// A group of rays bounded together, for testing four of a node's boxes at a time against the whole
+/// group at once (Boulos et al., "Geometric and Arithmetic Culling Methods for Entire Ray Packets",
+/// 2006): per axis, the extremes of the rays' origins and of their reciprocal directions, which all
+/// have one sign. Made only for such groups (a pixel's camera rays, the shadow rays of nearby
+/// points to one light); a group whose directions' signs differ on some axis gets none.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct RayInterval {
     /// Per axis: which of a box's planes the rays enter through (`axis` for the min plane,
