@@ -11,10 +11,13 @@ use super::group_hits::GroupHits;
 use super::lanes::RayX4;
 use super::leaf::{GroupBounds, Leaves, Packable};
 use super::subtree::build_tree;
-use super::wide::{collapse, prefetch, wide_depth, RayBox4, RayBoxes, RayInterval, WideNode, EMPTY, LEAF, WIDTH};
+use super::wide::{
+    collapse, prefetch, wide_depth, BoxLanes, RayBox, RayBoxes, RayInterval, WideNode, EMPTY, LEAF, WIDTH,
+};
 use crate::math::{Aabb, Ray};
 use crate::shape::PrimHit;
-use crate::wide::simd::{F32s, Ms, Vec3s};
+use crate::wide::simd::{F32s, Ms, Vec3s, LANES_256};
+use glam::Vec4;
 
 /// Anything the BVH can hold.
 pub trait Intersectable {
@@ -119,6 +122,14 @@ const SINGLE_RAY_BELOW: u32 = 6;
 /// same as 6.
 const RAY_LANES_FROM: u32 = 6;
 
+/// Whether a group walk of `lanes` lanes runs in code compiled for AVX: groups wider than the
+/// portable build's 8 lanes exist only inside the render loops compiled for AVX2 or AVX-512
+/// (`render/tile.rs`). Such walks test a node's eight boxes in one 256-bit vector, others
+/// four at a time (see [`BoxLanes`]).
+const fn compiled_for_avx(lanes: usize) -> bool {
+    lanes > LANES_256
+}
+
 impl Bvh {
     /// Builds over the given primitive bounds with the production options (binned SAH, on
     /// rayon for large inputs); `kinds[i]` says whether primitive `i` goes into a SIMD packet.
@@ -187,7 +198,7 @@ impl Bvh {
         if self.wide.is_empty() {
             return None;
         }
-        self.closest_from(0, prims, ray, t_min, t_max, None)
+        self.closest_from::<P, Vec4>(0, prims, ray, t_min, t_max, None)
     }
 
     /// Closest hits of the rays of `active` (lane `i`: `origin[i] + t·dir[i]`, `t` in
@@ -245,7 +256,15 @@ impl Bvh {
                 while lanes != 0 {
                     let i = lanes.trailing_zeros() as usize;
                     lanes &= lanes - 1;
-                    best.put(i, self.closest_from(node, prims, &ray(i), t_min, best.t.0[i], best.get(i)));
+                    let (r, t_far, hit) = (ray(i), best.t.0[i], best.get(i));
+                    best.put(
+                        i,
+                        if compiled_for_avx(N) {
+                            self.closest_from::<P, F32s<WIDTH>>(node, prims, &r, t_min, t_far, hit)
+                        } else {
+                            self.closest_from::<P, Vec4>(node, prims, &r, t_min, t_far, hit)
+                        },
+                    );
                 }
                 if interval.is_some() {
                     far = best.t_range(walk);
@@ -254,7 +273,8 @@ impl Bvh {
             }
             let n = &self.wide[node as usize];
             let (may_hit, all_hit, entries) = match &interval {
-                Some(iv) => n.interval_hits(iv, t_min, far.0, far.1),
+                Some(iv) if compiled_for_avx(N) => n.interval_hits::<F32s<WIDTH>>(iv, t_min, far.0, far.1),
+                Some(iv) => n.interval_hits::<Vec4>(iv, t_min, far.0, far.1),
                 None => ((1 << WIDTH) - 1, 0, [0.0; WIDTH]),
             };
             let mut kids = [(0u32, 0u32, 0f32); WIDTH];
@@ -335,7 +355,7 @@ impl Bvh {
     /// is visited next and a popped child that starts beyond the closest hit so far is skipped
     /// without loading it.
     #[inline(always)]
-    fn closest_from<P: PrimitiveSet + ?Sized>(
+    fn closest_from<P: PrimitiveSet + ?Sized, L: BoxLanes>(
         &self,
         start: u32,
         prims: &P,
@@ -344,7 +364,7 @@ impl Bvh {
         mut t_max: f32,
         mut best: Option<(PrimHit, u32)>,
     ) -> Option<(PrimHit, u32)> {
-        let rb = RayBox4::new(ray);
+        let rb = RayBox::<L>::new(ray);
         let rx4 = RayX4::new(ray);
         let mut stack = WalkStack::<(u32, f32)>::new();
         let mut node = start;
@@ -404,7 +424,7 @@ impl Bvh {
         if self.wide.is_empty() {
             return false;
         }
-        self.occluded_from(0, prims, ray, t_min, t_max)
+        self.occluded_from::<P, Vec4>(0, prims, ray, t_min, t_max)
     }
 
     /// [`Bvh::occluded`] for the rays of `active` (lane `i`: `origin[i] + t·dir[i]`, `t` in
@@ -440,7 +460,12 @@ impl Bvh {
                 while lanes != 0 {
                     let i = lanes.trailing_zeros() as usize;
                     lanes &= lanes - 1;
-                    if self.occluded_from(node, prims, &ray(i), t_min, t_max.0[i]) {
+                    let blocks = if compiled_for_avx(N) {
+                        self.occluded_from::<P, F32s<WIDTH>>(node, prims, &ray(i), t_min, t_max.0[i])
+                    } else {
+                        self.occluded_from::<P, Vec4>(node, prims, &ray(i), t_min, t_max.0[i])
+                    };
+                    if blocks {
                         blocked |= 1 << i;
                     }
                 }
@@ -448,7 +473,8 @@ impl Bvh {
             }
             let n = &self.wide[node as usize];
             let (may_hit, all_hit, _) = match &interval {
-                Some(iv) => n.interval_hits(iv, t_min, far.0, far.1),
+                Some(iv) if compiled_for_avx(N) => n.interval_hits::<F32s<WIDTH>>(iv, t_min, far.0, far.1),
+                Some(iv) => n.interval_hits::<Vec4>(iv, t_min, far.0, far.1),
                 None => ((1 << WIDTH) - 1, 0, [0.0; WIDTH]),
             };
             for (lane, &child) in n.children.iter().enumerate() {
@@ -489,7 +515,7 @@ impl Bvh {
 
     /// [`Bvh::occluded`] in the subtree of wide node `start`.
     #[inline(always)]
-    fn occluded_from<P: PrimitiveSet + ?Sized>(
+    fn occluded_from<P: PrimitiveSet + ?Sized, L: BoxLanes>(
         &self,
         start: u32,
         prims: &P,
@@ -497,7 +523,7 @@ impl Bvh {
         t_min: f32,
         t_max: f32,
     ) -> bool {
-        let rb = RayBox4::new(ray);
+        let rb = RayBox::<L>::new(ray);
         let rx4 = RayX4::new(ray);
         let mut stack = WalkStack::<u32>::new();
         let mut node = start;

@@ -23,6 +23,10 @@ pub(super) trait Lane:
     fn le(self, o: Self) -> Self::Mask;
     fn ge(self, o: Self) -> Self::Mask;
     fn gt(self, o: Self) -> Self::Mask;
+    /// `a < b ? a : b` per lane, and `a > b ? a : b` (the SIMD instructions' rule: with a NaN,
+    /// `b`).
+    fn min(self, o: Self) -> Self;
+    fn max(self, o: Self) -> Self;
     /// Lanes that are finite and not zero.
     fn finite_nonzero(self) -> Self::Mask;
 }
@@ -48,6 +52,14 @@ impl Lane for Vec4 {
     #[inline(always)]
     fn gt(self, o: Self) -> BVec4A {
         self.cmpgt(o)
+    }
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        Vec4::min(self, o)
+    }
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        Vec4::max(self, o)
     }
     #[inline(always)]
     fn finite_nonzero(self) -> BVec4A {
@@ -76,6 +88,14 @@ impl<const N: usize> Lane for F32s<N> {
     #[inline(always)]
     fn gt(self, o: Self) -> Ms<N> {
         F32s::gt(self, o)
+    }
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        F32s::min(self, o)
+    }
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        F32s::max(self, o)
     }
     /// As an integer range test on the magnitude's bits, `1 ≤ |x| ≤ f32::MAX`: written as two
     /// float tests, LLVM merges them into a floating-point class test that it then runs lane

@@ -81,7 +81,7 @@ impl Packet for Tri4 {
     /// hits fails every ray's slab test ([`RayInterval::boxes_hit`]).
     #[inline(always)]
     fn may_hit(&self, group: &GroupBounds) -> u32 {
-        group.rays.boxes_hit(&self.padded_bounds(), group.t_min, group.far.0, group.far.1).0
+        group.rays.boxes_hit(&self.padded_bounds(), group.t_min, group.far.0, group.far.1).0.bitmask()
     }
 }
 

@@ -1,14 +1,16 @@
 //! An eight-wide BVH collapsed from the binary SAH tree (Dammertz et al., "Shallow Bounding
 //! Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays", EGSR 2008; eight children
-//! as Embree's BVH8 on AVX CPUs): each node holds eight child boxes in two halves of four SIMD
-//! lanes and tests each half with one slab test (Kay & Kajiya 1986). Eight children halve the
+//! as Embree's BVH8 on AVX CPUs): each node holds its eight child boxes one per SIMD lane and
+//! tests them with the slab test (Kay & Kajiya 1986), all eight in 256-bit vectors where the
+//! caller is compiled for AVX (the render loops' group walks), four at a time elsewhere (see
+//! [`BoxLanes`]). Eight children halve the
 //! tree's depth against four: a walk is a chain of dependent node loads, and on trees larger
 //! than the caches fewer, larger visits are faster (docs/bvh.md, "Eight-wide nodes").
 
 use glam::Vec4;
 
 use super::bvh::Node;
-use super::lanes::lane_of;
+use super::lanes::Lane;
 use crate::math::Ray;
 use crate::wide::simd::{F32s, Ms, Vec3s};
 
@@ -19,19 +21,17 @@ pub(super) const EMPTY: u32 = u32::MAX;
 
 /// Children per node.
 pub(super) const WIDTH: usize = 8;
-/// Four-lane halves of a node: children `4h .. 4h + 4` are half `h`.
-const HALVES: usize = WIDTH / 4;
-
-/// Eight children: their boxes (per half of four children: min x, y, z, max x, y, z; one child
-/// per lane) and indices (an interior node, `LEAF | leaf reference` (see `leaf.rs`), or
+/// Eight children: their boxes (per plane, min x, y, z, max x, y, z, one child per lane) and
+/// indices (an interior node, `LEAF | leaf reference` (see `leaf.rs`), or
 /// `EMPTY`; the children fill the first slots, so the first empty slot ends them). Empty lanes
-/// have the box `[+∞, +∞]`, whose slab distances all have one sign, so it is never hit. 224
-/// bytes, aligned to 64 so that a node spans exactly four cache lines (the 32 bytes of padding
+/// have the box `[+∞, +∞]`, whose slab distances are all +∞ or all −∞: never hit within a
+/// finite range, but "hit" at +∞ by a ray with no `t_max`, so the walks check the slot's
+/// index, not only the test's bit. 224 bytes, aligned to 64 so that a node spans exactly four cache lines (the 32 bytes of padding
 /// are counted in the memory figures of docs/bvh.md).
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
 pub(super) struct WideNode {
-    halves: [[Vec4; 6]; HALVES],
+    planes: [[f32; WIDTH]; 6],
     pub children: [u32; WIDTH],
 }
 
@@ -48,20 +48,68 @@ pub(super) fn prefetch(nodes: &[WideNode], index: u32) {
     }
 }
 
-/// A ray prepared for slab tests on four boxes at a time.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct RayBox4 {
-    origin: [Vec4; 3],
-    inv_dir: [Vec4; 3],
+/// The lanes a node's boxes are tested in: `F32s<8>`, all eight boxes at once, for code
+/// compiled for AVX; `Vec4`, four at a time, for code that is not (there, LLVM made the
+/// eight-lane form's `far` a shuffle through the stack that stalled on every visit: 1.14–1.21
+/// against 1.43–1.90 M incoherent rays/s in `bench bvh`, docs/benchmarks.md, "Eight boxes in
+/// one test").
+pub(super) trait BoxLanes: Lane {
+    /// Boxes per test.
+    const COUNT: usize;
+    /// `COUNT` values from `v`.
+    fn load(v: &[f32]) -> Self;
+    /// `COUNT` values into `out`.
+    fn store(self, out: &mut [f32]);
+    /// One bit per lane, lane 0 lowest.
+    fn bits(m: Self::Mask) -> u32;
 }
 
-impl RayBox4 {
+impl BoxLanes for Vec4 {
+    const COUNT: usize = 4;
+    #[inline(always)]
+    fn load(v: &[f32]) -> Self {
+        Vec4::from_slice(v)
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        self.write_to_slice(out);
+    }
+    #[inline(always)]
+    fn bits(m: glam::BVec4A) -> u32 {
+        m.bitmask()
+    }
+}
+
+impl BoxLanes for F32s<WIDTH> {
+    const COUNT: usize = WIDTH;
+    #[inline(always)]
+    fn load(v: &[f32]) -> Self {
+        F32s(std::array::from_fn(|i| v[i]))
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        out.copy_from_slice(&self.0);
+    }
+    #[inline(always)]
+    fn bits(m: Ms<WIDTH>) -> u32 {
+        m.bitmask()
+    }
+}
+
+/// A ray prepared for slab tests on boxes in lanes `L`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RayBox<L> {
+    origin: [L; 3],
+    inv_dir: [L; 3],
+}
+
+impl<L: BoxLanes> RayBox<L> {
     #[inline(always)]
     pub fn new(ray: &Ray) -> Self {
         let inv = ray.dir.recip();
         Self {
-            origin: [ray.origin.x, ray.origin.y, ray.origin.z].map(Vec4::splat),
-            inv_dir: [inv.x, inv.y, inv.z].map(Vec4::splat),
+            origin: [ray.origin.x, ray.origin.y, ray.origin.z].map(L::splat),
+            inv_dir: [inv.x, inv.y, inv.z].map(L::splat),
         }
     }
 }
@@ -74,7 +122,7 @@ pub(super) struct RayBoxes<const N: usize> {
 }
 
 impl<const N: usize> RayBoxes<N> {
-    /// The same reciprocals as [`RayBox4::new`] takes per ray.
+    /// The same reciprocals as [`RayBox::new`] takes per ray.
     #[inline(always)]
     pub fn new(origin: &Vec3s<N>, dir: &Vec3s<N>) -> Self {
         Self { origin: [origin.x, origin.y, origin.z], inv_dir: [dir.x, dir.y, dir.z].map(|d| F32s::ONE / d) }
@@ -95,11 +143,11 @@ pub(super) struct RayInterval {
     /// Per axis: the origin bound that gives the least entry distance (the greatest origin for
     /// rays going up the axis, the least for rays going down), and the one that gives the
     /// greatest exit distance.
-    entry_origin: [Vec4; 3],
-    exit_origin: [Vec4; 3],
+    entry_origin: [f32; 3],
+    exit_origin: [f32; 3],
     /// Per axis: the least and greatest reciprocal direction.
-    inv_lo: [Vec4; 3],
-    inv_hi: [Vec4; 3],
+    inv_lo: [f32; 3],
+    inv_hi: [f32; 3],
 }
 
 impl RayInterval {
@@ -127,10 +175,10 @@ impl RayInterval {
         let mut iv = RayInterval {
             entry_plane: [0; 3],
             exit_plane: [0; 3],
-            entry_origin: [Vec4::ZERO; 3],
-            exit_origin: [Vec4::ZERO; 3],
-            inv_lo: [Vec4::ZERO; 3],
-            inv_hi: [Vec4::ZERO; 3],
+            entry_origin: [0.0; 3],
+            exit_origin: [0.0; 3],
+            inv_lo: [0.0; 3],
+            inv_hi: [0.0; 3],
         };
         for axis in 0..3 {
             let (lo, hi) = (r.inv_dir[axis].min_over(lanes), r.inv_dir[axis].max_over(lanes));
@@ -147,41 +195,43 @@ impl RayInterval {
             // plane, least for the least origin. The exit the other way round.
             iv.entry_plane[axis] = if up { axis } else { axis + 3 };
             iv.exit_plane[axis] = if up { axis + 3 } else { axis };
-            iv.entry_origin[axis] = Vec4::splat(if up { o_hi } else { o_lo });
-            iv.exit_origin[axis] = Vec4::splat(if up { o_lo } else { o_hi });
-            iv.inv_lo[axis] = Vec4::splat(lo);
-            iv.inv_hi[axis] = Vec4::splat(hi);
+            iv.entry_origin[axis] = if up { o_hi } else { o_lo };
+            iv.exit_origin[axis] = if up { o_lo } else { o_hi };
+            iv.inv_lo[axis] = lo;
+            iv.inv_hi[axis] = hi;
         }
         Some(iv)
     }
 
-    /// Four boxes (`bounds`: min x, y, z, max x, y, z, one box per lane) against the rays
-    /// bounded by `self`, as [`WideNode::interval_hits`] (which see) tests a node's children: the
-    /// boxes some ray may hit, those every ray hits, and lower bounds of the entry distances.
+    /// Boxes (`bounds`: min x, y, z, max x, y, z, one box per lane: a packet's four, a node's
+    /// eight) against the rays bounded by `self`, as [`WideNode::interval_hits`] (which see)
+    /// tests a node's children: the boxes some ray may hit, those every ray hits (lane masks),
+    /// and lower bounds of the entry distances.
     #[inline(always)]
-    pub fn boxes_hit(&self, bounds: &[Vec4; 6], t_min: f32, far_lo: f32, far_hi: f32) -> (u32, u32, Vec4) {
-        let (mut near_lo, mut near_hi) = (Vec4::splat(t_min), Vec4::splat(t_min));
-        let (mut exit_lo, mut exit_hi) = (Vec4::splat(far_lo), Vec4::splat(far_hi));
+    pub fn boxes_hit<L: Lane>(&self, bounds: &[L; 6], t_min: f32, far_lo: f32, far_hi: f32) -> (L::Mask, L::Mask, L) {
+        let (mut near_lo, mut near_hi) = (L::splat(t_min), L::splat(t_min));
+        let (mut exit_lo, mut exit_hi) = (L::splat(far_lo), L::splat(far_hi));
         for axis in 0..3 {
             let (entry, exit) = (bounds[self.entry_plane[axis]], bounds[self.exit_plane[axis]]);
-            let (lo, hi) = (self.inv_lo[axis], self.inv_hi[axis]);
+            let (lo, hi) = (L::splat(self.inv_lo[axis]), L::splat(self.inv_hi[axis]));
+            let (o_entry, o_exit) = (L::splat(self.entry_origin[axis]), L::splat(self.exit_origin[axis]));
             // The least entry and greatest exit: the origin bounds that make them extreme.
-            let (d_in, d_out) = (entry - self.entry_origin[axis], exit - self.exit_origin[axis]);
+            let (d_in, d_out) = (entry - o_entry, exit - o_exit);
             near_lo = near_lo.max((d_in * lo).min(d_in * hi));
             exit_hi = exit_hi.min((d_out * lo).max(d_out * hi));
             // The greatest entry and least exit: the other origin bounds.
-            let (d_in, d_out) = (entry - self.exit_origin[axis], exit - self.entry_origin[axis]);
+            let (d_in, d_out) = (entry - o_exit, exit - o_entry);
             near_hi = near_hi.max((d_in * lo).max(d_in * hi));
             exit_lo = exit_lo.min((d_out * lo).min(d_out * hi));
         }
-        (near_lo.cmple(exit_hi).bitmask(), near_hi.cmple(exit_lo).bitmask(), near_lo)
+        (near_lo.le(exit_hi), near_hi.le(exit_lo), near_lo)
     }
 }
 
 impl Default for WideNode {
     /// No children.
     fn default() -> Self {
-        WideNode { halves: [[Vec4::INFINITY; 6]; HALVES], children: [EMPTY; WIDTH] }
+        WideNode { planes: [[f32::INFINITY; WIDTH]; 6], children: [EMPTY; WIDTH] }
     }
 }
 
@@ -191,8 +241,8 @@ impl WideNode {
     pub fn single(b: crate::math::Aabb) -> WideNode {
         let mut n = WideNode::default();
         for axis in 0..3 {
-            n.halves[0][axis][0] = b.min[axis];
-            n.halves[0][axis + 3][0] = b.max[axis];
+            n.planes[axis][0] = b.min[axis];
+            n.planes[axis + 3][0] = b.max[axis];
         }
         n
     }
@@ -210,10 +260,9 @@ impl WideNode {
     ) -> (u32, F32s<N>) {
         let mut near = t_min;
         let mut far = t_far;
-        let (bounds, lane) = (&self.halves[lane / 4], lane % 4);
         for axis in 0..3 {
-            let t0 = (F32s::splat(lane_of(&bounds[axis], lane)) - r.origin[axis]) * r.inv_dir[axis];
-            let t1 = (F32s::splat(lane_of(&bounds[axis + 3], lane)) - r.origin[axis]) * r.inv_dir[axis];
+            let t0 = (F32s::splat(self.planes[axis][lane]) - r.origin[axis]) * r.inv_dir[axis];
+            let t1 = (F32s::splat(self.planes[axis + 3][lane]) - r.origin[axis]) * r.inv_dir[axis];
             near = near.max(t0.min(t1));
             far = far.min(t0.max(t1));
         }
@@ -236,60 +285,60 @@ impl WideNode {
     /// one: the per-ray test fails for all. If the greatest entry is at most the least exit
     /// (and `far_lo`), it passes for all.
     #[inline(always)]
-    pub fn interval_hits(&self, iv: &RayInterval, t_min: f32, far_lo: f32, far_hi: f32) -> (u32, u32, [f32; WIDTH]) {
+    pub fn interval_hits<L: BoxLanes>(
+        &self,
+        iv: &RayInterval,
+        t_min: f32,
+        far_lo: f32,
+        far_hi: f32,
+    ) -> (u32, u32, [f32; WIDTH]) {
         let (mut may, mut all, mut entries) = (0, 0, [0.0; WIDTH]);
-        for (h, bounds) in self.halves.iter().enumerate() {
-            // Children fill the first slots: a half without any is skipped.
-            if h > 0 && self.children[4 * h] == EMPTY {
-                break;
-            }
-            let (m, a, e) = iv.boxes_hit(bounds, t_min, far_lo, far_hi);
-            may |= m << (4 * h);
-            all |= a << (4 * h);
-            entries[4 * h..4 * h + 4].copy_from_slice(&e.to_array());
+        for first in self.tests::<L>() {
+            let bounds = std::array::from_fn(|k| L::load(&self.planes[k][first..first + L::COUNT]));
+            let (m, a, e) = iv.boxes_hit(&bounds, t_min, far_lo, far_hi);
+            may |= L::bits(m) << first;
+            all |= L::bits(a) << first;
+            e.store(&mut entries[first..first + L::COUNT]);
         }
         (may, all, entries)
+    }
+
+    /// The first child of each test of `L::COUNT` boxes that holds any child: the children
+    /// fill the first slots, so a test whose first slot is empty is skipped.
+    #[inline(always)]
+    fn tests<L: BoxLanes>(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..WIDTH).step_by(L::COUNT).take_while(|&first| first == 0 || self.children[first] != EMPTY)
     }
 
     /// Same boxes (bit for bit) and children.
     pub fn same_as(&self, o: &WideNode) -> bool {
         self.children == o.children
-            && self
-                .halves
-                .iter()
-                .flatten()
-                .zip(o.halves.iter().flatten())
-                .all(|(a, b)| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits))
+            && self.planes.iter().flatten().zip(o.planes.iter().flatten()).all(|(a, b)| a.to_bits() == b.to_bits())
     }
 
     /// The box of child `lane`.
     pub fn child_bounds(&self, lane: usize) -> crate::math::Aabb {
-        let (bounds, lane) = (&self.halves[lane / 4], lane % 4);
-        let axis = |k: usize| {
-            glam::Vec3::new(lane_of(&bounds[k], lane), lane_of(&bounds[k + 1], lane), lane_of(&bounds[k + 2], lane))
-        };
+        let axis = |k: usize| glam::Vec3::new(self.planes[k][lane], self.planes[k + 1][lane], self.planes[k + 2][lane]);
         crate::math::Aabb { min: axis(0), max: axis(3) }
     }
 
     /// Lanes whose box overlaps the ray within `[t_min, t_max]`, and each lane's entry
     /// distance (meaningful where the lane hits).
     #[inline(always)]
-    pub fn hit(&self, r: &RayBox4, t_min: f32, t_max: f32) -> (u32, [f32; WIDTH]) {
+    pub fn hit<L: BoxLanes>(&self, r: &RayBox<L>, t_min: f32, t_max: f32) -> (u32, [f32; WIDTH]) {
         let (mut mask, mut entries) = (0, [0.0; WIDTH]);
-        for (h, bounds) in self.halves.iter().enumerate() {
-            if h > 0 && self.children[4 * h] == EMPTY {
-                break;
-            }
-            let mut near = Vec4::splat(t_min);
-            let mut far = Vec4::splat(t_max);
+        for first in self.tests::<L>() {
+            let plane = |k: usize| L::load(&self.planes[k][first..first + L::COUNT]);
+            let mut near = L::splat(t_min);
+            let mut far = L::splat(t_max);
             for axis in 0..3 {
-                let t0 = (bounds[axis] - r.origin[axis]) * r.inv_dir[axis];
-                let t1 = (bounds[axis + 3] - r.origin[axis]) * r.inv_dir[axis];
+                let t0 = (plane(axis) - r.origin[axis]) * r.inv_dir[axis];
+                let t1 = (plane(axis + 3) - r.origin[axis]) * r.inv_dir[axis];
                 near = near.max(t0.min(t1));
                 far = far.min(t0.max(t1));
             }
-            mask |= near.cmple(far).bitmask() << (4 * h);
-            entries[4 * h..4 * h + 4].copy_from_slice(&near.to_array());
+            mask |= L::bits(near.le(far)) << first;
+            near.store(&mut entries[first..first + L::COUNT]);
         }
         (mask, entries)
     }
@@ -309,13 +358,12 @@ pub(super) fn collapse(nodes: &[Node]) -> Vec<WideNode> {
 }
 
 fn wide_node(nodes: &[Node], kids: &[usize], mut child: impl FnMut(usize) -> u32) -> WideNode {
-    let mut n = WideNode { halves: [[Vec4::INFINITY; 6]; HALVES], children: [EMPTY; WIDTH] };
+    let mut n = WideNode::default();
     for (lane, &k) in kids.iter().enumerate() {
         let b = nodes[k].bounds;
-        let half = &mut n.halves[lane / 4];
         for axis in 0..3 {
-            half[axis][lane % 4] = b.min[axis];
-            half[axis + 3][lane % 4] = b.max[axis];
+            n.planes[axis][lane] = b.min[axis];
+            n.planes[axis + 3][lane] = b.max[axis];
         }
         n.children[lane] = child(k);
     }
@@ -456,15 +504,19 @@ mod tests {
             for _ in 0..8 {
                 let mut node = WideNode::default();
                 for lane in 0..WIDTH {
-                    // Any child index: a half without children is not tested.
                     node.children[lane] = lane as u32;
                     let (c, h) = (point(&mut rng, 8.0), point(&mut rng, 1.5).abs());
                     for axis in 0..3 {
-                        node.halves[lane / 4][axis][lane % 4] = c[axis] - h[axis];
-                        node.halves[lane / 4][axis + 3][lane % 4] = c[axis] + h[axis];
+                        node.planes[axis][lane] = c[axis] - h[axis];
+                        node.planes[axis + 3][lane] = c[axis] + h[axis];
                     }
                 }
-                let (may, all, _) = node.interval_hits(&iv, 0.0, least, bound);
+                let (may, all, entries) = node.interval_hits::<F32s<WIDTH>>(&iv, 0.0, least, bound);
+                let four_at_a_time = node.interval_hits::<Vec4>(&iv, 0.0, least, bound);
+                assert_eq!(
+                    (may, all, entries.map(f32::to_bits)),
+                    (four_at_a_time.0, four_at_a_time.1, four_at_a_time.2.map(f32::to_bits))
+                );
                 for lane in 0..WIDTH {
                     let hits = node.child_hit_lanes(lane, &rays, t_min, t_far).0 & lanes.bitmask();
                     if may >> lane & 1 == 0 {
@@ -483,6 +535,47 @@ mod tests {
         assert!(groups > 1500, "{groups} groups went one way");
         assert!(dropped * 10 > missed_by_all * 9, "dropped {dropped} of {missed_by_all} boxes all rays miss");
         assert!(kept_whole * 2 > hit_by_all, "{kept_whole} of {hit_by_all} boxes every ray hits said so");
+    }
+
+    /// A node's boxes tested eight at a time and four at a time give the same mask and entry
+    /// distances, bit for bit, for nodes of 1 to 8 children (with 4 or fewer, the four-lane
+    /// test skips the second half), and both agree with each child's test of the ray in lanes.
+    #[test]
+    fn eight_and_four_lane_box_tests_agree() {
+        let mut rng = Pcg32::new(7, 3);
+        let mut hits = 0;
+        for g in 0..20_000 {
+            let mut node = WideNode::default();
+            let children = 1 + g % WIDTH;
+            for lane in 0..children {
+                node.children[lane] = lane as u32;
+                let (c, h) = (point(&mut rng, 4.0), point(&mut rng, 1.5).abs());
+                for axis in 0..3 {
+                    node.planes[axis][lane] = c[axis] - h[axis];
+                    node.planes[axis + 3][lane] = c[axis] + h[axis];
+                }
+            }
+            // Aimed near the first child's centre from around the boxes.
+            let origin = point(&mut rng, 8.0);
+            let dir = (node.child_bounds(0).centroid() + point(&mut rng, 1.0) - origin).normalize_or(Vec3::X);
+            let ray = Ray::new(origin, dir);
+            let t_max = if g % 2 == 0 { f32::INFINITY } else { uniform(&mut rng, 0.5, 12.0) };
+            let (mask8, near8) = node.hit(&RayBox::<F32s<WIDTH>>::new(&ray), 0.0, t_max);
+            let (mask4, near4) = node.hit(&RayBox::<Vec4>::new(&ray), 0.0, t_max);
+            let filled = (1u32 << children) - 1;
+            assert_eq!(mask8 & filled, mask4 & filled, "node {g}");
+            let rays = RayBoxes::<1>::new(&Vec3s::splat(origin), &Vec3s::splat(dir));
+            for lane in 0..children {
+                let (one, near) = node.child_hit_lanes(lane, &rays, F32s::splat(0.0), F32s::splat(t_max));
+                assert_eq!(mask8 >> lane & 1, one, "node {g}, child {lane}");
+                if one != 0 {
+                    assert_eq!(near8[lane].to_bits(), near4[lane].to_bits(), "node {g}, child {lane}");
+                    assert_eq!(near8[lane].to_bits(), near.0[0].to_bits(), "node {g}, child {lane}");
+                    hits += 1;
+                }
+            }
+        }
+        assert!(hits > 8_000, "only {hits} boxes hit");
     }
 
     /// A random binary tree of `leaves` leaves in the build's layout (depth first, the left
