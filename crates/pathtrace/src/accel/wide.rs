@@ -3,9 +3,9 @@
 //! as Embree's BVH8 on AVX CPUs): each node holds its eight child boxes one per SIMD lane and
 //! tests them with the slab test (Kay & Kajiya 1986), all eight in 256-bit vectors where the
 //! caller is compiled for AVX (the render loops' group walks), four at a time elsewhere (see
-//! [`BoxLanes`]). Eight children halve the
-//! tree's depth against four: a walk is a chain of dependent node loads, and on trees larger
-//! than the caches fewer, larger visits are faster (docs/bvh.md, "Eight-wide nodes").
+//! [`BoxLanes`]). Eight children halve the tree's depth against four: a walk is a chain of
+//! dependent node loads, and on trees larger than the caches fewer, larger visits are faster
+//! (docs/bvh.md, "Eight-wide nodes").
 
 use glam::Vec4;
 
@@ -25,9 +25,9 @@ pub(super) const WIDTH: usize = 8;
 /// indices (an interior node, `LEAF | leaf reference` (see `leaf.rs`), or
 /// `EMPTY`; the children fill the first slots, so the first empty slot ends them). Empty lanes
 /// have the box `[+∞, +∞]`, whose slab distances are all +∞ or all −∞: never hit within a
-/// finite range, but "hit" at +∞ by a ray with no `t_max`, so the walks check the slot's
-/// index, not only the test's bit. 224 bytes, aligned to 64 so that a node spans exactly four cache lines (the 32 bytes of padding
-/// are counted in the memory figures of docs/bvh.md).
+/// finite range, but maybe "hit" at +∞ by a ray whose `t_max` is +∞, so the walks check the slot's
+/// index, not only the test's bit. 224 bytes, aligned to 64 so that a node spans exactly four
+/// cache lines (the 32 bytes of padding are counted in the memory figures of docs/bvh.md).
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
 pub(super) struct WideNode {
