@@ -473,6 +473,21 @@ mod tests {
 
     use super::super::test_draws::{point, uniform};
 
+    /// A node of `children` children (in the first slots) with random boxes, centred within
+    /// `spread` of the origin.
+    fn random_node(rng: &mut Pcg32, children: usize, spread: f32) -> WideNode {
+        let mut node = WideNode::default();
+        for lane in 0..children {
+            node.children[lane] = lane as u32;
+            let (c, h) = (point(rng, spread), point(rng, 1.5).abs());
+            for axis in 0..3 {
+                node.planes[axis][lane] = c[axis] - h[axis];
+                node.planes[axis + 3][lane] = c[axis] + h[axis];
+            }
+        }
+        node
+    }
+
     /// A child the interval test drops is missed by every ray of the group in the per-ray test,
     /// and a child it says every ray hits is hit by all (the walks' results depend on that
     /// alone); for groups that go one way the test finds most of the children all rays miss,
@@ -502,15 +517,7 @@ mod tests {
             let t_min = F32s::<N>::splat(0.0);
             let (least, bound) = (t_far.min_over(lanes), t_far.max_over(lanes));
             for _ in 0..8 {
-                let mut node = WideNode::default();
-                for lane in 0..WIDTH {
-                    node.children[lane] = lane as u32;
-                    let (c, h) = (point(&mut rng, 8.0), point(&mut rng, 1.5).abs());
-                    for axis in 0..3 {
-                        node.planes[axis][lane] = c[axis] - h[axis];
-                        node.planes[axis + 3][lane] = c[axis] + h[axis];
-                    }
-                }
+                let node = random_node(&mut rng, WIDTH, 8.0);
                 let (may, all, entries) = node.interval_hits::<F32s<WIDTH>>(&iv, 0.0, least, bound);
                 let four_at_a_time = node.interval_hits::<Vec4>(&iv, 0.0, least, bound);
                 assert_eq!(
@@ -545,16 +552,8 @@ mod tests {
         let mut rng = Pcg32::new(7, 3);
         let mut hits = 0;
         for g in 0..20_000 {
-            let mut node = WideNode::default();
             let children = 1 + g % WIDTH;
-            for lane in 0..children {
-                node.children[lane] = lane as u32;
-                let (c, h) = (point(&mut rng, 4.0), point(&mut rng, 1.5).abs());
-                for axis in 0..3 {
-                    node.planes[axis][lane] = c[axis] - h[axis];
-                    node.planes[axis + 3][lane] = c[axis] + h[axis];
-                }
-            }
+            let node = random_node(&mut rng, children, 4.0);
             // Aimed near the first child's centre from around the boxes.
             let origin = point(&mut rng, 8.0);
             let dir = (node.child_bounds(0).centroid() + point(&mut rng, 1.0) - origin).normalize_or(Vec3::X);
