@@ -51,8 +51,8 @@ pub(super) fn prefetch(nodes: &[WideNode], index: u32) {
 /// The lanes a node's boxes are tested in: `F32s<8>`, all eight boxes at once, for code
 /// compiled for AVX; `Vec4`, four at a time, for code that is not (there, LLVM made the
 /// eight-lane form's `far` a shuffle through the stack that stalled on every visit: 1.14–1.21
-/// against 1.43–1.90 M incoherent rays/s in `bench bvh`, docs/benchmarks.md, "Eight boxes in
-/// one test").
+/// against 1.43–1.90 M incoherent rays/s in `bench bvh`; docs/bvh.md, "Eight boxes in one
+/// test").
 pub(super) trait BoxLanes: Lane {
     /// Boxes per test.
     const COUNT: usize;
